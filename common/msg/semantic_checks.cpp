@@ -1,0 +1,117 @@
+#include "msg/semantic_checks.h"
+
+#include <cmath>
+
+namespace rgnav::msg {
+namespace {
+
+bool no(std::string* why, const std::string& text)
+{
+  if (why) *why = text;
+  return false;
+}
+
+}  // namespace
+
+bool semantically_valid(const laser_scan_t& m, std::string* why)
+{
+  if (m.scan_id <= 0) return no(why, "laser_scan_t: scan_id must be > 0");
+  if (m.nranges < 1 || m.nranges > 10000) return no(why, "laser_scan_t: nranges outside [1, 10000]");
+  if (!(m.angle_increment > 0.f)) return no(why, "laser_scan_t: angle_increment must be > 0");
+  if (m.angle_increment * static_cast<float>(m.nranges - 1) > 2.f * static_cast<float>(M_PI) + 1e-3f)
+    return no(why, "laser_scan_t: field of view exceeds 360 deg");
+  if (!(m.range_min >= 0.f) || !(m.range_max > m.range_min))
+    return no(why, "laser_scan_t: need 0 <= range_min < range_max");
+  if (m.nintensities != 0 && m.nintensities != m.nranges)
+    return no(why, "laser_scan_t: nintensities must be 0 or nranges");
+  for (float r : m.ranges)
+    if (r < 0.f) return no(why, "laser_scan_t: negative range");
+  return true;
+}
+
+bool semantically_valid(const velocity_cmd_t& m, std::string* why)
+{
+  if (m.deadline_us <= 0) return no(why, "velocity_cmd_t: deadline_us must be > 0");
+  if (std::fabs(m.v) > 5.0 || std::fabs(m.omega) > 10.0)
+    return no(why, "velocity_cmd_t: |v| > 5 m/s or |omega| > 10 rad/s is no command for this robot");
+  return true;
+}
+
+bool semantically_valid(const image_t& m, std::string* why)
+{
+  if (m.width <= 0 || m.height <= 0 || m.width > 16384 || m.height > 16384)
+    return no(why, "image_t: width/height outside [1, 16384]");
+  const int64_t w = m.width, h = m.height, stride = m.row_stride;
+  switch (m.pixel_format) {
+    case image_t::FORMAT_GRAY8:
+      if (stride < w || stride * h != m.size) return no(why, "image_t: GRAY8 size != row_stride * height");
+      break;
+    case image_t::FORMAT_BGR8:
+      if (stride < 3 * w || stride * h != m.size) return no(why, "image_t: BGR8 size != row_stride * height");
+      break;
+    case image_t::FORMAT_JPEG:
+      if (m.size < 4 || m.data[0] != 0xFF || m.data[1] != 0xD8) return no(why, "image_t: not a JPEG");
+      break;
+    default:
+      return no(why, "image_t: unknown pixel_format");
+  }
+  return true;
+}
+
+bool semantically_valid(const stereo_images_t& m, std::string* why)
+{
+  return semantically_valid(m.left, why) && semantically_valid(m.right, why);
+}
+
+bool semantically_valid(const obstacle_grid_t& m, std::string* why)
+{
+  if (!(m.resolution > 0.f)) return no(why, "obstacle_grid_t: resolution must be > 0");
+  if (m.width < 0 || m.height < 0 || static_cast<int64_t>(m.width) * m.height != m.ncells)
+    return no(why, "obstacle_grid_t: ncells != width * height");
+  for (int8_t c : m.cells)
+    if (c < -1 || c > 100) return no(why, "obstacle_grid_t: cell outside [-1, 100]");
+  return true;
+}
+
+bool semantically_valid(const region_t& m, std::string* why)
+{
+  if (m.id <= 0) return no(why, "region_t: id must be > 0");
+  const int64_t cells = static_cast<int64_t>(m.freespace_width) * m.freespace_height;
+  if (m.freespace_width < 0 || m.freespace_height < 0 || (cells + 7) / 8 != m.freespace_nbytes)
+    return no(why, "region_t: freespace_nbytes != ceil(width * height / 8)");
+  if (m.freespace_nbytes > 0 && !(m.freespace_resolution > 0.f))
+    return no(why, "region_t: freespace_resolution must be > 0");
+  return true;
+}
+
+bool semantically_valid(const trajectory_t& m, std::string* why)
+{
+  if (!(m.a_max > 0) || !(m.omega_max > 0)) return no(why, "trajectory_t: a_max and omega_max must be > 0");
+  for (const auto& s : m.segments)
+    if (s.length < 0 || !(s.v_max > 0) || s.v_end < 0)
+      return no(why, "trajectory_t: segment needs length >= 0, v_max > 0, v_end >= 0");
+  return true;
+}
+
+bool semantically_valid(const nav_goal_t& m, std::string* why)
+{
+  if (!(m.position_tolerance > 0) || !(m.heading_tolerance > 0))
+    return no(why, "nav_goal_t: tolerances must be > 0");
+  if (!m.cancel && m.region_id == 0 && m.region_name.empty())
+    return no(why, "nav_goal_t: needs region_id or region_name");
+  return true;
+}
+
+bool semantically_valid(const target_list_t& m, std::string* why)
+{
+  if (!(m.max_speed > 0.f)) return no(why, "target_list_t: max_speed must be > 0");
+  return true;
+}
+
+bool semantically_valid(const aligned_scan_t& m, std::string* why)
+{
+  if (m.revision < 0) return no(why, "aligned_scan_t: revision must be >= 0");
+  return semantically_valid(m.scan, why);
+}
+
+}  // namespace rgnav::msg

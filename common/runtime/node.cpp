@@ -1,0 +1,194 @@
+#include "runtime/node.h"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <climits>
+#include <csignal>
+
+#include "bus/lcm_bus.h"
+#include "rgnav/heartbeat_t.hpp"
+
+namespace rgnav::runtime {
+
+NodeOptions load_node_options(const config::Config& node_section, const std::string& default_name)
+{
+  NodeOptions o;
+  o.name = node_section.string("name", default_name);
+  if (o.name.empty()) node_section.fail("name", "must not be empty");
+  o.lcm_url = node_section.string("lcm_url", "");
+  o.heartbeat_channel = node_section.string("heartbeat_channel", o.heartbeat_channel);
+  o.heartbeat_hz = node_section.number("heartbeat_hz", o.heartbeat_hz, 0.5, 100.0);
+  o.input_stale_after = std::chrono::milliseconds(
+      node_section.integer("input_stale_after_ms", o.input_stale_after.count(), 0, 3'600'000));
+  return o;
+}
+
+namespace {
+
+std::string host_name()
+{
+  char buf[256] = {0};
+  if (gethostname(buf, sizeof buf - 1) != 0) return "unknown";
+  return buf;
+}
+
+}  // namespace
+
+Node::Node(NodeOptions options) : options_(std::move(options)), signals_(std::make_unique<SignalWatcher>())
+{
+  bus_ = std::make_unique<bus::LcmBus>(options_.lcm_url);
+  host_ = host_name();
+  every(std::chrono::microseconds(static_cast<int64_t>(1e6 / options_.heartbeat_hz)), [this] { publish_heartbeat(); });
+}
+
+Node::Node(NodeOptions options, std::unique_ptr<bus::Bus> bus)
+    : options_(std::move(options)), signals_(std::make_unique<SignalWatcher>()), bus_(std::move(bus))
+{
+  host_ = host_name();
+  every(std::chrono::microseconds(static_cast<int64_t>(1e6 / options_.heartbeat_hz)), [this] { publish_heartbeat(); });
+}
+
+Node::~Node() = default;
+
+void Node::every(std::chrono::microseconds period, std::function<void()> fn)
+{
+  const auto p = std::chrono::duration_cast<Clock::duration>(period);
+  wall_timers_.push_back({p, Clock::now() + p, std::move(fn)});
+}
+
+void Node::every_message_time(time::Duration period, std::function<void(time::Time)> fn)
+{
+  message_timers_.push_back({period, false, {}, std::move(fn)});
+}
+
+void Node::on_input(int64_t utime)
+{
+  has_input_ = true;
+  last_input_ = Clock::now();
+  ++messages_in_;
+  if (!clock_.observe(time::from_utime(utime))) return;
+  const time::Time now = clock_.now();
+  for (auto& t : message_timers_) {
+    if (!t.started) {
+      // Align to multiples of the period so replays of the same log fire at the same times.
+      const auto ticks = now.time_since_epoch() / t.period;
+      t.next = time::Time((ticks + 1) * t.period);
+      t.started = true;
+      continue;
+    }
+    if (now < t.next) continue;
+    const auto ticks = now.time_since_epoch() / t.period;
+    t.next = time::Time((ticks + 1) * t.period);
+    t.fn(now);
+  }
+}
+
+void Node::set_status(int8_t state, const std::string& text)
+{
+  status_override_ = true;
+  override_state_ = state;
+  override_text_ = text;
+}
+
+void Node::clear_status() { status_override_ = false; }
+
+void Node::publish_heartbeat()
+{
+  heartbeat_t hb;
+  hb.utime = time::wall_utime();
+  hb.name = options_.name;
+  hb.host = host_;
+  hb.pid = static_cast<int32_t>(getpid());
+  hb.seq = ++heartbeat_seq_;
+  const auto now = Clock::now();
+  hb.last_input_age_us =
+      has_input_ ? std::chrono::duration_cast<std::chrono::microseconds>(now - last_input_).count() : -1;
+  hb.cpu_percent = stats_.cpu_percent();
+  hb.rss_kb = ProcStats::rss_kb();
+  hb.messages_in = messages_in_;
+  hb.messages_dropped = drops_.total();
+  if (stop_requested_) {
+    hb.state = heartbeat_t::STATE_STOPPING;
+    hb.status = "stopping";
+  } else if (status_override_) {
+    hb.state = override_state_;
+    hb.status = override_text_;
+  } else if (has_subscriptions_ && !has_input_) {
+    hb.state = heartbeat_t::STATE_STARTING;
+    hb.status = "waiting for input";
+  } else if (has_subscriptions_ && options_.input_stale_after.count() > 0 &&
+             now - last_input_ > options_.input_stale_after) {
+    hb.state = heartbeat_t::STATE_DEGRADED;
+    hb.status = "inputs stale";
+  } else {
+    hb.state = heartbeat_t::STATE_RUNNING;
+    hb.status = "ok";
+  }
+  bus::publish(*bus_, options_.heartbeat_channel, hb);
+}
+
+void Node::run_due_timers()
+{
+  const auto now = Clock::now();
+  // Index loop: a timer callback may register further timers.
+  for (size_t i = 0; i < wall_timers_.size(); ++i) {
+    if (now < wall_timers_[i].next) continue;
+    // Skip missed periods instead of bursting to catch up (a stalled process stays sane).
+    const auto period = wall_timers_[i].period;
+    wall_timers_[i].next += period * (1 + (now - wall_timers_[i].next) / period);
+    auto fn = wall_timers_[i].fn;
+    fn();
+  }
+}
+
+Node::Clock::time_point Node::next_deadline() const
+{
+  auto next = Clock::time_point::max();
+  for (const auto& t : wall_timers_) next = std::min(next, t.next);
+  return next;
+}
+
+bool Node::spin_once(std::chrono::milliseconds max_wait)
+{
+  if (stop_requested_) return false;
+  const auto now = Clock::now();
+  auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(next_deadline() - now);
+  wait = std::clamp(wait, std::chrono::milliseconds(0), max_wait);
+
+  pollfd fds[2] = {{signals_->fd(), POLLIN, 0}, {bus_->fileno(), POLLIN, 0}};
+  const int nfds = fds[1].fd >= 0 ? 2 : 1;
+  const int r = poll(fds, static_cast<nfds_t>(nfds), static_cast<int>(wait.count()));
+  if (r > 0 && (fds[0].revents & POLLIN)) {
+    const int sig = signals_->take();
+    if (sig != 0) {
+      spdlog::info("received signal {}, stopping", sig);
+      stop_requested_ = true;
+      publish_heartbeat();  // tell the supervisor this exit is intended
+      return false;
+    }
+  }
+  if (nfds == 2 && r > 0 && (fds[1].revents & (POLLIN | POLLERR | POLLHUP))) {
+    if (bus_->handle(std::chrono::milliseconds(0)) < 0) {
+      spdlog::error("bus error on {}", bus_->url());
+      bus_failed_ = true;
+      stop_requested_ = true;
+      return false;
+    }
+  } else if (nfds == 1) {
+    bus_->handle(std::chrono::milliseconds(0));
+  }
+  run_due_timers();
+  return !stop_requested_;
+}
+
+int Node::run()
+{
+  spdlog::info("{} running on {}", options_.name, bus_->url());
+  publish_heartbeat();
+  while (!stop_requested_) spin_once(std::chrono::milliseconds(100));
+  spdlog::info("{} stopped ({} inputs, {} dropped)", options_.name, messages_in_, drops_.total());
+  return bus_failed_ ? 1 : 0;
+}
+
+}  // namespace rgnav::runtime

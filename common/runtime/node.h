@@ -1,0 +1,136 @@
+// The process runtime every rgnav process runs in: one bus, typed and validated
+// publish/subscribe, message time, wall-time and message-time timers, a HEARTBEAT at 5 Hz,
+// and a loop that ends cleanly on SIGINT/SIGTERM. Single-threaded: handlers and timers run
+// in run()'s thread, one at a time, so node adapters need no locks.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "bus/bus.h"
+#include "bus/drop_counter.h"
+#include "bus/typed.h"
+#include "config/config.h"
+#include "runtime/proc_stats.h"
+#include "runtime/signal_watcher.h"
+#include "time/message_time.h"
+
+namespace rgnav::runtime {
+
+struct NodeOptions
+{
+  std::string name;                          // process name in heartbeats and logs
+  std::string lcm_url;                       // "" = LCM_DEFAULT_URL or LCM's default
+  std::string heartbeat_channel = "HEARTBEAT";
+  double heartbeat_hz = 5.0;
+  // Heartbeat state turns DEGRADED when the newest input is older than this (0 = never).
+  std::chrono::milliseconds input_stale_after{2000};
+};
+
+// Reads the `node:` section every process config has.
+NodeOptions load_node_options(const config::Config& node_section, const std::string& default_name);
+
+class Node
+{
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  // Creates an LcmBus from options.lcm_url (after blocking the signals).
+  explicit Node(NodeOptions options);
+  // Uses the given bus (tests: FakeBus, memq://).
+  Node(NodeOptions options, std::unique_ptr<bus::Bus> bus);
+  ~Node();
+  Node(const Node&) = delete;
+  Node& operator=(const Node&) = delete;
+
+  // Accepted messages advance the message clock (by their utime) and the input age.
+  template <class T>
+  bus::SubscriptionId subscribe(const std::string& channel, std::function<void(const T&)> handler);
+  template <class T>
+  bool publish(const std::string& channel, const T& msg) { return bus::publish(*bus_, channel, msg); }
+
+  // Wall-time periodic task (heartbeat, hardware loops, periodic republish). The first call
+  // is one period after registration.
+  void every(std::chrono::microseconds period, std::function<void()> fn);
+  // Message-time periodic task: fn(t) runs when message time crosses each multiple of period.
+  void every_message_time(time::Duration period, std::function<void(time::Time)> fn);
+
+  // Runs until SIGINT/SIGTERM or request_stop(). Returns 0, or 1 after a bus error.
+  int run();
+  // One loop iteration, waiting at most max_wait (tests). False once a stop was requested.
+  bool spin_once(std::chrono::milliseconds max_wait);
+  void request_stop() { stop_requested_ = true; }
+  bool stop_requested() const { return stop_requested_; }
+
+  // Overrides the automatic heartbeat state (heartbeat_t::STATE_*) with a reason, until
+  // clear_status() is called.
+  void set_status(int8_t state, const std::string& text);
+  void clear_status();
+  void publish_heartbeat();
+
+  const std::string& name() const { return options_.name; }
+  const time::MessageClock& clock() const { return clock_; }
+  bus::Bus& bus() { return *bus_; }
+  bus::DropCounter& drops() { return drops_; }
+  int64_t messages_in() const { return messages_in_; }
+  int64_t heartbeat_seq() const { return heartbeat_seq_; }
+
+ private:
+  struct WallTimer
+  {
+    Clock::duration period;
+    Clock::time_point next;
+    std::function<void()> fn;
+  };
+  struct MessageTimer
+  {
+    time::Duration period;
+    bool started = false;
+    time::Time next{};
+    std::function<void(time::Time)> fn;
+  };
+
+  void on_input(int64_t utime);
+  void run_due_timers();
+  Clock::time_point next_deadline() const;
+
+  NodeOptions options_;
+  std::unique_ptr<SignalWatcher> signals_;  // before bus_: threads LCM may start inherit the mask
+  std::unique_ptr<bus::Bus> bus_;
+  bus::DropCounter drops_;
+  time::MessageClock clock_;
+  ProcStats stats_;
+  std::vector<WallTimer> wall_timers_;
+  std::vector<MessageTimer> message_timers_;
+  std::string host_;
+  bool stop_requested_ = false;
+  bool bus_failed_ = false;
+  bool has_subscriptions_ = false;
+  bool has_input_ = false;
+  Clock::time_point last_input_{};
+  int64_t messages_in_ = 0;
+  int64_t heartbeat_seq_ = 0;
+  bool status_override_ = false;
+  int8_t override_state_ = 0;
+  std::string override_text_;
+};
+
+template <class T>
+bus::SubscriptionId Node::subscribe(const std::string& channel, std::function<void(const T&)> handler)
+{
+  has_subscriptions_ = true;
+  return bus::subscribe<T>(
+      *bus_, channel,
+      [this, handler = std::move(handler)](const T& msg, const bus::RawMessage&) {
+        on_input(msg.utime);
+        handler(msg);
+      },
+      &drops_);
+}
+
+}  // namespace rgnav::runtime
