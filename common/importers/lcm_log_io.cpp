@@ -1,0 +1,184 @@
+#include "importers/lcm_log_io.h"
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "bus/typed.h"
+#include "rgnav/laser_scan_t.hpp"
+#include "rgnav/odometry_t.hpp"
+
+namespace rgnav::importers {
+namespace {
+
+laser_scan_t to_message(const ScanRecord& s, int64_t scan_id, const std::string& sensor)
+{
+  laser_scan_t m;
+  m.utime = s.utime;
+  m.scan_id = scan_id;
+  m.sensor = sensor;
+  m.angle_min = s.angle_min;
+  m.angle_increment = s.angle_increment;
+  m.range_min = s.range_min;
+  m.range_max = s.range_max;
+  m.scan_time = s.scan_time;
+  m.nranges = static_cast<int32_t>(s.ranges.size());
+  m.ranges = s.ranges;
+  m.nintensities = 0;
+  return m;
+}
+
+ScanRecord from_message(const laser_scan_t& m)
+{
+  ScanRecord s;
+  s.utime = m.utime;
+  s.scan_id = m.scan_id;
+  s.angle_min = m.angle_min;
+  s.angle_increment = m.angle_increment;
+  s.range_min = m.range_min;
+  s.range_max = m.range_max;
+  s.scan_time = m.scan_time;
+  s.ranges = m.ranges;
+  return s;
+}
+
+class Writer
+{
+ public:
+  explicit Writer(const std::string& path) : file_(path, "w")
+  {
+    if (!file_.good()) throw std::runtime_error("cannot write " + path);
+  }
+  template <class T>
+  void write(const std::string& channel, const T& msg)
+  {
+    std::vector<uint8_t> buf;
+    std::string why;
+    if (!bus::encode(msg, &buf, &why)) throw std::runtime_error("invalid " + channel + " message: " + why);
+    lcm::LogEvent ev;
+    ev.eventnum = eventnum_++;
+    ev.timestamp = msg.utime;
+    ev.channel = channel;
+    ev.datalen = static_cast<int32_t>(buf.size());
+    ev.data = buf.data();
+    if (file_.writeEvent(&ev) != 0) throw std::runtime_error("write failed on " + channel);
+  }
+
+ private:
+  lcm::LogFile file_;
+  int64_t eventnum_ = 0;
+};
+
+}  // namespace
+
+WriteSummary write_lcm_log(const ImportedLog& log, const std::string& path, const LogChannels& ch)
+{
+  Writer w(path);
+  WriteSummary sum;
+  int64_t scan_id = 0, rear_id = 0, odom_seq = 0;
+  double distance = 0.0;
+  const PoseRecord* prev = nullptr;
+  for (const auto& e : log.events) {
+    switch (e.kind) {
+      case LogEvent::Kind::kScan:
+        w.write(ch.laser_front, to_message(log.scans[e.index], ++scan_id, "laser_front"));
+        ++sum.scans;
+        break;
+      case LogEvent::Kind::kRearScan:
+        w.write(ch.laser_rear, to_message(log.rear_scans[e.index], ++rear_id, "laser_rear"));
+        ++sum.rear_scans;
+        break;
+      case LogEvent::Kind::kOdometry: {
+        const PoseRecord& p = log.odometry[e.index];
+        odometry_t m{};
+        m.utime = p.utime;
+        m.seq = ++odom_seq;
+        m.odom_from_base.x = p.x;
+        m.odom_from_base.y = p.y;
+        m.odom_from_base.theta = std::remainder(p.theta, 2.0 * M_PI);
+        if (prev) {
+          const double step = std::hypot(p.x - prev->x, p.y - prev->y);
+          distance += step;
+          const double dt = 1e-6 * static_cast<double>(p.utime - prev->utime);
+          if (dt > 1e-4) {
+            m.v = step / dt;
+            m.omega = std::remainder(p.theta - prev->theta, 2.0 * M_PI) / dt;
+          }
+        }
+        m.distance = distance;
+        m.status = odometry_t::STATUS_OK;
+        prev = &p;
+        w.write(ch.odometry, m);
+        ++sum.odometry;
+        break;
+      }
+      case LogEvent::Kind::kReference: {
+        const PoseRecord& p = log.reference[e.index];
+        odometry_t m{};
+        m.utime = p.utime;
+        m.seq = scan_id;  // the scan this reference pose belongs to
+        m.odom_from_base.x = p.x;
+        m.odom_from_base.y = p.y;
+        m.odom_from_base.theta = std::remainder(p.theta, 2.0 * M_PI);
+        m.status = odometry_t::STATUS_OK;
+        w.write(ch.reference, m);
+        ++sum.reference;
+        break;
+      }
+    }
+  }
+  return sum;
+}
+
+ImportedLog read_lcm_log(const std::string& path, const LogChannels& ch)
+{
+  lcm::LogFile file(path, "r");
+  if (!file.good()) throw std::runtime_error("cannot read LCM log " + path);
+  ImportedLog log;
+  log.format = "lcm";
+  int64_t n = 0;
+  for (const lcm::LogEvent* ev = file.readNextEvent(); ev; ev = file.readNextEvent()) {
+    ++n;
+    const auto* data = static_cast<const uint8_t*>(ev->data);
+    const size_t size = static_cast<size_t>(ev->datalen);
+    std::string why;
+    if (ev->channel == ch.laser_front || ev->channel == ch.laser_rear) {
+      laser_scan_t m;
+      if (!bus::decode(data, size, &m, &why)) {
+        log.issues.push_back({n, ev->channel + ": " + why});
+        continue;
+      }
+      if (ev->channel == ch.laser_front)
+        log.add_scan(from_message(m));
+      else
+        log.add_rear_scan(from_message(m));
+    } else if (ev->channel == ch.odometry || ev->channel == ch.reference) {
+      odometry_t m;
+      if (!bus::decode(data, size, &m, &why)) {
+        log.issues.push_back({n, ev->channel + ": " + why});
+        continue;
+      }
+      PoseRecord p{m.utime, m.seq, m.odom_from_base.x, m.odom_from_base.y, m.odom_from_base.theta};
+      if (ev->channel == ch.odometry)
+        log.add_odometry(p);
+      else
+        log.add_reference(p);
+    }
+  }
+  log.lines = n;
+  // lcm's reader returns null both at the end and at a damaged event; a damaged tail shows as
+  // the file position short of the file size.
+  FILE* fp = file.getFilePtr();
+  if (fp) {
+    const long pos = std::ftell(fp);
+    std::fseek(fp, 0, SEEK_END);
+    if (std::ftell(fp) > pos) {
+      log.truncated = true;
+      log.issues.push_back({n + 1, "damaged or truncated event at the end of the log"});
+    }
+  }
+  return log;
+}
+
+}  // namespace rgnav::importers

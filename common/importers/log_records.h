@@ -1,0 +1,83 @@
+// Plain records of a recorded laser log, independent of its file format and of LCM: what the
+// importers parse (CARMEN, Mines) and what the LCM log writer/reader exchange.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rgnav::importers {
+
+// One planar scan, beams counter-clockwise from angle_min (laser frame).
+struct ScanRecord
+{
+  int64_t utime = 0;          // [us] original timestamp of the scan
+  int64_t scan_id = 0;        // 0 until written to / read from an LCM log
+  float angle_min = 0.f;      // [rad]
+  float angle_increment = 0.f;  // [rad]
+  float range_min = 0.f;      // [m] readings below are invalid
+  float range_max = 0.f;      // [m] readings at or above mean "no return"
+  float scan_time = 0.f;      // [s] rotation period (0 if unknown)
+  std::vector<float> ranges;  // [m]
+};
+
+// A planar pose sample (odometry or a reference pose) at a time.
+struct PoseRecord
+{
+  int64_t utime = 0;  // [us]
+  int64_t seq = 0;    // LCM odometry_t.seq; for reference poses the scan_id they belong to
+  double x = 0.0;     // [m]
+  double y = 0.0;     // [m]
+  double theta = 0.0; // [rad]
+};
+
+// A line the parser could not use, with its 1-based line number.
+struct ImportIssue
+{
+  int64_t line = 0;
+  std::string what;
+};
+
+// One record of the log, in file order.
+struct LogEvent
+{
+  enum class Kind { kScan, kRearScan, kOdometry, kReference };
+  Kind kind;
+  size_t index;  // into ImportedLog::scans / rear_scans / odometry / reference
+};
+
+struct ImportedLog
+{
+  std::string format;  // "carmen", "mines", "lcm"
+  std::vector<ScanRecord> scans;       // front laser
+  std::vector<ScanRecord> rear_scans;  // rear laser (CARMEN RLASER), if any
+  std::vector<PoseRecord> odometry;
+  std::vector<PoseRecord> reference;  // published corrected poses, when the log has them
+  std::vector<LogEvent> events;       // file order of all records
+  std::vector<ImportIssue> issues;    // malformed lines, skipped
+  bool truncated = false;             // the input ended early (e.g. a cut gzip stream)
+  int64_t lines = 0;                  // lines read
+
+  void add_scan(ScanRecord s)
+  {
+    events.push_back({LogEvent::Kind::kScan, scans.size()});
+    scans.push_back(std::move(s));
+  }
+  void add_rear_scan(ScanRecord s)
+  {
+    events.push_back({LogEvent::Kind::kRearScan, rear_scans.size()});
+    rear_scans.push_back(std::move(s));
+  }
+  void add_odometry(PoseRecord p)
+  {
+    events.push_back({LogEvent::Kind::kOdometry, odometry.size()});
+    odometry.push_back(p);
+  }
+  void add_reference(PoseRecord p)
+  {
+    events.push_back({LogEvent::Kind::kReference, reference.size()});
+    reference.push_back(p);
+  }
+};
+
+}  // namespace rgnav::importers

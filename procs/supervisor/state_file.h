@@ -1,0 +1,36 @@
+// The supervisor's record of the children it started (pid, start time, argv), rewritten
+// atomically whenever a child starts or ends, so a supervisor that was killed and restarted
+// can tell its still-running children from strangers that reuse their pids, and adopt them.
+#pragma once
+
+#include <sys/types.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rgnav::supervisor {
+
+struct ChildRecord
+{
+  std::string name;
+  pid_t pid = 0;
+  uint64_t start_ticks = 0;
+  std::vector<std::string> argv;
+  int stop_signal = 15;
+  int restarts = 0;
+};
+
+struct SupervisorState
+{
+  std::string host;
+  std::string launch_config;
+  std::vector<ChildRecord> children;
+};
+
+// Missing or unreadable file: empty state (and a warning in the log for a corrupt one).
+SupervisorState load_state(const std::string& path);
+// Write to path.tmp, fsync, rename. Throws std::runtime_error.
+void save_state(const std::string& path, const SupervisorState& state);
+
+}  // namespace rgnav::supervisor

@@ -1,0 +1,113 @@
+#include "config/config.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+namespace rgnav::config {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string error_of(const std::function<void()>& f)
+{
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Config, ReadsValuesAndDefaults)
+{
+  const auto c = Config::parse("a: 1.5\nsec:\n  n: 3\n  s: hi\n  b: true\n  l: [1, 2]\n", "t.yaml");
+  EXPECT_DOUBLE_EQ(c.number("a", 0, 0, 10), 1.5);
+  EXPECT_DOUBLE_EQ(c.number("missing", 7, 0, 10), 7);
+  const auto s = c.section("sec");
+  EXPECT_EQ(s.integer("n", 0, 0, 10), 3);
+  EXPECT_EQ(s.string("s", ""), "hi");
+  EXPECT_TRUE(s.boolean("b", false));
+  EXPECT_EQ(s.numbers("l", {}, 0, 5), (std::vector<double>{1, 2}));
+  EXPECT_NO_THROW(c.finish());
+}
+
+TEST(Config, UnknownKeyNamesFileAndFullPath)
+{
+  const auto c = Config::parse("sec:\n  good: 1\n  typo_key: 2\n", "config/x.yaml");
+  c.section("sec").number("good", 0, 0, 5);
+  const std::string e = error_of([&] { c.finish(); });
+  EXPECT_THAT(e, HasSubstr("config/x.yaml"));
+  EXPECT_THAT(e, HasSubstr("'sec.typo_key'"));
+  EXPECT_THAT(e, ::testing::Not(HasSubstr("sec.good")));
+}
+
+TEST(Config, UnreadSectionIsUnknown)
+{
+  const auto c = Config::parse("other:\n  x: 1\n", "f.yaml");
+  EXPECT_THAT(error_of([&] { c.finish(); }), HasSubstr("'other'"));
+}
+
+TEST(Config, WrongTypeAndRangeNameKey)
+{
+  const auto c = Config::parse("m:\n  speed: fast\n  limit: 12\n  n: 2.5\n  flag: maybe\n", "r.yaml");
+  const auto m = c.section("m");
+  EXPECT_THAT(error_of([&] { m.number("speed", 0, 0, 1); }), HasSubstr("r.yaml: key 'm.speed': expected a number"));
+  EXPECT_THAT(error_of([&] { m.number("limit", 0, 0, 10); }), HasSubstr("key 'm.limit': value 12 outside [0, 10]"));
+  EXPECT_THAT(error_of([&] { m.integer("n", 0, 0, 10); }), HasSubstr("key 'm.n': expected an integer"));
+  EXPECT_THAT(error_of([&] { m.boolean("flag", false); }), HasSubstr("key 'm.flag': expected true or false"));
+}
+
+TEST(Config, NonFiniteNumbersRefused)
+{
+  const auto c = Config::parse("x: .nan\ny: .inf\n", "n.yaml");
+  EXPECT_THAT(error_of([&] { c.number("x", 0, -1e9, 1e9); }), HasSubstr("'x'"));
+  EXPECT_THAT(error_of([&] { c.number("y", 0, -1e9, 1e9); }), HasSubstr("'y'"));
+}
+
+TEST(Config, ChoiceListsAllowedValues)
+{
+  const auto c = Config::parse("mode: turbo\n", "c.yaml");
+  EXPECT_THAT(error_of([&] { c.choice("mode", "direct", {"direct", "protocol"}); }),
+              HasSubstr("'turbo' is not one of: direct, protocol"));
+}
+
+TEST(Config, ListElementsTrackUnknownKeys)
+{
+  const auto c = Config::parse("walls:\n  - {x: 1, y: 2}\n  - {x: 3, z: 4}\n", "w.yaml");
+  for (const auto& w : c.list("walls")) w.number("x", 0, 0, 9);
+  const std::string e = error_of([&] { c.finish(); });
+  EXPECT_THAT(e, HasSubstr("walls[0].y"));
+  EXPECT_THAT(e, HasSubstr("walls[1].z"));
+}
+
+TEST(Config, MissingFileAndBadYaml)
+{
+  EXPECT_THAT(error_of([] { Config::load("/nonexistent/rgnav.yaml"); }),
+              HasSubstr("/nonexistent/rgnav.yaml: cannot open"));
+  EXPECT_THAT(error_of([] { Config::parse("a: [1, 2\n", "bad.yaml"); }), HasSubstr("bad.yaml: not valid YAML"));
+  EXPECT_THAT(error_of([] { Config::parse("- 1\n- 2\n", "seq.yaml"); }), HasSubstr("top level must be a mapping"));
+}
+
+TEST(Config, SectionOfWrongKind)
+{
+  const auto c = Config::parse("node: 5\n", "k.yaml");
+  EXPECT_THAT(error_of([&] { c.section("node"); }), HasSubstr("key 'node': expected a mapping"));
+}
+
+TEST(Config, EveryProcessConfigInRepoParses)
+{
+  // Each config/<process>.yaml must at least be a YAML mapping; the processes themselves
+  // validate keys with --check-config (tests of each process).
+  const std::string dir = RGNAV_SOURCE_DIR "/config";
+  for (const char* name : {"laser_driver", "base_driver", "sim", "scan_mapper", "supervisor"}) {
+    const std::string path = dir + "/" + name + ".yaml";
+    if (!std::ifstream(path)) continue;
+    EXPECT_NO_THROW(Config::load(path)) << path;
+  }
+}
+
+}  // namespace
+}  // namespace rgnav::config
