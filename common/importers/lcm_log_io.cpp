@@ -138,8 +138,11 @@ ImportedLog read_lcm_log(const std::string& path, const LogChannels& ch)
   ImportedLog log;
   log.format = "lcm";
   int64_t n = 0;
+  FILE* fp = file.getFilePtr();
+  long good_end = 0;  // file position after the last complete event
   for (const lcm::LogEvent* ev = file.readNextEvent(); ev; ev = file.readNextEvent()) {
     ++n;
+    good_end = fp ? std::ftell(fp) : 0;
     const auto* data = static_cast<const uint8_t*>(ev->data);
     const size_t size = static_cast<size_t>(ev->datalen);
     std::string why;
@@ -168,12 +171,10 @@ ImportedLog read_lcm_log(const std::string& path, const LogChannels& ch)
   }
   log.lines = n;
   // lcm's reader returns null both at the end and at a damaged event; a damaged tail shows as
-  // the file position short of the file size.
-  FILE* fp = file.getFilePtr();
+  // bytes after the last complete event.
   if (fp) {
-    const long pos = std::ftell(fp);
     std::fseek(fp, 0, SEEK_END);
-    if (std::ftell(fp) > pos) {
+    if (std::ftell(fp) > good_end) {
       log.truncated = true;
       log.issues.push_back({n + 1, "damaged or truncated event at the end of the log"});
     }

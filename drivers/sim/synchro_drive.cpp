@@ -1,0 +1,44 @@
+#include "sim/synchro_drive.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rgnav::sim {
+
+namespace {
+
+double slew(double current, double target, double max_change)
+{
+  return current + std::clamp(target - current, -max_change, max_change);
+}
+
+}  // namespace
+
+BaseMotion SynchroDrive::step(const DriveCommand& target, double dt)
+{
+  const double v_target = std::clamp(target.v, -options_.v_max, options_.v_max);
+  const double w_target = std::clamp(target.omega, -options_.omega_max, options_.omega_max);
+  const double v0 = v_, w0 = omega_;
+  v_ = slew(v_, v_target, options_.accel * dt);
+  omega_ = slew(omega_, w_target, options_.alpha * dt);
+  // Velocities ramp linearly within the step: the trapezoid gives the exact distances.
+  return {0.5 * (v0 + v_) * dt, 0.5 * (w0 + omega_) * dt};
+}
+
+Pose2 apply_motion(const Pose2& pose, double ds, double dtheta)
+{
+  Pose2 out = pose;
+  if (std::fabs(dtheta) < 1e-9) {
+    // Straight line, heading at mid-step.
+    out.x += ds * std::cos(pose.theta + 0.5 * dtheta);
+    out.y += ds * std::sin(pose.theta + 0.5 * dtheta);
+  } else {
+    const double r = ds / dtheta;
+    out.x += r * (std::sin(pose.theta + dtheta) - std::sin(pose.theta));
+    out.y -= r * (std::cos(pose.theta + dtheta) - std::cos(pose.theta));
+  }
+  out.theta = normalize_angle(pose.theta + dtheta);
+  return out;
+}
+
+}  // namespace rgnav::sim
