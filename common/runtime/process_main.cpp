@@ -21,6 +21,12 @@ std::string default_config_dir()
   return std::string(RGNAV_SOURCE_DIR) + "/config";
 }
 
+std::string default_data_dir()
+{
+  if (const char* dir = std::getenv("RGNAV_DATA_DIR"); dir && *dir) return dir;
+  return std::string(RGNAV_SOURCE_DIR) + "/../shared/data";
+}
+
 int process_main(int argc, char** argv, const std::string& default_name, const ProcessSetup& setup,
                  const std::function<void(CLI::App&)>& add_flags)
 {

@@ -41,5 +41,7 @@ int process_main(int argc, char** argv, const std::string& default_name, const P
 
 // $RGNAV_CONFIG_DIR, else config/ of the source tree this binary was built from.
 std::string default_config_dir();
+// $RGNAV_DATA_DIR, else ../shared/data beside the source tree (the shared real data sets).
+std::string default_data_dir();
 
 }  // namespace rgnav::runtime
