@@ -67,12 +67,16 @@ YAML::Node Config::lookup(const std::string& key) const
 {
   state_->used.insert(path_of(key));
   if (!node_.IsMap()) return YAML::Node();
-  return node_[key];
+  const YAML::Node& map = node_;  // const operator[]: a missing key must not be inserted
+  return map[key];
 }
 
 bool Config::has(const std::string& key) const
 {
-  return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
+  if (!node_.IsMap()) return false;
+  const YAML::Node& map = node_;
+  const YAML::Node n = map[key];
+  return n.IsDefined() && !n.IsNull();
 }
 
 std::vector<std::string> Config::keys() const
@@ -85,9 +89,10 @@ std::vector<std::string> Config::keys() const
 
 Config Config::section(const std::string& key) const
 {
-  YAML::Node n = lookup(key);
+  const YAML::Node n = lookup(key);
   if (n.IsDefined() && !n.IsNull() && !n.IsMap()) fail(key, "expected a mapping, got " + describe(n));
-  if (!n.IsDefined() || n.IsNull()) n = YAML::Node(YAML::NodeType::Map);
+  // A missing section reads as an empty mapping: every key takes its default.
+  if (!n.IsDefined() || n.IsNull()) return Config(state_, YAML::Node(YAML::NodeType::Map), path_of(key));
   return Config(state_, n, path_of(key));
 }
 

@@ -91,6 +91,16 @@ TEST(Config, MissingFileAndBadYaml)
   EXPECT_THAT(error_of([] { Config::parse("- 1\n- 2\n", "seq.yaml"); }), HasSubstr("top level must be a mapping"));
 }
 
+TEST(Config, MissingSectionsReadAsDefaults)
+{
+  const auto c = Config::parse("capture:\n  rate_hz: 5\n", "m.yaml");
+  const auto cams = c.section("capture").section("cameras");
+  EXPECT_EQ(cams.integer("width", 640, 1, 9000), 640);
+  EXPECT_EQ(c.section("channels").string("stereo", "STEREO_IMAGES"), "STEREO_IMAGES");
+  EXPECT_DOUBLE_EQ(c.section("capture").number("rate_hz", 1, 0, 10), 5);
+  EXPECT_NO_THROW(c.finish());
+}
+
 TEST(Config, SectionOfWrongKind)
 {
   const auto c = Config::parse("node: 5\n", "k.yaml");
