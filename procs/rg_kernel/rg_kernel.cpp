@@ -1,0 +1,232 @@
+#include "procs/rg_kernel/rg_kernel.h"
+
+#include <spdlog/spdlog.h>
+
+namespace rgnav::rg_kernel {
+
+using Eigen::Vector2d;
+using rgmap::Gateway;
+using rgmap::Region;
+
+RgKernel::RgKernel(KernelOptions options) : options_(std::move(options)) {}
+
+StoredScan RgKernel::to_stored(const ScanInput& s, int64_t region_id) const
+{
+  StoredScan out;
+  out.scan_id = s.scan_id;
+  out.utime = s.utime;
+  out.revision = s.revision;
+  out.region_from_laser = map_.region(region_id)->map_from_region.inverse() * s.map_from_base * s.base_from_laser;
+  out.laser_points = s.laser_points;
+  return out;
+}
+
+int64_t RgKernel::open_region(const geometry::Pose2& map_from_region, int64_t utime)
+{
+  Region& r = map_.add_region(map_from_region, utime);
+  builders_.emplace(r.id, RegionBuilder(options_.build));
+  spdlog::info("opened region {}", r.id);
+  return r.id;
+}
+
+void RgKernel::enter(int64_t region_id, int64_t utime)
+{
+  Region* r = map_.region(region_id);
+  r->state = Region::State::kOpen;
+  r->utime = utime;
+  map_.current_region = region_id;
+  scans_since_entering_ = 0;
+}
+
+bool RgKernel::add_scan(const ScanInput& s)
+{
+  map_.utime = std::max(map_.utime, s.utime);
+  auto known = region_of_scan_.find(s.scan_id);
+  if (known != region_of_scan_.end()) {
+    // A correction of an earlier scan (loop closure): re-place it in its region.
+    if (s.revision <= scan_inputs_[s.scan_id].revision) return false;
+    const int64_t rid = map_.resolve(known->second);
+    scan_inputs_[s.scan_id] = s;
+    builders_.at(rid).add_scan(to_stored(s, rid));
+    ++map_.version;
+    return true;
+  }
+  if (map_.current_region == 0) {
+    // The first region's frame is the first scan's robot pose.
+    enter(open_region(s.map_from_base, s.utime), s.utime);
+  }
+  const int64_t rid = map_.current_region;
+  builders_.at(rid).add_scan(to_stored(s, rid));
+  region_of_scan_[s.scan_id] = rid;
+  scan_inputs_[s.scan_id] = s;
+  map_.last_scan_id = std::max(map_.last_scan_id, s.scan_id);
+  map_.region(rid)->utime = s.utime;
+  ++scans_since_entering_;
+  ++map_.version;
+  maybe_merge_current(s.utime);
+  return true;
+}
+
+Vector2d RgKernel::crossing_in_map(const Gateway& g) const
+{
+  const Region* a = map_.region(g.region_a);
+  Vector2d c = Vector2d::Zero();
+  if (!g.crossing_points.empty()) c = g.crossing_points.front();
+  return a->map_from_region * c;
+}
+
+int64_t RgKernel::region_containing(const Vector2d& p, int64_t except) const
+{
+  for (const auto& [id, r] : map_.regions()) {
+    if (id == except || r.state != Region::State::kFinalised) continue;
+    if (r.freespace.is_free(r.map_from_region.inverse() * p)) return id;
+  }
+  return 0;
+}
+
+std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t region_id) const
+{
+  std::vector<std::pair<Vector2d, Vector2d>> lines;
+  const Region* r = map_.region(region_id);
+  for (const auto& [id, g] : map_.gateways()) {
+    if (g.neutralized || g.gateway_points.size() < 2) continue;
+    const Region* a = map_.region(g.region_a);
+    if (g.region_a != region_id && g.region_b != region_id) continue;
+    // Gateway points are stored in region_a's frame: move them into this region's frame.
+    const geometry::Pose2 r_from_a = r->map_from_region.inverse() * a->map_from_region;
+    for (size_t k = 0; k + 1 < g.gateway_points.size(); k += 2)
+      lines.push_back({r_from_a * g.gateway_points[k], r_from_a * g.gateway_points[k + 1]});
+  }
+  return lines;
+}
+
+bool RgKernel::add_gateway_event(const GatewayEventInput& e)
+{
+  map_.utime = std::max(map_.utime, e.utime);
+  if (e.kind == GatewayEventInput::Kind::kEntered) {
+    entered_utime_[e.track_id] = e.utime;
+    return false;
+  }
+  if (e.kind != GatewayEventInput::Kind::kTraversed || map_.current_region == 0 || e.gateway_points.empty()) return false;
+
+  const int64_t from = map_.current_region;
+  Region* cur = map_.region(from);
+  Vector2d c_map = Vector2d::Zero();
+  for (const auto& p : e.gateway_points) c_map += p;
+  c_map /= static_cast<double>(e.gateway_points.size());
+
+  // A gateway we know already (crossed before, from either side)?
+  Gateway* g = nullptr;
+  for (const auto& [id, known] : map_.gateways()) {
+    if (!known.neutralized && (crossing_in_map(known) - c_map).norm() < options_.gateway_match_distance) {
+      g = map_.gateway(id);
+      break;
+    }
+  }
+  int64_t next = 0;
+  if (g) {
+    const int64_t a = map_.resolve(g->region_a), b = g->region_b ? map_.resolve(g->region_b) : 0;
+    if (a == from) next = b;
+    else if (b == from) next = a;
+    else if (b == 0) {
+      // Crossing a dangling gateway of another region from its far side: we are its region_b.
+      map_.connect(g->id, from, map_.region(a)->map_from_region.inverse() * cur->map_from_region);
+      next = a;
+    } else {
+      next = a;  // neither side is where we are: trust the gateway's geometry
+    }
+  } else {
+    Gateway& fresh = map_.add_gateway(e.cls, from, e.utime);
+    const geometry::Pose2 region_from_map = cur->map_from_region.inverse();
+    for (const auto& p : e.gateway_points) fresh.gateway_points.push_back(region_from_map * p);
+    fresh.crossing_points.push_back(region_from_map * c_map);
+    fresh.traversal_directions.push_back(geometry::normalize_angle(e.direction - cur->map_from_region.theta()));
+    g = &fresh;
+    spdlog::info("gateway {} ({}) found leaving region {}", fresh.id, rgmap::to_string(e.cls), from);
+  }
+  // Finalise the region we leave, now that its gateways (the new one too) filter its beams.
+  builders_.at(from).describe(cur, gateway_lines(from));
+  cur->state = Region::State::kFinalised;
+  cur->utime = e.utime;
+
+  if (next == 0) next = region_containing(e.map_from_base.translation(), from);
+  if (next == 0) next = open_region(e.map_from_base, e.utime);
+  if (g->region_b == 0 && map_.resolve(g->region_a) == from)
+    map_.connect(g->id, next, map_.region(from)->map_from_region.inverse() * map_.region(next)->map_from_region);
+
+  // Traversal statistics: the learned cost of this gateway (diss. 5.4).
+  auto it = entered_utime_.find(e.track_id);
+  if (it != entered_utime_.end() && e.utime > it->second) {
+    const double t = (e.utime - it->second) * 1e-6;
+    g->mean_traversal_time = (g->mean_traversal_time * g->traversals + t) / (g->traversals + 1);
+    entered_utime_.erase(it);
+  }
+  ++g->traversals;
+  enter(next, e.utime);
+  ++map_.version;
+  return true;
+}
+
+void RgKernel::maybe_merge_current(int64_t utime)
+{
+  if (scans_since_entering_ < options_.merge_min_scans) return;
+  const int64_t cur = map_.current_region;
+  const auto origins = builders_.at(cur).laser_origins();
+  const Region* r = map_.region(cur);
+  std::map<int64_t, int> inside;
+  for (const auto& o : origins) {
+    const Vector2d p = r->map_from_region * o;
+    if (const int64_t q = region_containing(p, cur)) ++inside[q];
+  }
+  for (const auto& [q, n] : inside) {
+    if (n < options_.merge_inside_ratio * static_cast<double>(origins.size())) continue;
+    // The current region is a place we know: merge it into q (diss. 6.1.1, Fig. 6.4).
+    const geometry::Pose2 q_from_cur = map_.region(q)->map_from_region.inverse() * r->map_from_region;
+    const int neutralized = map_.merge(cur, q, q_from_cur, utime);
+    RegionBuilder& into = builders_.at(q);
+    for (const auto& [sid, rid] : region_of_scan_) {
+      if (rid != cur) continue;
+      into.add_scan(to_stored(scan_inputs_.at(sid), q));
+    }
+    for (auto& [sid, rid] : region_of_scan_)
+      if (rid == cur) rid = q;
+    builders_.erase(cur);
+    spdlog::info("region {} is region {} seen again: merged, {} gateway(s) neutralized", cur, q, neutralized);
+    enter(q, utime);
+    return;
+  }
+}
+
+rgmap::Region RgKernel::describe_region(int64_t id) const
+{
+  Region r = *map_.region(id);
+  auto it = builders_.find(id);
+  if (it != builders_.end()) it->second.describe(&r, gateway_lines(id));
+  return r;
+}
+
+rgmap::RgMap RgKernel::described_map() const
+{
+  rgmap::RgMap m = map_;
+  for (const auto& [id, b] : builders_) *m.region(id) = describe_region(id);
+  return m;
+}
+
+KernelStats RgKernel::stats() const
+{
+  KernelStats s;
+  for (const auto& [id, r] : map_.regions())
+    if (r.state != Region::State::kMerged) ++s.regions;
+  for (const auto& [id, g] : map_.gateways()) {
+    ++s.gateways;
+    if (g.neutralized) ++s.neutralized;
+  }
+  for (const auto& [id, b] : builders_) {
+    s.segments += static_cast<int>(b.segments().size());
+    s.raw_points += b.raw_points();
+  }
+  s.compression = s.segments > 0 ? static_cast<double>(s.raw_points) / (2.0 * s.segments) : 0.0;
+  return s;
+}
+
+}  // namespace rgnav::rg_kernel

@@ -1,0 +1,92 @@
+// The RG kernel's algorithm (diss. 5.0, 5.2, 6.1), no LCM: aligned scans are stacked into the
+// current region; a traversed gateway finalises the region (line map, bounding rectangle,
+// freespace from in-region beams) and opens the region beyond, or re-enters a known one; a
+// region that turns out to be a known place (the robot's positions lie in a finalised
+// region's freespace) is merged into it and gateways with one region on both sides are
+// neutralized (diss. 6.1.1); republished scans (loop-closure corrections) update their region.
+// Inputs are applied in the order given; with the same inputs the map is the same.
+#pragma once
+
+#include <map>
+#include <vector>
+
+#include "procs/rg_kernel/region_builder.h"
+#include "rgmap/rg_map.h"
+
+namespace rgnav::rg_kernel {
+
+struct KernelOptions
+{
+  RegionBuildOptions build;
+  double gateway_match_distance = 0.8;   // [m] crossing points closer than this: same gateway
+  int merge_min_scans = 8;               // scans in a region before a merge is considered
+  double merge_inside_ratio = 0.7;       // share of its robot positions in a known region's freespace
+};
+
+struct ScanInput
+{
+  int64_t scan_id = 0;
+  int64_t utime = 0;
+  int32_t revision = 0;
+  geometry::Pose2 map_from_base;
+  geometry::Pose2 base_from_laser;
+  std::vector<Eigen::Vector2d> laser_points;   // valid end points, laser frame, beam order
+};
+
+struct GatewayEventInput
+{
+  enum class Kind { kApproached = 1, kEntered = 2, kTraversed = 3, kLost = 4 };
+  int64_t utime = 0;
+  int64_t scan_id = 0;
+  Kind kind = Kind::kTraversed;
+  int64_t track_id = 0;
+  rgmap::GatewayClass cls = rgmap::GatewayClass::kUnknown;
+  geometry::Pose2 map_from_base;               // robot pose at the event
+  std::vector<Eigen::Vector2d> gateway_points; // map frame
+  double direction = 0;                        // [rad] map frame, heading of the crossing
+};
+
+struct KernelStats
+{
+  int regions = 0;          // not merged away
+  int gateways = 0;
+  int neutralized = 0;
+  int segments = 0;
+  int64_t raw_points = 0;
+  double compression = 0;   // raw points / segment end points
+};
+
+class RgKernel
+{
+ public:
+  explicit RgKernel(KernelOptions options);
+
+  // Both return true when the map changed.
+  bool add_scan(const ScanInput& scan);
+  bool add_gateway_event(const GatewayEventInput& event);
+
+  const rgmap::RgMap& map() const { return map_; }
+  // The map with every region's description (segments, bbox, freespace) brought up to date.
+  rgmap::RgMap described_map() const;
+  rgmap::Region describe_region(int64_t id) const;
+  KernelStats stats() const;
+
+ private:
+  int64_t open_region(const geometry::Pose2& map_from_region, int64_t utime);
+  void enter(int64_t region_id, int64_t utime);
+  void maybe_merge_current(int64_t utime);
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> gateway_lines(int64_t region_id) const;
+  Eigen::Vector2d crossing_in_map(const rgmap::Gateway& g) const;
+  int64_t region_containing(const Eigen::Vector2d& map_point, int64_t except) const;
+  StoredScan to_stored(const ScanInput& s, int64_t region_id) const;
+
+  const KernelOptions options_;
+  rgmap::RgMap map_;
+  std::map<int64_t, RegionBuilder> builders_;   // by region id
+  std::map<int64_t, int64_t> region_of_scan_;   // scan id -> region holding it
+  std::map<int64_t, ScanInput> scan_inputs_;    // latest revision of every scan (for re-framing on merge)
+  std::map<int64_t, int64_t> entered_utime_;    // track id -> ENTERED time, for traversal times
+  int scans_since_entering_ = 0;
+};
+
+}  // namespace rgnav::rg_kernel

@@ -1,0 +1,50 @@
+// A tiny ray caster over wall segments, for RG kernel tests: two rooms joined by a door.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "geometry/pose2.h"
+
+namespace rgnav::rg_kernel::testing {
+
+struct Wall
+{
+  Eigen::Vector2d a, b;
+};
+
+// Room A [0,4]x[0,3], room B [4,8]x[0,3], door in x = 4 between y = 1 and y = 2.
+inline std::vector<Wall> two_rooms()
+{
+  using V = Eigen::Vector2d;
+  return {{V(0, 0), V(8, 0)}, {V(0, 3), V(8, 3)}, {V(0, 0), V(0, 3)}, {V(8, 0), V(8, 3)},
+          {V(4, 0), V(4, 1)}, {V(4, 2), V(4, 3)}};
+}
+
+// 181 beams over 180 degrees, end points in the laser frame (= base frame here).
+inline std::vector<Eigen::Vector2d> cast(const std::vector<Wall>& walls, const geometry::Pose2& pose, double max_range = 8.0)
+{
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i < 181; ++i) {
+    const double a = -M_PI / 2 + i * M_PI / 180;
+    const Eigen::Vector2d o = pose.translation();
+    const Eigen::Vector2d d(std::cos(pose.theta() + a), std::sin(pose.theta() + a));
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& w : walls) {
+      const Eigen::Vector2d e = w.b - w.a;
+      const double den = d.x() * e.y() - d.y() * e.x();
+      if (std::fabs(den) < 1e-12) continue;
+      const Eigen::Vector2d f = w.a - o;
+      const double t = (f.x() * e.y() - f.y() * e.x()) / den;
+      const double u = (f.x() * d.y() - f.y() * d.x()) / den;
+      if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
+    }
+    if (best < max_range) pts.emplace_back(best * std::cos(a), best * std::sin(a));
+  }
+  return pts;
+}
+
+}  // namespace rgnav::rg_kernel::testing
