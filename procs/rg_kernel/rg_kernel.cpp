@@ -48,6 +48,7 @@ bool RgKernel::add_scan(const ScanInput& s)
     const int64_t rid = map_.resolve(known->second);
     scan_inputs_[s.scan_id] = s;
     builders_.at(rid).add_scan(to_stored(s, rid));
+    dirty_.insert(rid);
     ++map_.version;
     return true;
   }
@@ -61,6 +62,7 @@ bool RgKernel::add_scan(const ScanInput& s)
   scan_inputs_[s.scan_id] = s;
   map_.last_scan_id = std::max(map_.last_scan_id, s.scan_id);
   map_.region(rid)->utime = s.utime;
+  dirty_.insert(rid);
   ++scans_since_entering_;
   ++map_.version;
   maybe_merge_current(s.utime);
@@ -146,6 +148,7 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
   }
   // Finalise the region we leave, now that its gateways (the new one too) filter its beams.
   builders_.at(from).describe(cur, gateway_lines(from));
+  dirty_.erase(from);
   cur->state = Region::State::kFinalised;
   cur->utime = e.utime;
 
@@ -191,6 +194,8 @@ void RgKernel::maybe_merge_current(int64_t utime)
     for (auto& [sid, rid] : region_of_scan_)
       if (rid == cur) rid = q;
     builders_.erase(cur);
+    dirty_.erase(cur);
+    dirty_.insert(q);
     spdlog::info("region {} is region {} seen again: merged, {} gateway(s) neutralized", cur, q, neutralized);
     enter(q, utime);
     return;
@@ -203,6 +208,17 @@ rgmap::Region RgKernel::describe_region(int64_t id) const
   auto it = builders_.find(id);
   if (it != builders_.end()) it->second.describe(&r, gateway_lines(id));
   return r;
+}
+
+const rgmap::RgMap& RgKernel::refreshed_map()
+{
+  for (const int64_t id : dirty_) {
+    const Region::State state = map_.region(id)->state;
+    *map_.region(id) = describe_region(id);
+    map_.region(id)->state = state;
+  }
+  dirty_.clear();
+  return map_;
 }
 
 rgmap::RgMap RgKernel::described_map() const

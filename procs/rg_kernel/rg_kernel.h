@@ -8,6 +8,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <vector>
 
 #include "procs/rg_kernel/region_builder.h"
@@ -66,7 +67,10 @@ class RgKernel
   bool add_gateway_event(const GatewayEventInput& event);
 
   const rgmap::RgMap& map() const { return map_; }
-  // The map with every region's description (segments, bbox, freespace) brought up to date.
+  // The map with the description (segments, bbox, freespace) of every region that changed
+  // since the last call brought up to date.
+  const rgmap::RgMap& refreshed_map();
+  // Same, computed from scratch for every region (tests, offline tools).
   rgmap::RgMap described_map() const;
   rgmap::Region describe_region(int64_t id) const;
   KernelStats stats() const;
@@ -87,6 +91,7 @@ class RgKernel
   std::map<int64_t, ScanInput> scan_inputs_;    // latest revision of every scan (for re-framing on merge)
   std::map<int64_t, int64_t> entered_utime_;    // track id -> ENTERED time, for traversal times
   int scans_since_entering_ = 0;
+  std::set<int64_t> dirty_;                     // regions whose description is stale
 };
 
 }  // namespace rgnav::rg_kernel
