@@ -58,7 +58,7 @@ bool parse_old_laser(const std::vector<std::string_view>& f, bool front, const C
   s.utime = utime;
   // 180 beams cover [-90, 89] deg at 1 deg; 181/361 beams cover [-90, 90] deg inclusive.
   const double fov = kPi;
-  s.angle_increment = static_cast<float>(n % 2 == 0 ? fov / n : fov / (n - 1));
+  s.angle_increment = static_cast<float>(n % 2 == 0 && !o.fov_inclusive ? fov / n : fov / (n - 1));
   s.angle_min = static_cast<float>(front ? -kPi / 2 : kPi / 2);
   s.range_min = 0.001f;
   s.range_max = o.old_laser_range_max;

@@ -17,6 +17,11 @@ struct CarmenOptions
   // Take the FLASER pose (x y theta) as a published corrected pose and also emit it as a
   // reference record (for logs whose poses come from a SLAM solution, laser/corrected/).
   bool flaser_pose_is_reference = false;
+  // FLASER/RLASER beams span the 180 deg field of view inclusive of both ends (increment
+  // fov / (n - 1)) whatever n is. CARMEN's own convention for 180 beams is [-90, 89] deg at
+  // 1 deg; logs decoded from MRPT rawlogs (CObservation2DRangeScan: aperture / (n - 1)) need
+  // this, or every scan is bent by 0.56 % in angle and straight corridors come out curved.
+  bool fov_inclusive = false;
 };
 
 // Parses one CARMEN line into `log` (nothing for lines without data). Returns false with

@@ -28,16 +28,19 @@ bool LineReader::next(std::string* line)
     line->append(buf);
     if (!line->empty() && line->back() == '\n') break;
   }
-  int errnum = Z_OK;
-  const char* msg = gzerror(file_, &errnum);
-  // Z_BUF_ERROR at the end means the compressed stream stopped mid-way: a truncated file.
-  if (errnum != Z_OK && errnum != Z_STREAM_END) {
-    error_ = errnum == Z_BUF_ERROR ? "unexpected end of compressed data (truncated file)"
-                                   : std::string("read error: ") + (msg ? msg : "?");
-    // The partial last line of a truncated stream is not trusted.
-    return false;
+  const bool complete = got_any && !line->empty() && line->back() == '\n';
+  if (!complete) {
+    // End of data or damage. zlib keeps handing out what it decompressed before a truncated
+    // stream (Z_BUF_ERROR), so complete lines are never lost; only a partial last line is.
+    int errnum = Z_OK;
+    const char* msg = gzerror(file_, &errnum);
+    if (errnum != Z_OK && errnum != Z_STREAM_END) {
+      error_ = errnum == Z_BUF_ERROR ? "unexpected end of compressed data (truncated file)"
+                                     : std::string("read error: ") + (msg ? msg : "?");
+      return false;
+    }
+    if (!got_any) return false;
   }
-  if (!got_any) return false;
   while (!line->empty() && (line->back() == '\n' || line->back() == '\r')) line->pop_back();
   ++line_number_;
   return true;

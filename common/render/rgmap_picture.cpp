@@ -165,19 +165,26 @@ GlobalGrid compose_global_grid(const rgmap::RgMap& map, double resolution)
   auto cell = [&](const Vector2d& p) {
     return cv::Point(static_cast<int>((p.x() - g.origin.x()) / resolution), h - 1 - static_cast<int>((p.y() - g.origin.y()) / resolution));
   };
+  // Inverse mapping: every output cell asks its region's bitmap whether its centre is free,
+  // so rotated regions leave no holes (a forward mapping of rotated cells aliases).
   for (const auto& [id, f] : frames) {
     const auto& fs = map.region(id)->freespace;
+    if (fs.width() == 0 || fs.height() == 0) continue;
     const geometry::Pose2 world_from_grid = f * fs.region_from_grid();
-    const int sub = std::max(1, static_cast<int>(std::ceil(fs.resolution() / resolution)));
-    for (int y = 0; y < fs.height(); ++y)
-      for (int x = 0; x < fs.width(); ++x) {
-        if (!fs.free(x, y)) continue;
-        for (int sy = 0; sy < sub; ++sy)
-          for (int sx = 0; sx < sub; ++sx) {
-            const auto p = cell(world_from_grid * Vector2d((x + (sx + 0.5) / sub) * fs.resolution(), (y + (sy + 0.5) / sub) * fs.resolution()));
-            if (p.x >= 0 && p.y >= 0 && p.x < w && p.y < h) g.cells.at<uint8_t>(p) = 254;
-          }
+    const double gw = fs.width() * fs.resolution(), gh = fs.height() * fs.resolution();
+    Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::max()), hi = -lo;
+    for (const Vector2d& c : {Vector2d(0, 0), Vector2d(gw, 0), Vector2d(0, gh), Vector2d(gw, gh)}) {
+      lo = lo.cwiseMin(world_from_grid * c);
+      hi = hi.cwiseMax(world_from_grid * c);
+    }
+    const geometry::Pose2 region_from_world = f.inverse();
+    const cv::Point a = cell(lo), b = cell(hi);  // rows grow downward: a is bottom-left
+    for (int row = std::max(0, b.y); row <= std::min(h - 1, a.y); ++row) {
+      for (int col = std::max(0, a.x); col <= std::min(w - 1, b.x); ++col) {
+        const Vector2d centre(g.origin.x() + (col + 0.5) * resolution, g.origin.y() + (h - 1 - row + 0.5) * resolution);
+        if (fs.is_free(region_from_world * centre)) g.cells.at<uint8_t>(row, col) = 254;
       }
+    }
   }
   for (const auto& [id, f] : frames)
     for (const auto& s : map.region(id)->segments) cv::line(g.cells, cell(f * s.a), cell(f * s.b), cv::Scalar(0), 1, cv::LINE_8);

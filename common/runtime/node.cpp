@@ -5,6 +5,7 @@
 
 #include <climits>
 #include <csignal>
+#include <stdexcept>
 
 #include "bus/lcm_bus.h"
 #include "rgnav/heartbeat_t.hpp"
@@ -60,6 +61,12 @@ void Node::every(std::chrono::microseconds period, std::function<void()> fn)
 void Node::every_message_time(time::Duration period, std::function<void(time::Time)> fn)
 {
   message_timers_.push_back({period, false, {}, std::move(fn)});
+}
+
+void Node::watch_fd(std::function<int()> fd, std::function<void()> on_ready)
+{
+  if (fd_watches_.size() >= kMaxFdWatches) throw std::logic_error("Node::watch_fd: more than 8 descriptors");
+  fd_watches_.push_back({std::move(fd), std::move(on_ready)});
 }
 
 void Node::on_input(int64_t utime)
@@ -156,9 +163,15 @@ bool Node::spin_once(std::chrono::milliseconds max_wait)
   auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(next_deadline() - now);
   wait = std::clamp(wait, std::chrono::milliseconds(0), max_wait);
 
-  pollfd fds[2] = {{signals_->fd(), POLLIN, 0}, {bus_->fileno(), POLLIN, 0}};
+  pollfd fds[2 + kMaxFdWatches] = {{signals_->fd(), POLLIN, 0}, {bus_->fileno(), POLLIN, 0}};
   const int nfds = fds[1].fd >= 0 ? 2 : 1;
-  const int r = poll(fds, static_cast<nfds_t>(nfds), static_cast<int>(wait.count()));
+  // Watched descriptors follow; fds[1] stays the bus slot even when unused.
+  size_t watched = 0;
+  for (; watched < fd_watches_.size(); ++watched)
+    fds[2 + watched] = {fd_watches_[watched].fd(), POLLIN, 0};  // poll ignores fd -1
+  if (nfds == 1) fds[1].fd = -1;
+  const nfds_t total = watched > 0 ? static_cast<nfds_t>(2 + watched) : static_cast<nfds_t>(nfds);
+  const int r = poll(fds, total, static_cast<int>(wait.count()));
   if (r > 0 && (fds[0].revents & POLLIN)) {
     const int sig = signals_->take();
     if (sig != 0) {
@@ -178,6 +191,9 @@ bool Node::spin_once(std::chrono::milliseconds max_wait)
   } else if (nfds == 1) {
     bus_->handle(std::chrono::milliseconds(0));
   }
+  for (size_t i = 0; r > 0 && i < watched; ++i)
+    if (fds[2 + i].fd >= 0 && (fds[2 + i].revents & (POLLIN | POLLERR | POLLHUP | POLLNVAL)))
+      fd_watches_[i].on_ready();
   run_due_timers();
   return !stop_requested_;
 }

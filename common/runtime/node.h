@@ -59,6 +59,10 @@ class Node
   void every(std::chrono::microseconds period, std::function<void()> fn);
   // Message-time periodic task: fn(t) runs when message time crosses each multiple of period.
   void every_message_time(time::Duration period, std::function<void(time::Time)> fn);
+  // An extra descriptor to wait on (a serial port): fd() is asked on every loop turn (-1 =
+  // nothing to wait on now, e.g. while a device is unplugged); on_ready runs in the loop when
+  // it is readable or hung up, so hardware input is handled as soon as it arrives.
+  void watch_fd(std::function<int()> fd, std::function<void()> on_ready);
 
   // Runs until SIGINT/SIGTERM or request_stop(). Returns 0, or 1 after a bus error.
   int run();
@@ -107,6 +111,13 @@ class Node
   ProcStats stats_;
   std::vector<WallTimer> wall_timers_;
   std::vector<MessageTimer> message_timers_;
+  static constexpr size_t kMaxFdWatches = 8;
+  struct FdWatch
+  {
+    std::function<int()> fd;
+    std::function<void()> on_ready;
+  };
+  std::vector<FdWatch> fd_watches_;
   std::string host_;
   bool stop_requested_ = false;
   bool bus_failed_ = false;

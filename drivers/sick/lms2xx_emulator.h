@@ -18,7 +18,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -111,6 +110,8 @@ class Lms2xxEmulator
   };
 
   void run();
+  void wake();
+  void apply_plug_requests(Clock::time_point now);
   void power_on_state();
   void handle_input(Clock::time_point now);
   void handle_request(const Telegram& t, Clock::time_point now);
@@ -129,9 +130,11 @@ class Lms2xxEmulator
   const Clock::time_point t0_;
   const int64_t wall_at_t0_us_;
 
-  mutable std::mutex mutex_;  // guards everything below that the API touches
-  std::condition_variable wake_;
+  mutable std::mutex mutex_;  // guards everything below; the thread holds it except in poll()
+  int wake_fd_ = -1;          // eventfd: API calls wake the thread's poll()
   bool stop_ = false;
+  bool unplug_requested_ = false;
+  std::optional<bool> replug_requested_;  // value = power_cycle
   PseudoTerminal pty_;
   std::vector<uint8_t> pending_garbage_;
   int corrupt_scans_ = 0;

@@ -24,11 +24,11 @@ void TelegramParser::drop_front(size_t n)
   while (!chunks_.empty() && chunks_.front().end <= buf_start_) chunks_.pop_front();
 }
 
-int64_t TelegramParser::time_of(uint64_t absolute_offset) const
+const TelegramParser::Chunk* TelegramParser::chunk_of(uint64_t absolute_offset) const
 {
   for (const auto& c : chunks_)
-    if (absolute_offset < c.end) return c.utime;
-  return chunks_.empty() ? 0 : chunks_.back().utime;
+    if (absolute_offset < c.end) return &c;
+  return chunks_.empty() ? nullptr : &chunks_.back();
 }
 
 ParseOutput TelegramParser::feed(const uint8_t* data, size_t size, int64_t rx_utime)
@@ -90,7 +90,11 @@ ParseOutput TelegramParser::feed(const uint8_t* data, size_t size, int64_t rx_ut
     rt.telegram.address = buf_[pos + 1];
     rt.telegram.payload.assign(buf_.begin() + static_cast<long>(pos + kHeaderSize),
                                buf_.begin() + static_cast<long>(pos + kHeaderSize + len));
-    rt.rx_utime = time_of(buf_start_ + pos + total - 1);
+    const uint64_t last = buf_start_ + pos + total - 1;
+    if (const Chunk* c = chunk_of(last)) {
+      rt.rx_utime = c->utime;
+      rt.trailing_bytes = static_cast<size_t>(c->end - last - 1);
+    }
     out.telegrams.push_back(std::move(rt));
     ++stats_.telegrams;
     in_garbage_ = false;

@@ -33,7 +33,8 @@ struct ParserStats
 struct ReceivedTelegram
 {
   Telegram telegram;
-  int64_t rx_utime = 0;  // receive time of the chunk that completed it
+  int64_t rx_utime = 0;       // receive time of the chunk holding its last byte
+  size_t trailing_bytes = 0;  // bytes of that chunk after its last byte (they came later)
 };
 
 struct ParseOutput
@@ -62,7 +63,8 @@ class TelegramParser
     int64_t utime;
   };
   void drop_front(size_t n);
-  int64_t time_of(uint64_t absolute_offset) const;
+  // The chunk holding the byte at this absolute stream offset.
+  const Chunk* chunk_of(uint64_t absolute_offset) const;
 
   const uint8_t expected_address_;
   const size_t max_payload_;

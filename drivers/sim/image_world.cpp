@@ -33,18 +33,17 @@ Vec2 corner_to_world(const OccupancyImage& im, int rows, double col, double row)
 
 }  // namespace
 
-Pose2 add_occupancy_image(const OccupancyImage& image, World* world)
+void add_boundary_walls(const cv::Mat& mask, double resolution, const Vec2& origin, double height, World* world)
 {
-  const cv::Mat mask = free_mask(image, image.file);
   const int rows = mask.rows, cols = mask.cols;
   auto is_free = [&](int r, int c) {
     return r >= 0 && c >= 0 && r < rows && c < cols && mask.at<uint8_t>(r, c) != 0;
   };
   auto add = [&](double c0, double r0, double c1, double r1) {
     Wall w;
-    w.a = corner_to_world(image, rows, c0, r0);
-    w.b = corner_to_world(image, rows, c1, r1);
-    w.z_max = image.wall_height;
+    w.a = {origin.x() + c0 * resolution, origin.y() + (rows - r0) * resolution};
+    w.b = {origin.x() + c1 * resolution, origin.y() + (rows - r1) * resolution};
+    w.z_max = height;
     world->walls.push_back(w);
   };
   // Horizontal boundaries: between row r-1 and row r, merged into runs along the row.
@@ -71,6 +70,13 @@ Pose2 add_occupancy_image(const OccupancyImage& image, World* world)
       }
     }
   }
+}
+
+Pose2 add_occupancy_image(const OccupancyImage& image, World* world)
+{
+  const cv::Mat mask = free_mask(image, image.file);
+  const int rows = mask.rows, cols = mask.cols;
+  add_boundary_walls(mask, image.resolution, image.origin, image.wall_height, world);
   if (!image.gt_segmentation.empty()) {
     auto rooms = rooms_from_segmentation(image);
     const cv::Mat labels = cv::imread(image.gt_segmentation, cv::IMREAD_GRAYSCALE);

@@ -9,6 +9,8 @@
 
 #include "sim/world.h"
 
+namespace cv { class Mat; }
+
 namespace rgnav::sim {
 
 struct OccupancyImage
@@ -31,6 +33,10 @@ struct OccupancyImage
 // result is deterministic). Throws config::ConfigError naming the file when an image cannot
 // be read or the sizes differ.
 Pose2 add_occupancy_image(const OccupancyImage& image, World* world);
+
+// Walls along the boundary between free (non-zero) and blocked pixels of a CV_8U mask whose
+// lower-left pixel corner is at `origin`; runs along rows and columns are merged into one wall.
+void add_boundary_walls(const cv::Mat& free_mask, double resolution, const Vec2& origin, double height, World* world);
 
 // The rooms of a ground-truth segmentation image, named room_1.. in row-major discovery order.
 std::vector<Region> rooms_from_segmentation(const OccupancyImage& image);

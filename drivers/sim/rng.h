@@ -15,7 +15,14 @@ class Rng
   explicit Rng(uint64_t seed) : state_(seed) {}
 
   // Independent stream for a component: the same seed and salt give the same stream.
-  static Rng derive(uint64_t seed, uint64_t salt) { return Rng(seed ^ (salt * 0x9E3779B97F4A7C15ull)); }
+  // splitmix64 walks one cycle in fixed strides, so streams must start at hashed, not
+  // neighbouring, points of it (neighbours would replay each other's numbers).
+  static Rng derive(uint64_t seed, uint64_t salt)
+  {
+    Rng s(salt);
+    Rng t(seed ^ s.next_u64());
+    return Rng(t.next_u64());
+  }
 
   uint64_t next_u64()
   {

@@ -109,6 +109,9 @@ struct Gateway
   GatewayClass cls = GatewayClass::kDoor;
   std::vector<Vec2> points;          // gateway points (dissertation fig. 4.1)
   std::vector<std::string> regions;  // names of the regions it connects
+  // [rad] travel direction the class refers to (turns and T-junctions look different from
+  // each approach); unset for direction-free classes (door, X-crossing, ...).
+  std::optional<double> heading;
 };
 
 struct World

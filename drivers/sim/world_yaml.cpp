@@ -231,11 +231,19 @@ World parse_world_yaml(const config::Config& cfg, const std::string& base_dir)
       if (!region_names.count(r)) c.fail(key, "no region named '" + r + "'");
       g.regions.push_back(r);
     }
+    if (c.has("heading")) g.heading = c.number("heading", 0.0, -10.0, 10.0);
     world.gateways.push_back(g);
   }
   world.tour = read_points(cfg, "tour", 0);
   if (cfg.has("image")) {
-    const Pose2 widest = add_occupancy_image(read_image_section(cfg.section("image"), base_dir), &world);
+    const auto section = cfg.section("image");
+    const OccupancyImage image = read_image_section(section, base_dir);
+    Pose2 widest;
+    try {
+      widest = add_occupancy_image(image, &world);
+    } catch (const config::ConfigError& e) {
+      section.fail("file", e.what());
+    }
     if (!have_start) world.start = widest;
   }
   if (world.walls.empty()) cfg.fail("walls", "a world needs walls (or an image)");
@@ -310,6 +318,7 @@ std::string world_to_yaml(const World& w)
     o << "  - {name: " << quoted(g.name) << ", class: " << to_string(g.cls) << ", points: " << points_text(g.points);
     if (!g.regions.empty()) o << ", from: " << quoted(g.regions[0]);
     if (g.regions.size() > 1) o << ", to: " << quoted(g.regions[1]);
+    if (g.heading) o << ", heading: " << num(*g.heading);
     o << "}\n";
   }
   if (!w.tour.empty()) o << "tour: " << points_text(w.tour) << "\n";

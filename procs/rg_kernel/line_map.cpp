@@ -169,4 +169,26 @@ std::vector<LineSegment> merge_segments(std::vector<LineSegment> segs, const Mer
   return kept;
 }
 
+std::vector<LineSegment> merge_into(std::vector<LineSegment> map, std::vector<LineSegment> fresh, const MergeOptions& o)
+{
+  for (LineSegment cur : merge_segments(std::move(fresh), o)) {
+    bool merged = true;
+    while (merged) {
+      merged = false;
+      for (size_t i = 0; i < map.size(); ++i) {
+        if (angle_difference(angle_of(map[i]), angle_of(cur)) > o.alpha_max) continue;
+        LineSegment grown = map[i];
+        if (!try_merge(&grown, cur, o)) continue;
+        cur = grown;
+        map[i] = map.back();
+        map.pop_back();
+        merged = true;
+        break;
+      }
+    }
+    map.push_back(cur);
+  }
+  return map;
+}
+
 }  // namespace rgnav::rg_kernel

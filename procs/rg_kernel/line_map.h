@@ -36,6 +36,12 @@ std::vector<rgmap::LineSegment> extract_segments(const std::vector<Eigen::Vector
 // Merges until no pair qualifies. Order-independent up to the ties of equal angles.
 std::vector<rgmap::LineSegment> merge_segments(std::vector<rgmap::LineSegment> segments, const MergeOptions& o);
 
+// Merges freshly extracted segments into an already merged map: each new segment is tried
+// against the map, and a segment that grew by merging is tried again (merges cascade). Costs
+// O(new x map) instead of O(map^2), so a region's map is updated per scan at constant cost.
+std::vector<rgmap::LineSegment> merge_into(std::vector<rgmap::LineSegment> map, std::vector<rgmap::LineSegment> fresh,
+                                           const MergeOptions& o);
+
 // Mean distance of the four end points to the other segment's line (D_L of diss. Fig. 3.3).
 double line_distance(const rgmap::LineSegment& a, const rgmap::LineSegment& b);
 

@@ -8,6 +8,77 @@ namespace rgnav::rg_kernel {
 
 using Eigen::Vector2d;
 
+namespace {
+
+// [m] neighbouring end points farther apart than this are a depth jump: no free wedge between.
+constexpr double kMaxWedgeGap = 0.5;
+// [m] B21r footprint: the cells under the robot at each scan are free.
+constexpr double kRobotRadius = 0.26;
+
+uint64_t cell_key(int32_t x, int32_t y) { return (static_cast<uint64_t>(static_cast<uint32_t>(x)) << 32) | static_cast<uint32_t>(y); }
+int32_t key_x(uint64_t k) { return static_cast<int32_t>(static_cast<uint32_t>(k >> 32)); }
+int32_t key_y(uint64_t k) { return static_cast<int32_t>(static_cast<uint32_t>(k & 0xffffffffu)); }
+
+// A beam that leaves the region through a gateway ends, for this region, at the gateway line:
+// what lies beyond belongs to the next region (diss. 5.2 filters such beams; clipping keeps
+// the free space in front of the gateway).
+Vector2d clip_at_gateways(const Vector2d& o, const Vector2d& p, const RegionBuilder::GatewayLines& lines)
+{
+  Vector2d end = p;
+  for (const auto& [a, b] : lines) {
+    if (!segments_cross(o, end, a, b)) continue;
+    const Vector2d d = end - o, e = b - a;
+    const double den = d.x() * e.y() - d.y() * e.x();
+    const double t = ((a.x() - o.x()) * e.y() - (a.y() - o.y()) * e.x()) / den;
+    end = o + d * t;
+  }
+  return end;
+}
+
+// Cells whose centres lie in the triangle o, a, b: the free wedge between two neighbouring
+// beams. Filling wedges rather than walking beams leaves no holes where beams diverge.
+template <class F>
+void for_cells_in_triangle(const Vector2d& o, const Vector2d& a, const Vector2d& b, double res, F f)
+{
+  const Vector2d lo = o.cwiseMin(a).cwiseMin(b), hi = o.cwiseMax(a).cwiseMax(b);
+  auto side = [](const Vector2d& p, const Vector2d& q, const Vector2d& r) {
+    return (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
+  };
+  const double area = side(o, a, b);
+  if (std::fabs(area) < 1e-12) return;
+  for (int32_t y = static_cast<int32_t>(std::floor(lo.y() / res)); y <= static_cast<int32_t>(std::floor(hi.y() / res)); ++y) {
+    for (int32_t x = static_cast<int32_t>(std::floor(lo.x() / res)); x <= static_cast<int32_t>(std::floor(hi.x() / res)); ++x) {
+      const Vector2d c((x + 0.5) * res, (y + 0.5) * res);
+      const double s1 = side(o, a, c), s2 = side(a, b, c), s3 = side(b, o, c);
+      if (area > 0 ? (s1 >= 0 && s2 >= 0 && s3 >= 0) : (s1 <= 0 && s2 <= 0 && s3 <= 0)) f(x, y);
+    }
+  }
+}
+
+// Carves the free wedges of one scan (points in beam order, region frame) into `cells`:
+// neighbouring in-range beams that do not cross a gateway and whose end points are close
+// (no depth jump between them) bound a free triangle; the end points' cells stay unmarked.
+template <class F>
+void carve_scan(const Vector2d& o, const std::vector<Vector2d>& pts, const std::vector<bool>& usable, double res,
+                double max_gap, F f)
+{
+  // Where the robot stood is free too (a forward-looking laser never sees its own position).
+  const int32_t r = static_cast<int32_t>(std::ceil(kRobotRadius / res));
+  const int32_t ox = static_cast<int32_t>(std::floor(o.x() / res)), oy = static_cast<int32_t>(std::floor(o.y() / res));
+  for (int32_t y = oy - r; y <= oy + r; ++y)
+    for (int32_t x = ox - r; x <= ox + r; ++x)
+      if ((Vector2d((x + 0.5) * res, (y + 0.5) * res) - o).norm() <= kRobotRadius) f(x, y);
+  for (size_t i = 0; i + 1 < pts.size(); ++i) {
+    if (!usable[i] || !usable[i + 1] || (pts[i] - pts[i + 1]).norm() > max_gap) continue;
+    // Shrink the wedge by half a cell so the wall cells at its far edge are not marked free.
+    const Vector2d a = pts[i] - (pts[i] - o).normalized() * (0.5 * res);
+    const Vector2d b = pts[i + 1] - (pts[i + 1] - o).normalized() * (0.5 * res);
+    for_cells_in_triangle(o, a, b, res, f);
+  }
+}
+
+}  // namespace
+
 bool segments_cross(const Vector2d& p, const Vector2d& q, const Vector2d& a, const Vector2d& b)
 {
   auto cross = [](const Vector2d& u, const Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
@@ -22,28 +93,49 @@ void RegionBuilder::add_scan(StoredScan scan)
   if (it != scans_.end()) {
     if (scan.revision <= it->second.revision) return;  // old news (a duplicate or reordered message)
     it->second = std::move(scan);
-    rebuild_lines();
+    stale_ = true;
     return;
   }
-  std::vector<Vector2d> pts;
-  pts.reserve(scan.laser_points.size());
-  for (const auto& p : scan.laser_points) pts.push_back(scan.region_from_laser * p);
-  auto fresh = extract_segments(pts, options_.extract);
-  segments_.insert(segments_.end(), fresh.begin(), fresh.end());
-  segments_ = merge_segments(std::move(segments_), options_.merge);
+  if (!stale_) add_incrementally(scan);
   scans_.emplace(scan.scan_id, std::move(scan));
 }
 
-void RegionBuilder::rebuild_lines()
+void RegionBuilder::add_incrementally(const StoredScan& scan) const
 {
-  segments_.clear();
-  for (const auto& [id, s] : scans_) {
-    std::vector<Vector2d> pts;
-    for (const auto& p : s.laser_points) pts.push_back(s.region_from_laser * p);
-    auto fresh = extract_segments(pts, options_.extract);
-    segments_.insert(segments_.end(), fresh.begin(), fresh.end());
-    segments_ = merge_segments(std::move(segments_), options_.merge);
+  const Vector2d o = scan.region_from_laser.translation();
+  std::vector<Vector2d> pts;
+  pts.reserve(scan.laser_points.size());
+  for (const auto& lp : scan.laser_points) pts.push_back(scan.region_from_laser * lp);
+  segments_ = merge_into(std::move(segments_), extract_segments(pts, options_.extract), options_.merge);
+  lo_ = lo_.cwiseMin(o);
+  hi_ = hi_.cwiseMax(o);
+  std::vector<bool> usable(pts.size());
+  for (size_t i = 0; i < pts.size(); ++i) {
+    pts[i] = clip_at_gateways(o, pts[i], gateway_lines_);
+    usable[i] = (pts[i] - o).norm() <= options_.freespace_max_range;
+    if (!usable[i]) continue;
+    lo_ = lo_.cwiseMin(pts[i]);
+    hi_ = hi_.cwiseMax(pts[i]);
   }
+  carve_scan(o, pts, usable, options_.freespace_resolution, kMaxWedgeGap,
+             [&](int32_t x, int32_t y) { free_cells_.insert(cell_key(x, y)); });
+}
+
+void RegionBuilder::refresh() const
+{
+  if (!stale_) return;
+  segments_.clear();
+  free_cells_.clear();
+  lo_ = Vector2d::Constant(std::numeric_limits<double>::max());
+  hi_ = -lo_;
+  for (const auto& [id, s] : scans_) add_incrementally(s);
+  stale_ = false;
+}
+
+const std::vector<rgmap::LineSegment>& RegionBuilder::segments() const
+{
+  refresh();
+  return segments_;
 }
 
 int64_t RegionBuilder::raw_points() const
@@ -63,41 +155,56 @@ std::vector<Vector2d> RegionBuilder::laser_origins() const
   return out;
 }
 
-void RegionBuilder::describe(rgmap::Region* region,
-                             const std::vector<std::pair<Vector2d, Vector2d>>& gateway_lines) const
+void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_lines, bool exact) const
 {
+  refresh();
   region->segments = segments_;
   region->nscans = static_cast<int>(scans_.size());
-  // In-region beams: origin and end point on the same side of every gateway line.
-  struct Beam
-  {
-    Vector2d from, to;
-  };
-  std::vector<Beam> beams;
-  Vector2d lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
-  Vector2d hi = -lo;
+  if (scans_.empty()) return;
+  const double res = options_.freespace_resolution;
+  if (!exact) {
+    std::vector<std::pair<int32_t, int32_t>> cells;
+    cells.reserve(free_cells_.size());
+    for (const uint64_t k : free_cells_) cells.emplace_back(key_x(k), key_y(k));
+    fill_region(region, lo_, hi_, cells);
+    return;
+  }
+  // Exact: every beam again, with every gateway of the region known now.
+  std::unordered_set<uint64_t> cells_set;
+  Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::max()), hi = -lo;
   for (const auto& [id, s] : scans_) {
     const Vector2d o = s.region_from_laser.translation();
     lo = lo.cwiseMin(o);
     hi = hi.cwiseMax(o);
+    std::vector<Vector2d> pts;
+    std::vector<bool> usable;
     for (const auto& lp : s.laser_points) {
-      const Vector2d p = s.region_from_laser * lp;
-      bool crosses = false;
-      for (const auto& g : gateway_lines) crosses = crosses || segments_cross(o, p, g.first, g.second);
-      if (crosses || (p - o).norm() > options_.freespace_max_range) continue;
-      beams.push_back({o, p});
+      const Vector2d p = clip_at_gateways(o, s.region_from_laser * lp, gateway_lines);
+      pts.push_back(p);
+      usable.push_back((p - o).norm() <= options_.freespace_max_range);
+      if (!usable.back()) continue;
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
+    carve_scan(o, pts, usable, res, kMaxWedgeGap, [&](int32_t x, int32_t y) { cells_set.insert(cell_key(x, y)); });
   }
-  if (beams.empty()) return;
+  std::vector<std::pair<int32_t, int32_t>> cells;
+  for (const uint64_t k : cells_set) cells.emplace_back(key_x(k), key_y(k));
+  fill_region(region, lo, hi, cells);
+}
+
+void RegionBuilder::fill_region(rgmap::Region* region, const Vector2d& lo, const Vector2d& hi,
+                                const std::vector<std::pair<int32_t, int32_t>>& cells) const
+{
+  if (lo.x() > hi.x()) return;
   region->bbox_min = lo;
   region->bbox_max = hi;
   const double res = options_.freespace_resolution;
-  const int w = static_cast<int>(std::ceil((hi.x() - lo.x()) / res)) + 1;
-  const int h = static_cast<int>(std::ceil((hi.y() - lo.y()) / res)) + 1;
-  rgmap::FreespaceBitmap fs(res, geometry::Pose2(lo, 0.0), w, h);
-  for (const auto& b : beams) fs.carve_ray(b.from, b.to, true);
+  // The bitmap is aligned with the region frame's cell grid, so cell (x, y) maps exactly.
+  const int32_t x0 = static_cast<int32_t>(std::floor(lo.x() / res)), y0 = static_cast<int32_t>(std::floor(lo.y() / res));
+  const int32_t x1 = static_cast<int32_t>(std::floor(hi.x() / res)), y1 = static_cast<int32_t>(std::floor(hi.y() / res));
+  rgmap::FreespaceBitmap fs(res, geometry::Pose2(x0 * res, y0 * res, 0.0), x1 - x0 + 1, y1 - y0 + 1);
+  for (const auto& [x, y] : cells) fs.set_free(x - x0, y - y0, true);
   region->freespace = std::move(fs);
   // Completeness: observed (free) share of the bounding rectangle; accuracy: how tightly the
   // merged segments fit their points (1 at sigma 0, 0.5 at 2 cm).

@@ -8,7 +8,9 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <limits>
 #include <map>
+#include <unordered_set>
 #include <vector>
 
 #include "geometry/pose2.h"
@@ -39,26 +41,42 @@ class RegionBuilder
  public:
   explicit RegionBuilder(RegionBuildOptions options) : options_(std::move(options)) {}
 
-  // Adds a scan (or replaces an earlier revision of the same scan id; then the line map is
-  // rebuilt from all stored scans, since merged segments cannot be un-merged).
+  // Adds a scan: its segments are merged into the line map and its beams carved into the
+  // freespace at once. A newer revision of a stored scan (a loop-closure correction) marks
+  // the region for a rebuild from all its scans, done once at the next read — merged
+  // segments and carved cells cannot be un-merged, and corrections come in bursts.
   void add_scan(StoredScan scan);
-  const std::vector<rgmap::LineSegment>& segments() const { return segments_; }
+  const std::vector<rgmap::LineSegment>& segments() const;
   const std::map<int64_t, StoredScan>& scans() const { return scans_; }
   int64_t raw_points() const;
 
-  // Fills bbox, freespace, features-related fields and segments of `region`; gateway lines
-  // are pairs of points in the region frame that beams must not cross.
-  void describe(rgmap::Region* region, const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& gateway_lines) const;
+  using GatewayLines = std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>;
+  // Fills bbox, freespace, accuracy/completeness and segments of `region`. Exact (at
+  // finalisation): recomputed from all beams, leaving out every beam that crosses one of the
+  // gateway lines (points in the region frame). Otherwise (the open region, published often):
+  // from the cells carved as scans arrived, which skips only the gateways known then.
+  void describe(rgmap::Region* region, const GatewayLines& gateway_lines, bool exact) const;
+  // Gateways of the region known when later scans are carved (beams crossing them are skipped).
+  void set_gateway_lines(GatewayLines lines) { gateway_lines_ = std::move(lines); }
 
   // Robot positions (laser origins) in the region frame, oldest first.
   std::vector<Eigen::Vector2d> laser_origins() const;
 
  private:
-  void rebuild_lines();
+  void add_incrementally(const StoredScan& scan) const;
+  void refresh() const;
+  void fill_region(rgmap::Region* region, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
+                   const std::vector<std::pair<int32_t, int32_t>>& cells) const;
 
   const RegionBuildOptions options_;
   std::map<int64_t, StoredScan> scans_;   // by scan id: deterministic order
-  std::vector<rgmap::LineSegment> segments_;
+  GatewayLines gateway_lines_;
+  // Caches derived from scans_, rebuilt lazily after corrections.
+  mutable bool stale_ = false;
+  mutable std::vector<rgmap::LineSegment> segments_;
+  mutable std::unordered_set<uint64_t> free_cells_;   // cell (x, y) of the region frame grid
+  mutable Eigen::Vector2d lo_{std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+  mutable Eigen::Vector2d hi_{-std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
 };
 
 // True if segment p-q properly crosses segment a-b.

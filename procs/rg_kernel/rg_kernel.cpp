@@ -36,6 +36,7 @@ void RgKernel::enter(int64_t region_id, int64_t utime)
   r->utime = utime;
   map_.current_region = region_id;
   scans_since_entering_ = 0;
+  builders_.at(region_id).set_gateway_lines(gateway_lines(region_id));
 }
 
 bool RgKernel::add_scan(const ScanInput& s)
@@ -147,7 +148,7 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
     spdlog::info("gateway {} ({}) found leaving region {}", fresh.id, rgmap::to_string(e.cls), from);
   }
   // Finalise the region we leave, now that its gateways (the new one too) filter its beams.
-  builders_.at(from).describe(cur, gateway_lines(from));
+  builders_.at(from).describe(cur, gateway_lines(from), true);
   dirty_.erase(from);
   cur->state = Region::State::kFinalised;
   cur->utime = e.utime;
@@ -206,7 +207,7 @@ rgmap::Region RgKernel::describe_region(int64_t id) const
 {
   Region r = *map_.region(id);
   auto it = builders_.find(id);
-  if (it != builders_.end()) it->second.describe(&r, gateway_lines(id));
+  if (it != builders_.end()) it->second.describe(&r, gateway_lines(id), r.state == Region::State::kFinalised);
   return r;
 }
 

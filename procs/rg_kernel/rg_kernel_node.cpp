@@ -52,7 +52,13 @@ RgKernelNode::RgKernelNode(runtime::Node& node, NodeConfig config)
     if (!journal_->damage().empty())
       spdlog::warn("journal {}: {} — the damaged tail was cut off", config_.state_dir, journal_->damage());
     // Replay what was acknowledged before the last stop: same inputs, same order, same map.
+    // A long journal takes a while: keep heartbeating so the supervisor sees progress.
+    auto last_beat = std::chrono::steady_clock::now();
     for (const auto& rec : journal_->recovered()) {
+      if (std::chrono::steady_clock::now() - last_beat > std::chrono::milliseconds(200)) {
+        node_.publish_heartbeat();
+        last_beat = std::chrono::steady_clock::now();
+      }
       std::string why;
       const auto* data = reinterpret_cast<const uint8_t*>(rec.bytes.data());
       if (rec.tag == kAlignedScan) {

@@ -37,6 +37,9 @@ struct CommandSpec
   int startup_timeout_ms = 0;    // time to the first heartbeat; 0 = the supervisor default
   std::vector<std::string> inputs;  // input channels (fault injection, documentation)
   bool safety_critical = false;  // failing it stops and holds the robot
+  // A job rather than a service (a tour, a planning step): exit 0 means done, not a failure;
+  // it is not restarted, and commands that depend on it may start once it is done.
+  bool oneshot = false;
   SourceLocation where;          // the `cmd` keyword
   SourceLocation exec_where;     // the exec attribute (missing-executable errors point here)
 };

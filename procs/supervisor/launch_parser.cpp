@@ -100,6 +100,11 @@ class Lexer
     if (std::isdigit(static_cast<unsigned char>(c))) {
       t.type = Tok::kInteger;
       while (pos_ < text_.size() && std::isdigit(static_cast<unsigned char>(text_[pos_]))) t.text += text_[pos_++];
+      // rgnav extension: a fractional part (stop_time_allowed = 0.5;).
+      if (pos_ + 1 < text_.size() && text_[pos_] == '.' && std::isdigit(static_cast<unsigned char>(text_[pos_ + 1]))) {
+        t.text += text_[pos_++];
+        while (pos_ < text_.size() && std::isdigit(static_cast<unsigned char>(text_[pos_]))) t.text += text_[pos_++];
+      }
       return t;
     }
     throw LaunchError(origin_ + ":" + std::to_string(line_) + ": invalid character '" + std::string(1, c) + "'");
@@ -314,7 +319,7 @@ class Parser
       } else if (k == "nickname") {
         cmd.name = v;
         named = true;
-      } else if (k == "auto_respawn" || k == "heartbeat" || k == "safety_critical") {
+      } else if (k == "auto_respawn" || k == "heartbeat" || k == "safety_critical" || k == "oneshot") {
         bool b = false;
         if (!parse_bool(v, &b)) fail(value.line, "attribute '" + k + "' must be \"true\" or \"false\", got \"" + v + "\"");
         if (k == "auto_respawn") {
@@ -322,6 +327,8 @@ class Parser
           cmd.auto_respawn_set = true;
         } else if (k == "heartbeat") {
           cmd.heartbeat = b;
+        } else if (k == "oneshot") {
+          cmd.oneshot = b;
         } else {
           cmd.safety_critical = b;
         }
@@ -393,6 +400,7 @@ class Parser
         if (what.text == "ms") {
           a.kind = ScriptAction::Kind::kWaitMs;
           const Token ms = expect(Tok::kInteger, "a delay in milliseconds");
+          if (ms.text.find('.') != std::string::npos) fail(ms.line, "wait ms needs a whole number of milliseconds");
           a.delay_ms = std::stoi(ms.text);
         } else if (what.text == "cmd" || what.text == "group") {
           a.kind = ScriptAction::Kind::kWaitStatus;

@@ -11,6 +11,8 @@
 //   depends = "sim,laser_driver";  env = "K=V,K2=V2";  config = "config/x.yaml";
 //   heartbeat = "false";  heartbeat_timeout_ms = 800;  startup_timeout_ms = 5000;
 //   inputs = "LASER_FRONT,ODOMETRY";  safety_critical = "true";
+//   oneshot = "true";   (a job: exit 0 is "done", never restarted; dependents may then start)
+// config and exec expand ${VAR} from the supervisor's environment (RGNAV_ROOT, RGNAV_BUILD, ...).
 // Syntax errors throw LaunchError naming file:line.
 #pragma once
 

@@ -138,8 +138,19 @@ LaunchPlan make_plan(const LaunchConfig& config, const PlanOptions& options)
       }
     }
     if (!c->config.empty()) {
-      const std::string path = c->config[0] == '/' ? c->config : options.root + "/" + c->config;
-      if (access(path.c_str(), R_OK) != 0) {
+      // ${VAR} in the path: a test or a deployment points a command at a generated config.
+      std::string expanded;
+      try {
+        const auto words = split_exec(c->config, c->where);
+        if (words.size() != 1) throw LaunchError(c->where.str() + ": config \"" + c->config + "\" is not one path");
+        expanded = words[0];
+      } catch (const LaunchError& e) {
+        errors.push_back(e.what());
+        continue;
+      }
+      const std::string path = expanded[0] == '/' ? expanded : options.root + "/" + expanded;
+      // A process not built yet (allowed missing) may not have its config written yet either.
+      if (!pc.executable.empty() && access(path.c_str(), R_OK) != 0) {
         errors.push_back(c->where.str() + ": command \"" + c->name + "\": config file \"" + c->config + "\" not found (looked at " + path + ")");
       }
       pc.argv.push_back("--config");

@@ -32,6 +32,7 @@ SupervisorState load_state(const std::string& path)
       r.restarts = c.value("restarts", 0);
       s.children.push_back(std::move(r));
     }
+    if (j.contains("done")) s.done = j.at("done").get<std::vector<std::string>>();
   } catch (const std::exception& e) {
     spdlog::warn("ignoring unreadable supervisor state {}: {}", path, e.what());
     return SupervisorState{};
@@ -53,6 +54,7 @@ void save_state(const std::string& path, const SupervisorState& state)
                              {"stop_signal", c.stop_signal},
                              {"restarts", c.restarts}});
   }
+  j["done"] = state.done;
   const std::string text = j.dump(2) + "\n";
   const std::string tmp = path + ".tmp";
   const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);

@@ -26,6 +26,9 @@ struct SupervisorState
   std::string host;
   std::string launch_config;
   std::vector<ChildRecord> children;
+  // Oneshot jobs that finished in this launch: a successor (after a crash) must not run a
+  // finished tour again. A clean shutdown clears the list.
+  std::vector<std::string> done;
 };
 
 // Missing or unreadable file: empty state (and a warning in the log for a corrupt one).

@@ -15,6 +15,13 @@ Tour load_tour(const std::string& path)
   const YAML::Node root = YAML::LoadFile(path);  // `tour` is a list of pairs, read it directly
   const YAML::Node points = root["tour"];
   if (!points || !points.IsSequence() || points.size() == 0) cfg.fail("tour", "expected a non-empty list of [x, y]");
+  if (points[0].IsScalar()) {
+    // The world format's flat form [x0, y0, x1, y1, ...] (drivers/sim, sim_tour).
+    const auto flat = cfg.numbers("tour", {}, -1e5, 1e5, 2);
+    if (flat.size() % 2) cfg.fail("tour", "flat list needs an even count of numbers");
+    for (size_t i = 0; i < flat.size(); i += 2) t.world_points.emplace_back(flat[i], flat[i + 1]);
+    return t;
+  }
   for (size_t i = 0; i < points.size(); ++i) {
     const auto& p = points[i];
     double x = 0, y = 0;

@@ -1,6 +1,6 @@
 // A tour: waypoints in the world (map) frame and the pose the robot starts at, read from a
-// world or tour file (keys `start: [x, y, theta]` and `tour: [[x, y], ...]`; other keys of a
-// world file are ignored).
+// world or tour file (keys `start: [x, y, theta]` and `tour: [[x, y], ...]` or the world
+// format's flat `tour: [x0, y0, x1, y1, ...]`; other keys of a world file are ignored).
 #pragma once
 
 #include <Eigen/Core>

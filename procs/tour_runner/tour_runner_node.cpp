@@ -100,11 +100,18 @@ void TourRunnerNode::on_odometry(const odometry_t& m)
   // Simple follower. Fail safe: no recent scan, no motion.
   const bool scan_fresh = last_scan_utime_ > 0 && (m.utime - last_scan_utime_) < options_.scan_stale_s * 1e6;
   if (!scan_fresh) {
+    if (!blocked_) spdlog::warn("no recent scan: holding still");
+    blocked_ = true;
     node_.set_status(heartbeat_t::STATE_DEGRADED, "no recent scan: holding still");
     publish_cmd(m.utime, 0, 0);
     return;
   }
   const Command c = pursue(options_.follower, odom_from_base, sequencer_->upcoming().front(), obstacles_);
+  if (c.blocked != blocked_) {
+    blocked_ = c.blocked;
+    if (blocked_) spdlog::warn("path to target {}/{} blocked: waiting", sequencer_->reached() + 1, sequencer_->size());
+    else spdlog::info("path clear again");
+  }
   if (c.blocked) node_.set_status(heartbeat_t::STATE_DEGRADED, "path blocked: waiting");
   else node_.clear_status();
   publish_cmd(m.utime, c.v, c.omega);

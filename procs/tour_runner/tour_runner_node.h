@@ -61,6 +61,7 @@ class TourRunnerNode
   int64_t last_scan_utime_ = 0;
   int64_t cmd_seq_ = 0;
   bool finished_ = false;
+  bool blocked_ = false;   // last state logged, to log transitions only
 };
 
 }  // namespace rgnav::tour_runner

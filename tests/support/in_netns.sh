@@ -51,12 +51,12 @@ fi
 
 self=$(readlink -f "${BASH_SOURCE[0]}")
 if [[ $(id -u) -eq 0 ]] && unshare -n true 2>/dev/null; then
-  exec unshare -n -- "$self" --inside "$@"
+  exec unshare -n -- bash "$self" --inside "$@"
 fi
 # Not root (or root without CAP_SYS_ADMIN): an unprivileged user namespace maps us to root
 # inside it, which is enough to configure a private network namespace.
 if unshare -r -n true 2>/dev/null; then
-  exec unshare -r -n -- "$self" --inside "$@"
+  exec unshare -r -n -- bash "$self" --inside "$@"
 fi
 echo "SKIP: cannot create a network namespace here (unshare -n and unshare -rn both refused);" \
      "multicast tests need one so they never send traffic off the machine" >&2

@@ -12,32 +12,29 @@
 namespace rgnav::can::canopen::sdo {
 
 // Abort codes, CiA 301 Table 22.
-enum AbortCode : uint32_t
-{
-  kToggleBit = 0x05030000,
-  kTimeout = 0x05040000,
-  kBadCommand = 0x05040001,
-  kOutOfMemory = 0x05040005,
-  kUnsupportedAccess = 0x06010000,
-  kWriteOnly = 0x06010001,
-  kReadOnly = 0x06010002,
-  kNoObject = 0x06020000,
-  kNotMappable = 0x06040041,
-  kPdoTooLong = 0x06040042,
-  kIncompatible = 0x06040043,
-  kHardwareError = 0x06060000,
-  kLengthMismatch = 0x06070010,
-  kLengthTooHigh = 0x06070012,
-  kLengthTooLow = 0x06070013,
-  kNoSubIndex = 0x06090011,
-  kInvalidValue = 0x06090030,
-  kValueTooHigh = 0x06090031,
-  kValueTooLow = 0x06090032,
-  kGeneralError = 0x08000000,
-  kCannotTransfer = 0x08000020,
-  kLocalControl = 0x08000021,
-  kDeviceState = 0x08000022,
-};
+constexpr uint32_t kToggleBit = 0x05030000;
+constexpr uint32_t kTimeout = 0x05040000;
+constexpr uint32_t kBadCommand = 0x05040001;
+constexpr uint32_t kOutOfMemory = 0x05040005;
+constexpr uint32_t kUnsupportedAccess = 0x06010000;
+constexpr uint32_t kWriteOnly = 0x06010001;
+constexpr uint32_t kReadOnly = 0x06010002;
+constexpr uint32_t kNoObject = 0x06020000;
+constexpr uint32_t kNotMappable = 0x06040041;
+constexpr uint32_t kPdoTooLong = 0x06040042;
+constexpr uint32_t kIncompatible = 0x06040043;
+constexpr uint32_t kHardwareError = 0x06060000;
+constexpr uint32_t kLengthMismatch = 0x06070010;
+constexpr uint32_t kLengthTooHigh = 0x06070012;
+constexpr uint32_t kLengthTooLow = 0x06070013;
+constexpr uint32_t kNoSubIndex = 0x06090011;
+constexpr uint32_t kInvalidValue = 0x06090030;
+constexpr uint32_t kValueTooHigh = 0x06090031;
+constexpr uint32_t kValueTooLow = 0x06090032;
+constexpr uint32_t kGeneralError = 0x08000000;
+constexpr uint32_t kCannotTransfer = 0x08000020;
+constexpr uint32_t kLocalControl = 0x08000021;
+constexpr uint32_t kDeviceState = 0x08000022;
 std::string abort_text(uint32_t code);
 
 struct Message

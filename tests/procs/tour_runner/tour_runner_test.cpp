@@ -51,6 +51,10 @@ TEST(Tour, LoadsStartAndPointsAndRefusesBadOnes)
     EXPECT_NE(std::string(e.what()).find("tour[1]"), std::string::npos) << e.what();
   }
   EXPECT_THROW(load_tour(write_tour("start: [0, 0, 0]\n")), config::ConfigError);
+  const auto flat = load_tour(write_tour("start: [0, 0, 0]\ntour: [1, 2, 3, 4, 5, 6]\n"));
+  ASSERT_EQ(flat.world_points.size(), 3u);
+  EXPECT_TRUE(flat.world_points[2].isApprox(Vector2d(5, 6)));
+  EXPECT_THROW(load_tour(write_tour("tour: [1, 2, 3]\n")), config::ConfigError);
 }
 
 TEST(TourSequencer, AdvancesAndSkipsCutCorners)
@@ -83,6 +87,13 @@ TEST(PurePursuit, StopsForObstacleAheadAndSteersTowardTarget)
   EXPECT_EQ(blocked.v, 0);
   // An obstacle beside the corridor does not stop the robot.
   EXPECT_FALSE(pursue(o, geometry::Pose2(0, 0, 0), Vector2d(2, 0), {Vector2d(0.4, 1.0)}).blocked);
+  // Blocked with free space to the left: it turns left in place.
+  std::vector<Vector2d> wall_right;
+  for (double y = -1.5; y <= 0.2; y += 0.05) wall_right.emplace_back(0.35, y);
+  const auto turn = pursue(o, geometry::Pose2(0, 0, 0), Vector2d(2, 0), wall_right);
+  EXPECT_TRUE(turn.blocked);
+  EXPECT_EQ(turn.v, 0);
+  EXPECT_GT(turn.omega, 0);
 }
 
 struct NodeHarness

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# ./rgnav bench slam: the scan mapper on the real raw logs of ../shared/data/laser/raw
+# (Intel with raw odometry + reference poses from the corrected Intel log, Mines exp1/exp2,
+# MIT CSAIL) with one parameter set (config/scan_mapper.yaml). Writes logs/bench/slam.json and
+# maps/trajectories under logs/bench/slam/<log>/.
+# Simulated part (sim.*, exact ground truth): the lock-step simulator (drivers/sim, odometry
+# error and laser of config/sim.yaml) drives two laps of a closed tour through four IPA building
+# maps, feeding its scans and odometry straight into the mapping library; relations metric
+# (Kuemmerle et al.) and ATE against the true poses. Each world is capped at SLAM_SIM_MAX_S
+# simulated seconds (default 1800); a capped run says so ("capped": true) in the JSON.
+set -euo pipefail
+ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
+BUILD="${RGNAV_BUILD:-$ROOT/build}"
+SHARED="${RGNAV_DATA:-$ROOT/../shared/data}"
+DATA="$SHARED/laser"
+IPA="$SHARED/maps/ipa"
+OUT="$ROOT/logs/bench"
+WORK="$OUT/slam"
+mkdir -p "$WORK"
+imp="$BUILD/bin/rgnav_import"
+# The raw Intel log was decoded from an MRPT rawlog: its 180 beams span 180 deg inclusive.
+"$imp" "$DATA/raw/intel/intel-raw-odometry.carmen.log.gz" "$WORK/intel.lcmlog" --fov-inclusive \
+  --reference-from "$DATA/corrected/intel-corrected.log.gz"
+"$imp" "$DATA/raw/mines/exp1.dat" "$WORK/mines_exp1.lcmlog"
+"$imp" "$DATA/raw/mines/exp2.dat" "$WORK/mines_exp2.lcmlog"
+"$imp" "$DATA/raw/csail/csail-robotlaser.log.gz" "$WORK/csail.lcmlog"
+# Laser mounting poses are properties of the robots that recorded the logs, not tuning: the
+# Intel and CSAIL logs give scans in the robot frame; the Mines rover's URG sits 145 mm ahead
+# of the axle (BreezySLAM examples/mines.py, offset_mm=145). The raw Intel log's timestamps
+# are synthetic (194 s for every 5th scan of a 2691 s recording, Hess et al. 2016 Table V):
+# "#2691" also reports the realtime factor on the recording's true duration.
+"$BUILD/bin/rgnav_slam_bench" --config "$ROOT/config/scan_mapper.yaml" --json "$OUT/slam.json" --maps "$WORK" \
+  --real "intel=$WORK/intel.lcmlog@0,0,0#2691" \
+  --real "mines_exp1=$WORK/mines_exp1.lcmlog@0.145,0,0" \
+  --real "mines_exp2=$WORK/mines_exp2.lcmlog@0.145,0,0" \
+  --real "csail=$WORK/csail.lcmlog@0,0,0" \
+  --sim-config "$ROOT/config/sim.yaml" --sim-laps 2 --sim-max-s "${SLAM_SIM_MAX_S:-1800}" \
+  --sim "Freiburg79_scan=$IPA/Freiburg79_scan.png" \
+  --sim "lab_intel=$IPA/lab_intel.png" \
+  --sim "lab_ipa=$IPA/lab_ipa.png" \
+  --sim "office_e=$IPA/office_e.png"
+echo "wrote $OUT/slam.json" >&2

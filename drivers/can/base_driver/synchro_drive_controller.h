@@ -1,0 +1,95 @@
+// The B21r synchro drive on a CANopen bus, as a single-threaded state machine with explicit
+// time (BaseDriver runs it in a thread on a real CanInterface; tests run it on simulated time):
+//  - a CanopenMaster with two CiA 402 drives: translation (wheel velocity) and rotation
+//    (steering of all wheels = robot heading), both in profile velocity mode;
+//  - velocity commands clamped and acceleration-limited, converted to counts/s;
+//  - deadman: a command older than its deadline makes both drives do a controlled stop
+//    (target 0, profile deceleration);
+//  - faults (EMCY, drive fault, heartbeat loss, missing PDOs, bus-off) stop the robot: the
+//    drives still reachable are held in quick stop until every drive is healthy again, then
+//    the 402 state machine is re-run (recovery);
+//  - odometry integrated exactly from both encoders once per SYNC cycle.
+#pragma once
+
+#include <linux/can.h>
+
+#include <chrono>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "base_driver/base_driver_options.h"
+#include "base_driver/synchro_odometry.h"
+#include "master/canopen_master.h"
+
+namespace rgnav::can::base {
+
+enum class BaseStatus : uint8_t
+{
+  kOk,       // both drives enabled and following a fresh command
+  kStopped,  // drives held at standstill: no or stale command, or still coming up
+  kFault,    // a drive faulted, was lost, or the bus is off
+};
+const char* to_string(BaseStatus s);
+
+struct VelocityCommand
+{
+  double v = 0.0;      // [m/s]
+  double omega = 0.0;  // [rad/s]
+};
+
+struct BaseOdometry
+{
+  Pose2 pose;              // odom frame: where the driver started
+  double v = 0.0;          // [m/s] measured (velocity actual of the translation drive)
+  double omega = 0.0;      // [rad/s] measured (velocity actual of the rotation drive)
+  double distance = 0.0;   // [m]
+  uint64_t samples = 0;    // encoder sample pairs integrated
+  BaseStatus status = BaseStatus::kStopped;
+  std::string reason;      // why not OK ("" when OK)
+  VelocityCommand commanded;  // what the drives are being asked for now (after limits)
+};
+
+class SynchroDriveController
+{
+ public:
+  using Clock = std::chrono::steady_clock;
+  using Sink = std::function<void(const can_frame&)>;
+
+  SynchroDriveController(const BaseDriverOptions& options, Sink send);
+
+  // A command received at `received`; void after `deadline` (never longer than the configured
+  // command_deadline).
+  void command(const VelocityCommand& cmd, Clock::time_point received, Clock::duration deadline);
+  void handle(const can_frame& f, Clock::time_point now);
+  void tick(Clock::time_point now);
+  // Stop following commands for good (shutdown): targets 0 from now on.
+  void release() { released_ = true; }
+
+  const BaseOdometry& odometry() const { return odom_; }
+  bool at_standstill() const;
+  const master::DriveMaster& translation() const { return *translation_; }
+  const master::DriveMaster& rotation() const { return *rotation_; }
+  const master::CanopenMaster& master() const { return master_; }
+
+ private:
+  void integrate_odometry();
+  std::string fault_reason() const;
+
+  BaseDriverOptions options_;
+  master::CanopenMaster master_;
+  master::DriveMaster* translation_;
+  master::DriveMaster* rotation_;
+  SynchroOdometry odometry_;
+  BaseOdometry odom_;
+  std::optional<VelocityCommand> command_;
+  Clock::time_point command_expires_{};
+  std::optional<Clock::time_point> last_tick_;
+  VelocityCommand ramped_;  // acceleration-limited command
+  bool ever_enabled_ = false;
+  bool released_ = false;
+  uint64_t used_samples_t_ = 0, used_samples_r_ = 0;
+  uint32_t epoch_t_ = 0, epoch_r_ = 0;
+};
+
+}  // namespace rgnav::can::base

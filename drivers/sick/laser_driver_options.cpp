@@ -1,0 +1,63 @@
+#include "laser_driver_options.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rgnav::drivers::sick {
+
+namespace {
+
+std::chrono::milliseconds ms(const config::Config& c, const std::string& key, int64_t def, int64_t min, int64_t max)
+{
+  return std::chrono::milliseconds(c.integer(key, def, min, max));
+}
+
+}  // namespace
+
+LaserDriverOptions load_laser_driver_options(const config::Config& c, const config::Config& channels)
+{
+  LaserDriverOptions o;
+  DriverOptions& d = o.driver;
+  o.channel = channels.string("laser", o.channel);
+  if (o.channel.empty()) channels.fail("laser", "must not be empty");
+  o.sensor = c.string("sensor", o.sensor);
+  if (o.sensor.empty()) c.fail("sensor", "must not be empty");
+  d.port = c.required_string("port");
+  const std::vector<std::string> bauds{"9600", "19200", "38400", "500000"};
+  d.initial_baud = std::stoi(c.choice("initial_baud", "9600", bauds));
+  d.desired_baud = std::stoi(c.choice("desired_baud", "500000", bauds));
+  const double range = c.number("angular_range_deg", 180, 100, 180);
+  if (range != 100 && range != 180) c.fail("angular_range_deg", "must be 100 or 180");
+  const double res = c.number("angular_resolution_deg", 1.0, 0.25, 1.0);
+  if (res != 1.0 && res != 0.5 && res != 0.25) c.fail("angular_resolution_deg", "must be 1, 0.5 or 0.25");
+  d.variant.angle_deg = static_cast<uint16_t>(range);
+  d.variant.resolution_cdeg = static_cast<uint16_t>(std::lround(res * 100));
+  if (!variant_supported(d.variant)) c.fail("angular_resolution_deg", "0.25° is only available with a 100° range");
+  d.units = c.choice("units", "mm", {"mm", "cm"}) == "mm" ? Units::kMillimetres : Units::kCentimetres;
+  d.password = c.string("password", d.password);
+  if (d.password.size() != 8) c.fail("password", "must have exactly 8 characters");
+  d.reply_timeout = ms(c, "reply_timeout_ms", d.reply_timeout.count(), 10, 60000);
+  d.detect_timeout = ms(c, "detect_timeout_ms", d.detect_timeout.count(), 10, 60000);
+  d.config_timeout = ms(c, "config_timeout_ms", d.config_timeout.count(), 10, 60000);
+  d.request_tries = static_cast<int>(c.integer("request_tries", d.request_tries, 1, 10));
+  d.silence_timeout = ms(c, "silence_timeout_ms", d.silence_timeout.count(), 10, 60000);
+  d.reconnect_interval = ms(c, "reconnect_interval_ms", d.reconnect_interval.count(), 10, 600000);
+  d.transmit_delay = std::chrono::microseconds(c.integer("transmit_delay_us", 0, 0, 100000));
+  // has() first: Config::section() of a key missing inside a section throws (yaml-cpp
+  // zombie node), reported to the lead; the defaults apply when it is absent.
+  if (c.has("mounting")) {
+    const auto m = c.section("mounting");
+    o.mounting.x_m = m.number("x_m", o.mounting.x_m, -2.0, 2.0);
+    o.mounting.y_m = m.number("y_m", o.mounting.y_m, -2.0, 2.0);
+    o.mounting.z_m = m.number("z_m", o.mounting.z_m, 0.0, 3.0);
+    o.mounting.yaw_rad = m.number("yaw_rad", o.mounting.yaw_rad, -M_PI, M_PI);
+  }
+  try {
+    validate(d);
+  } catch (const std::invalid_argument& e) {
+    c.fail("silence_timeout_ms", e.what());
+  }
+  return o;
+}
+
+}  // namespace rgnav::drivers::sick

@@ -1,0 +1,89 @@
+#include "collision_avoidance/ca_node.h"
+
+#include <spdlog/spdlog.h>
+
+#include "msg/conversions.h"
+#include "rgnav/heartbeat_t.hpp"
+#include "rgnav/laser_scan_t.hpp"
+#include "rgnav/lld_status_t.hpp"
+#include "rgnav/nav_goal_t.hpp"
+#include "rgnav/obstacle_grid_t.hpp"
+#include "rgnav/odometry_t.hpp"
+#include "rgnav/target_list_t.hpp"
+#include "trajectory/trajectory_conversions.h"
+
+namespace rgnav::collision_avoidance {
+
+CaNode::CaNode(runtime::Node& node, const CaNodeOptions& options)
+    : node_(node), options_(options), ca_(options.ca)
+{
+  const auto& ch = options_.channels;
+  node_.subscribe<target_list_t>(ch.targets, [this](const target_list_t& m) {
+    Targets t;
+    t.goal_id = m.goal_id;
+    t.max_speed = m.max_speed;
+    t.final_is_goal = m.final_is_goal;
+    for (const auto& p : m.odom_from_target) t.poses.push_back(msg::to_pose2(p));
+    ca_.set_targets(t);
+    decide(node_.clock().now());
+  });
+  node_.subscribe<nav_goal_t>(ch.nav_goal, [this](const nav_goal_t& m) {
+    if (!m.cancel) return;  // goals reach collision avoidance as TARGETS from the planner
+    ca_.cancel();
+    decide(node_.clock().now());
+  });
+  node_.subscribe<odometry_t>(ch.odometry, [this](const odometry_t& m) {
+    const auto t = time::from_utime(m.utime);
+    ca_.on_odometry(t, msg::to_pose2(m.odom_from_base), m.v);
+    decide(t);
+  });
+  node_.subscribe<laser_scan_t>(ch.laser, [this](const laser_scan_t& m) {
+    std::vector<PolarReading> r;
+    r.reserve(m.ranges.size());
+    for (size_t i = 0; i < m.ranges.size(); ++i) {
+      const float d = m.ranges[i];
+      if (d <= 0.f || d < m.range_min) continue;  // invalid reading
+      r.push_back({m.angle_min + static_cast<double>(i) * m.angle_increment, static_cast<double>(d)});
+    }
+    const auto t = time::from_utime(m.utime);
+    ca_.on_scan(t, r, m.range_max);
+    decide(t);
+  });
+  node_.subscribe<obstacle_grid_t>(ch.obstacles, [this](const obstacle_grid_t& m) {
+    std::vector<Eigen::Vector2d> pts;
+    const Pose2 odom_from_grid = msg::to_pose2(m.odom_from_grid);
+    for (int32_t y = 0; y < m.height; ++y)
+      for (int32_t x = 0; x < m.width; ++x)
+        if (m.cells[static_cast<size_t>(y) * m.width + x] >= options_.ca.map.grid_occupied_min)
+          pts.push_back(odom_from_grid * Eigen::Vector2d((x + 0.5) * m.resolution, (y + 0.5) * m.resolution));
+    ca_.on_obstacle_points(time::from_utime(m.utime), std::move(pts));
+  });
+  node_.subscribe<lld_status_t>(ch.lld_status, [this](const lld_status_t& m) {
+    DriveFeedback f;
+    f.trajectory_id = m.trajectory_id;
+    f.state = m.state;
+    f.progress = m.progress;
+    f.cross_track = m.cross_track_error;
+    f.v_cmd = m.v_cmd;
+    ca_.on_drive_feedback(f);
+  });
+}
+
+void CaNode::decide(time::Time now)
+{
+  const auto t = ca_.update(now);
+  if (t) node_.publish(options_.channels.trajectory, trajectory::to_msg(*t, nullptr, options_.ca.planner.limits.v_max));
+  if (ca_.mode() != reported_ || ca_.status() != reported_text_) {
+    reported_ = ca_.mode();
+    reported_text_ = ca_.status();
+    const bool degraded = reported_ == Mode::kReactive || reported_ == Mode::kStaleStop || reported_ == Mode::kBlocked;
+    if (degraded) {
+      node_.set_status(heartbeat_t::STATE_DEGRADED, reported_text_);
+      spdlog::warn("{}", reported_text_);
+    } else {
+      node_.set_status(heartbeat_t::STATE_RUNNING, reported_text_);
+    }
+  }
+}
+
+}  // namespace rgnav::collision_avoidance

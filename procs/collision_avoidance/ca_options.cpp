@@ -1,0 +1,71 @@
+#include "collision_avoidance/ca_options.h"
+
+namespace rgnav::collision_avoidance {
+
+CaNodeOptions load_ca_options(const config::Config& root)
+{
+  CaNodeOptions o;
+  const auto ch = root.section("channels");
+  o.channels.targets = ch.string("targets", o.channels.targets);
+  o.channels.nav_goal = ch.string("nav_goal", o.channels.nav_goal);
+  o.channels.odometry = ch.string("odometry", o.channels.odometry);
+  o.channels.laser = ch.string("laser", o.channels.laser);
+  o.channels.obstacles = ch.string("obstacles", o.channels.obstacles);
+  o.channels.lld_status = ch.string("lld_status", o.channels.lld_status);
+  o.channels.trajectory = ch.string("trajectory", o.channels.trajectory);
+
+  auto& c = o.ca;
+  const auto robot = root.section("robot");
+  c.planner.robot_radius = robot.number("radius_m", c.planner.robot_radius, 0.05, 2.0);
+  const auto laser = robot.numbers("base_from_laser", {0.12, 0.0, 0.0}, -10.0, 10.0, 3, 3);
+  c.base_from_laser = Pose2(laser[0], laser[1], laser[2]);
+
+  const auto map = root.section("local_map");
+  c.map.max_scans = static_cast<int>(map.integer("max_scans", c.map.max_scans, 1, 100));
+  c.map.max_age = map.number("max_age_s", c.map.max_age, 0.05, 10.0);
+  c.map.max_range = map.number("max_range_m", c.map.max_range, 0.5, 80.0);
+  c.map.cell = map.number("cell_m", c.map.cell, 0.02, 1.0);
+  c.map.grid_occupied_min = static_cast<int>(map.integer("grid_occupied_min", c.map.grid_occupied_min, 1, 100));
+
+  const auto pl = root.section("planner");
+  c.planner.safety_margin = pl.number("safety_margin_m", c.planner.safety_margin, 0.0, 1.0);
+  c.planner.kappa_max = pl.number("kappa_max", c.planner.kappa_max, 0.1, 20.0);
+  c.planner.check_step = pl.number("check_step_m", c.planner.check_step, 0.005, 0.5);
+  c.planner.detour_offsets = pl.numbers("detour_offsets_m", c.planner.detour_offsets, 0.05, 5.0, 0, 16);
+  c.planner.max_length_ratio = pl.number("max_length_ratio", c.planner.max_length_ratio, 1.0, 20.0);
+  c.planner.slow_band = pl.number("slow_band_m", c.planner.slow_band, 0.0, 5.0);
+  c.planner.near_length = pl.number("near_length_m", c.planner.near_length, 0.0, 5.0);
+  c.planner.near_margin = pl.number("near_margin_m", c.planner.near_margin, 0.0, 2.0);
+  c.planner.slow_speed = pl.number("slow_speed_mps", c.planner.slow_speed, 0.05, 2.0);
+  c.planner.turn_first_angle = pl.number("turn_first_angle_rad", c.planner.turn_first_angle, 0.2, 3.2);
+  c.planner.limits.v_max = pl.number("v_max_mps", c.planner.limits.v_max, 0.05, 2.0);
+  c.planner.limits.a_max = pl.number("a_max_mps2", c.planner.limits.a_max, 0.05, 5.0);
+  c.planner.limits.a_lat_max = pl.number("a_lat_max_mps2", c.planner.limits.a_lat_max, 0.05, 5.0);
+  c.planner.limits.omega_max = pl.number("omega_max_radps", c.planner.limits.omega_max, 0.05, 5.0);
+  c.planner.limits.alpha_max = pl.number("alpha_max_radps2", c.planner.limits.alpha_max, 0.05, 20.0);
+  c.planner.limits.omega_jump_max = pl.number("omega_jump_max_radps", c.planner.limits.omega_jump_max, 0.0, 2.0);
+  c.a_max = c.planner.limits.a_max;
+  c.omega_max = c.planner.limits.omega_max;
+
+  const auto re = root.section("reactive");
+  c.reactive.dto_min = re.number("dto_min_m", c.reactive.dto_min, 0.1, 5.0);
+  c.reactive.dto_max = re.number("dto_max_m", c.reactive.dto_max, 0.2, 10.0);
+  if (c.reactive.dto_max <= c.reactive.dto_min) re.fail("dto_max_m", "must exceed dto_min_m");
+  c.reactive.corridor_half_width = c.planner.robot_radius + c.planner.safety_margin;
+  c.reactive.v_max = re.number("v_max_mps", c.reactive.v_max, 0.01, 1.0);
+  c.reactive.step_length = re.number("step_length_m", c.reactive.step_length, 0.1, 3.0);
+  c.reactive.max_turn = re.number("max_turn_rad", c.reactive.max_turn, 0.1, 3.2);
+
+  const auto be = root.section("behaviour");
+  c.fallback_wait = be.number("fallback_wait_s", c.fallback_wait, 0.0, 30.0);
+  c.reach_radius = be.number("reach_radius_m", c.reach_radius, 0.05, 2.0);
+  c.goal_tolerance = be.number("goal_tolerance_m", c.goal_tolerance, 0.01, 1.0);
+  c.lookahead_targets = static_cast<int>(be.integer("lookahead_targets", c.lookahead_targets, 1, 10));
+  c.scan_timeout = be.number("scan_timeout_s", c.scan_timeout, 0.05, 10.0);
+  c.update_period = be.number("update_period_s", c.update_period, 0.0, 2.0);
+  c.refresh_period = be.number("refresh_period_s", c.refresh_period, 0.05, 10.0);
+  c.replan_cross_track = be.number("replan_cross_track_m", c.replan_cross_track, 0.02, 2.0);
+  return o;
+}
+
+}  // namespace rgnav::collision_avoidance

@@ -1,0 +1,128 @@
+// Trajectory-based collision avoidance (diss. 5.5.3): given the next targets (0.5-2 m apart,
+// odom frame), the odometry pose and the sensor data, it builds chains of primitives to the
+// next targets, checks them against the local map with the footprint and a margin, hands
+// them to the low-level drive, watches the drive's progress and replans in time when an
+// obstacle appears on the planned chain. When no chain is free it falls back to Holz et al.'s
+// reactive behaviours, expressed as short trajectories too (the drive stays the only one
+// commanding the base). Stale scans: stop. Runs on message time; knows no LCM.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "collision_avoidance/chain_planner.h"
+#include "collision_avoidance/local_map.h"
+#include "collision_avoidance/reactive.h"
+#include "trajectory/trajectory.h"
+
+namespace rgnav::collision_avoidance {
+
+struct CaOptions
+{
+  LocalMapOptions map;
+  PlannerOptions planner;
+  ReactiveOptions reactive;
+  Pose2 base_from_laser{0.12, 0.0, 0.0};
+  double reach_radius = 0.35;      // [m] an intermediate target counts as passed this close
+  double goal_tolerance = 0.10;    // [m] the final goal
+  int lookahead_targets = 2;       // targets one chain reaches
+  double scan_timeout = 0.5;       // [s] no scan this long: stop
+  double update_period = 0.1;      // [s] decisions at most this often (message time)
+  double refresh_period = 0.5;     // [s] re-send the active trajectory (keep-alive for the lld)
+  double replan_cross_track = 0.2; // [m] the drive is this far off the chain: replan
+  double fallback_wait = 1.5;      // [s] blocked: stand this long (people pass) before turning away
+  double a_max = 0.4;              // [m/s^2] sent with every trajectory
+  double omega_max = 1.0;          // [rad/s]
+};
+
+struct Targets
+{
+  int64_t goal_id = 0;
+  std::vector<Pose2> poses;  // odom frame, driving order
+  double max_speed = 0.5;
+  bool final_is_goal = true;
+};
+
+struct DriveFeedback
+{
+  int64_t trajectory_id = 0;
+  int state = 0;           // lld_status_t::STATE_* values (0 idle, 1 tracking, 2 done, 3 stopping)
+  double progress = 0.0;   // [m]
+  double cross_track = 0.0;
+  double v_cmd = 0.0;
+};
+
+enum class Mode
+{
+  kIdle,        // no targets
+  kPlanned,     // following a planned chain
+  kReactive,    // fallback behaviours
+  kBlocked,     // stopped: nothing feasible, not even turning
+  kStaleStop,   // stopped: scans stale
+  kArrived,     // final goal reached
+};
+
+const char* mode_name(Mode m);
+
+class CollisionAvoidance
+{
+ public:
+  explicit CollisionAvoidance(const CaOptions& options);
+
+  void set_targets(const Targets& targets);
+  void cancel();
+  void on_odometry(time::Time stamp, const Pose2& odom_from_base, double v);
+  // Scan readings in the laser frame as (bearing, range); range >= range_max means no return.
+  void on_scan(time::Time stamp, const std::vector<PolarReading>& laser_readings, double range_max);
+  void on_obstacle_points(time::Time stamp, std::vector<Eigen::Vector2d> odom_points);
+  void on_drive_feedback(const DriveFeedback& feedback) { feedback_ = feedback; has_feedback_ = true; }
+
+  // Decides at message time `now`: a trajectory to send (new, or the active one re-sent).
+  std::optional<trajectory::Trajectory> update(time::Time now);
+
+  Mode mode() const { return mode_; }
+  const std::string& status() const { return status_; }
+  size_t next_target() const { return next_; }
+  const LocalMap& map() const { return map_; }
+  const std::optional<trajectory::Trajectory>& active() const { return active_; }
+  int64_t replans() const { return replans_; }
+  int64_t fallbacks() const { return fallbacks_; }
+
+ private:
+  std::optional<trajectory::Trajectory> send_new(trajectory::Chain chain, time::Time now, double predicted, Mode mode);
+  std::optional<trajectory::Trajectory> stop(time::Time now, Mode mode, const std::string& why);
+  std::optional<trajectory::Trajectory> reactive(time::Time now);
+  std::vector<Pose2> goals() const;
+  bool advance_targets();
+
+  const CaOptions options_;
+  const ChainPlanner planner_;
+  LocalMap map_;
+  Targets targets_;
+  bool has_targets_ = false;
+  bool targets_changed_ = false;
+  size_t next_ = 0;
+  bool has_pose_ = false;
+  Pose2 pose_;
+  double v_ = 0.0;
+  time::Time last_scan_{};
+  bool has_scan_ = false;
+  std::vector<PolarReading> last_readings_;  // base frame
+  DriveFeedback feedback_;
+  bool has_feedback_ = false;
+  std::optional<trajectory::Trajectory> active_;
+  time::Time last_sent_{};
+  time::Time last_update_{};
+  bool updated_once_ = false;
+  bool stopped_ = false;  // the last thing sent was a stop
+  int64_t next_id_ = 1;
+  int64_t replans_ = 0;
+  int64_t fallbacks_ = 0;
+  bool blocked_since_set_ = false;
+  time::Time blocked_since_{};
+  Mode mode_ = Mode::kIdle;
+  std::string status_ = "idle";
+};
+
+}  // namespace rgnav::collision_avoidance

@@ -1,0 +1,42 @@
+// gateway_detector: narrow passages, doors and crossing gateways from laser scans (diss. ch. 4).
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include <spdlog/spdlog.h>
+
+#include "gateway_detector/gateway_detector_node.h"
+#include "gateway_detector/gateway_models.h"
+#include "gateway_detector/options.h"
+#include "runtime/process_main.h"
+
+using namespace rgnav;
+using namespace rgnav::gateway_detector;
+
+int main(int argc, char** argv)
+{
+  return runtime::process_main(argc, argv, "gateway_detector", [](runtime::ProcessContext& ctx) {
+    const auto& cfg = ctx.config;
+    const DetectorOptions options = load_detector_options(cfg);
+    const auto classifier_cfg = load_classifier_config(cfg.section("classifier"), ctx.config_path);
+    HmmClassifier classifier;
+    if (!classifier_cfg.models_path.empty() && std::filesystem::exists(classifier_cfg.models_path)) {
+      auto models = load_gateway_models(classifier_cfg.models_path);
+      if (std::fabs(models.f_vlm - options.measures.f_vlm) > 1e-9 || std::fabs(models.f_gw - options.measures.f_gw) > 1e-9)
+        cfg.section("crossings").fail("f_vlm", "differs from the weights the models in " + classifier_cfg.models_path + " were trained with");
+      if (std::fabs(models.hallway_width - options.measures.hallway_width) > 1e-6)
+        cfg.section("crossings").fail("hallway_width_m", "differs from the " + std::to_string(models.hallway_width) +
+                                                             " m the models in " + classifier_cfg.models_path + " were trained for");
+      classifier = std::move(models.classifier);
+      spdlog::info("gateway HMMs from {} ({})", classifier_cfg.models_path, models.description);
+    } else if (classifier_cfg.require_models) {
+      cfg.section("classifier").fail("models", "file not found: " + classifier_cfg.models_path + " (run ./rgnav train-gateways)");
+    } else {
+      spdlog::warn("no gateway HMMs ({}): crossings are classified by their observation weights",
+                   classifier_cfg.models_path.empty() ? "none configured" : classifier_cfg.models_path + " missing");
+    }
+    return std::make_shared<GatewayDetectorNode>(ctx.node, GatewayDetector(options, std::move(classifier)),
+                                                 load_node_channels(cfg.section("channels")),
+                                                 load_laser_mount(cfg.section("laser")));
+  });
+}

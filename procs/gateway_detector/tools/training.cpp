@@ -1,0 +1,66 @@
+#include "gateway_detector/tools/training.h"
+
+#include <stdexcept>
+
+#include "gateway_detector/options.h"
+
+namespace rgnav::gateway_detector::tools {
+
+TrainingConfig load_training_config(const std::string& path)
+{
+  const auto cfg = config::Config::load(path);
+  TrainingConfig t;
+  const auto envs = cfg.section("environments");
+  for (const auto& name : envs.keys()) {
+    const auto e = envs.section(name);
+    t.environments.push_back({name, e.string("paper", "")});
+    try {
+      width_of_environment(name);
+    } catch (const std::exception&) {
+      envs.fail(name, "not a hallway world (hallways_<w>m_<clutter>)");
+    }
+  }
+  if (t.environments.empty()) cfg.fail("environments", "needs at least one world");
+  t.office_world = cfg.string("office_world", t.office_world);
+  const auto rec = cfg.section("record");
+  auto& r = t.record;
+  r.repetitions = static_cast<int>(rec.integer("repetitions", r.repetitions, 2, 1000));
+  r.approach_length = rec.number("approach_length_m", r.approach_length, 3.0, 20.0);
+  r.lateral_fraction = rec.number("lateral_fraction", r.lateral_fraction, 0.0, 0.4);
+  r.heading_noise = rec.number("heading_noise_rad", r.heading_noise, 0.0, 0.3);
+  r.speed = rec.number("speed_mps", r.speed, 0.1, 0.9);
+  r.scan_hz = rec.number("scan_hz", r.scan_hz, 1.0, 75.0);
+  r.match_fraction = rec.number("match_fraction", r.match_fraction, 0.05, 1.0);
+  r.complete_only = rec.boolean("complete_only", r.complete_only);
+  r.seed = static_cast<uint64_t>(rec.integer("seed", 1, 1, 1'000'000'000));
+  t.hmm = load_training_options(cfg.section("hmm"));
+  cfg.finish();
+  return t;
+}
+
+double width_of_environment(const std::string& name)
+{
+  const std::string prefix = "hallways_";
+  const auto m = name.find("m_");
+  if (name.rfind(prefix, 0) != 0 || m == std::string::npos) throw std::invalid_argument("not a hallway world: " + name);
+  return std::stod(name.substr(prefix.size(), m - prefix.size()));
+}
+
+HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, const HmmTrainingOptions& options)
+{
+  HmmClassifier c;
+  for (int cls = 0; cls < kNumSequenceClasses; ++cls) {
+    std::vector<TrainingSequence> data;
+    for (const auto& s : sequences) {
+      if (s.cls != cls) continue;
+      TrainingSequence t;
+      for (const auto& o : s.sequence) t.push_back({feature_vector(o), o.distance});
+      data.push_back(std::move(t));
+    }
+    if (data.size() < 2) continue;
+    c.models()[static_cast<size_t>(cls)] = train_hmm(data, options);
+  }
+  return c;
+}
+
+}  // namespace rgnav::gateway_detector::tools

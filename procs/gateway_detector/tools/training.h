@@ -1,0 +1,35 @@
+// What the trainer and the benchmark share: config/gateway_models/training.yaml (worlds,
+// recording and HMM options) and training one HMM per class from labelled sequences.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "config/config.h"
+#include "gateway_detector/classifiers.h"
+#include "gateway_detector/hmm.h"
+#include "gateway_detector/tools/sim_runs.h"
+
+namespace rgnav::gateway_detector::tools {
+
+struct TrainingConfig
+{
+  struct Environment
+  {
+    std::string world;   // name under config/worlds
+    std::string paper;   // the dissertation's name for the comparable environment ("" = none)
+  };
+  std::vector<Environment> environments;
+  std::string office_world = "office";    // door evaluation
+  RecordOptions record;
+  HmmTrainingOptions hmm;
+};
+TrainingConfig load_training_config(const std::string& path);
+
+// Hallway width of a hallway world from its name (hallways_2.5m_... -> 2.5); throws otherwise.
+double width_of_environment(const std::string& name);
+
+// One HMM per sequence class that has at least two sequences.
+HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, const HmmTrainingOptions& options);
+
+}  // namespace rgnav::gateway_detector::tools

@@ -1,0 +1,210 @@
+#include "lld/lld_node.h"
+
+#include <spdlog/spdlog.h>
+
+#include "msg/conversions.h"
+#include "rgnav/heartbeat_t.hpp"
+#include "trajectory/trajectory_conversions.h"
+
+namespace rgnav::lld {
+
+namespace {
+
+const char* reason_text(StopReason r)
+{
+  switch (r) {
+    case StopReason::kStaleOdometry: return "stale odometry";
+    case StopReason::kStaleTrajectory: return "stale trajectory";
+    case StopReason::kCancelled: return "cancelled";
+    case StopReason::kEndOfPlan: return "end of plan";
+    default: return "";
+  }
+}
+
+}  // namespace
+
+LldNode::LldNode(runtime::Node& node, const LldOptions& options, bool start_thread)
+    : node_(node),
+      options_(options),
+      follower_(options.follower),
+      loop_(std::chrono::nanoseconds(static_cast<int64_t>(1e9 / options.loop.rate_hz)))
+{
+  cmd_msg_.source = node_.name();
+  cmd_msg_.deadline_us = options_.loop.command_deadline_ms * 1000;
+  cmd_buf_.resize(static_cast<size_t>(cmd_msg_.getEncodedSize()) + 64);
+  status_buf_.resize(static_cast<size_t>(status_msg_.getEncodedSize()) + 64);
+
+  node_.subscribe<trajectory_t>(options_.channels.trajectory, [this](const trajectory_t& m) { on_trajectory(m); });
+  node_.subscribe<odometry_t>(options_.channels.odometry, [this](const odometry_t& m) { on_odometry(m); });
+  node_.every(std::chrono::milliseconds(200), [this] { update_heartbeat(); });
+  if (start_thread) thread_ = std::thread([this] { control_thread(); });
+}
+
+LldNode::~LldNode()
+{
+  loop_.stop();
+  if (thread_.joinable()) thread_.join();
+  const LoopStats s = loop_.stats();
+  if (s.ticks > 0)
+    spdlog::info("control loop: {} ticks, {} overruns, period jitter p50 {:.3f} ms p99 {:.3f} ms max {:.3f} ms",
+                 s.ticks, s.overruns, s.jitter_p50_ms, s.jitter_p99_ms, s.jitter_max_ms);
+}
+
+void LldNode::on_trajectory(const trajectory_t& msg)
+{
+  std::unique_ptr<Plan> retired, superseded;
+  if (msg.trajectory_id == last_trajectory_id_ && msg.nsegments > 0) {
+    // The sender re-sent the trajectory it still wants: keep following, no re-plan.
+    std::lock_guard<std::mutex> lock(inbox_mutex_);
+    inbox_.refresh_id = msg.trajectory_id;
+    inbox_.has_refresh = true;
+    inbox_.anchor_utime = std::max(inbox_.anchor_utime, msg.utime);
+    inbox_.anchor_steady = Steady::now();
+    retired = std::move(inbox_.retired);
+    return;
+  }
+  std::string why;
+  auto t = trajectory::from_msg(msg, &why);
+  if (!t) {
+    node_.drops().drop(options_.channels.trajectory, why);
+    return;
+  }
+  last_trajectory_id_ = msg.trajectory_id;
+  auto plan = make_plan(std::move(*t), options_.follower, v_command_.load());
+  if (!plan->profile.feasible())
+    spdlog::warn("trajectory {}: cannot meet its first speed limits from {:.2f} m/s; braking at a_max",
+                 msg.trajectory_id, v_command_.load());
+  {
+    std::lock_guard<std::mutex> lock(inbox_mutex_);
+    superseded = std::move(inbox_.pending);  // never taken by the loop
+    retired = std::move(inbox_.retired);
+    inbox_.pending = std::move(plan);
+    inbox_.anchor_utime = std::max(inbox_.anchor_utime, msg.utime);
+    inbox_.anchor_steady = Steady::now();
+  }
+  // Both are freed here, in the Node's thread, after the lock.
+}
+
+void LldNode::on_odometry(const odometry_t& msg)
+{
+  std::lock_guard<std::mutex> lock(inbox_mutex_);
+  inbox_.odometry.pose = msg::to_pose2(msg.odom_from_base);
+  inbox_.odometry.v = msg.v;
+  inbox_.odometry.omega = msg.omega;
+  inbox_.odometry.stamp = time::from_utime(msg.utime);
+  inbox_.has_odometry = true;
+  inbox_.anchor_utime = std::max(inbox_.anchor_utime, msg.utime);
+  inbox_.anchor_steady = Steady::now();
+}
+
+void LldNode::control_thread()
+{
+  bool granted = false;
+  if (options_.loop.realtime_priority > 0 || options_.loop.lock_memory) {
+    const std::string what = request_realtime(options_.loop.realtime_priority, options_.loop.lock_memory, &granted);
+    if (granted)
+      spdlog::info("control loop at {:.0f} Hz: {}", options_.loop.rate_hz, what);
+    else
+      spdlog::warn("control loop at {:.0f} Hz without real-time guarantees: {}", options_.loop.rate_hz, what);
+  }
+  PeriodicLoop::Tick tick;
+  while (loop_.wait(&tick)) {
+    int64_t anchor_utime;
+    Steady::time_point anchor_steady;
+    {
+      std::lock_guard<std::mutex> lock(inbox_mutex_);
+      anchor_utime = inbox_.anchor_utime;
+      anchor_steady = inbox_.anchor_steady;
+    }
+    // Message time now: the newest input's time plus the wall time since it arrived.
+    const int64_t since = anchor_utime == 0 ? 0
+        : std::chrono::duration_cast<std::chrono::microseconds>(Steady::now() - anchor_steady).count();
+    const double dt = tick.index == 0 ? 1.0 / options_.loop.rate_hz : tick.dt;
+    control_step(time::from_utime(anchor_utime + since), dt, tick.jitter_ms);
+  }
+}
+
+void LldNode::control_step(time::Time now, double dt, double jitter_ms)
+{
+  OdometryInput odometry;
+  bool has_odometry;
+  std::unique_ptr<Plan> incoming;
+  bool has_refresh;
+  int64_t refresh_id;
+  {
+    std::lock_guard<std::mutex> lock(inbox_mutex_);
+    odometry = inbox_.odometry;
+    has_odometry = inbox_.has_odometry;
+    incoming = std::move(inbox_.pending);
+    has_refresh = inbox_.has_refresh;
+    refresh_id = inbox_.refresh_id;
+    inbox_.has_refresh = false;
+  }
+  if (incoming) {
+    // Swap in; the old plan goes back to the inbox for the Node's thread to free.
+    // Every arrival empties the slot first (on_trajectory), so it is free here; were it not,
+    // `old` would be freed in this thread, the one deallocation the loop could ever make.
+    std::unique_ptr<Plan> old = follower_.replace(std::move(incoming), now);
+    std::lock_guard<std::mutex> lock(inbox_mutex_);
+    if (!inbox_.retired) inbox_.retired = std::move(old);
+  }
+  if (has_refresh) follower_.refresh(refresh_id, now);
+
+  const FollowerStatus& st = follower_.step(now, dt, has_odometry ? &odometry : nullptr);
+  v_command_.store(st.command.v);
+  state_.store(static_cast<int>(st.state));
+  stop_reason_.store(static_cast<int>(st.stop_reason));
+  publish_outputs(now, jitter_ms);
+}
+
+void LldNode::publish_outputs(time::Time now, double jitter_ms)
+{
+  const FollowerStatus& st = follower_.status();
+  const bool moving = st.state == FollowerState::kTracking || st.state == FollowerState::kStopping;
+  idle_left_ = moving ? options_.loop.idle_commands : std::max(0, idle_left_ - 1);
+  if (moving || idle_left_ > 0) {
+    cmd_msg_.utime = time::to_utime(now);
+    cmd_msg_.seq = ++seq_;
+    cmd_msg_.v = st.command.v;
+    cmd_msg_.omega = st.command.omega;
+    const int n = cmd_msg_.encode(cmd_buf_.data(), 0, static_cast<int>(cmd_buf_.size()));
+    if (n > 0) node_.bus().publish(options_.channels.command, cmd_buf_.data(), static_cast<size_t>(n));
+  }
+  status_msg_.utime = time::to_utime(now);
+  status_msg_.trajectory_id = st.trajectory_id;
+  status_msg_.state = static_cast<int8_t>(st.state);
+  status_msg_.segment_index = st.segment;
+  status_msg_.progress = st.progress;
+  status_msg_.cross_track_error = st.cross_track;
+  status_msg_.heading_error = st.heading_error;
+  status_msg_.v_cmd = st.command.v;
+  status_msg_.omega_cmd = st.command.omega;
+  status_msg_.predicted_end_utime = time::to_utime(st.predicted_end);
+  status_msg_.overruns = loop_.overruns();
+  status_msg_.period_jitter_ms = static_cast<float>(jitter_ms);
+  const int n = status_msg_.encode(status_buf_.data(), 0, static_cast<int>(status_buf_.size()));
+  if (n > 0) node_.bus().publish(options_.channels.status, status_buf_.data(), static_cast<size_t>(n));
+}
+
+void LldNode::update_heartbeat()
+{
+  {
+    // Free plans the loop handed back.
+    std::unique_ptr<Plan> retired;
+    std::lock_guard<std::mutex> lock(inbox_mutex_);
+    retired = std::move(inbox_.retired);
+  }
+  const auto state = static_cast<FollowerState>(state_.load());
+  const auto reason = static_cast<StopReason>(stop_reason_.load());
+  const int64_t overruns = loop_.overruns();
+  if (state == FollowerState::kStopping &&
+      (reason == StopReason::kStaleOdometry || reason == StopReason::kStaleTrajectory)) {
+    node_.set_status(heartbeat_t::STATE_DEGRADED, std::string("controlled stop: ") + reason_text(reason));
+  } else if (overruns > 0) {
+    node_.set_status(heartbeat_t::STATE_RUNNING, "control loop overruns: " + std::to_string(overruns));
+  } else {
+    node_.clear_status();
+  }
+}
+
+}  // namespace rgnav::lld

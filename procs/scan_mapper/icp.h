@@ -1,0 +1,42 @@
+// Point-to-line ICP (Gauss-Newton on x, y, theta) with a correspondence rejection threshold
+// that decays exponentially over the iterations (Holz et al. 2010, sec. 6.3): generous at
+// first for convergence from a rough guess, tight at the end for a precise fit. Points
+// whose model neighbourhood is not line-like use point-to-point residuals.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "scan_mapper/point_map.h"
+#include "scan_mapper/pose2.h"
+
+namespace rgnav::scan_mapper {
+
+struct IcpOptions
+{
+  int max_iterations = 40;
+  double initial_max_distance_m = 0.5;  // rejection threshold of the first iteration
+  double final_max_distance_m = 0.08;   // floor the threshold decays to
+  double decay = 0.8;                   // threshold factor per iteration
+  double converged_translation_m = 1e-4;
+  double converged_rotation_rad = 1e-4;
+  double inlier_distance_m = 0.1;       // distance counted as agreement in inlier_ratio
+  double point_sigma_m = 0.03;          // range noise for the covariance estimate
+  double covariance_inflation = 4.0;    // residuals are correlated; the raw estimate is too confident
+};
+
+struct IcpResult
+{
+  Pose2 map_from_scan;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  // of (x, y, theta) in the map frame
+  double inlier_ratio = 0.0;  // share of scan points within inlier_distance_m of the model
+  double rms_m = 0.0;         // rms residual of the final correspondences
+  int iterations = 0;
+  int correspondences = 0;
+  bool ok = false;            // enough correspondences for a well-posed solution
+};
+
+// scan points are in the scan's own frame; guess is map_from_scan.
+IcpResult icp_point_to_line(const Points& scan, const PointMap& model, const Pose2& guess,
+                            const IcpOptions& options);
+
+}  // namespace rgnav::scan_mapper

@@ -1,0 +1,384 @@
+#include "scan_mapper/scan_mapper.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rgnav::scan_mapper {
+namespace {
+
+constexpr size_t kSubmapCacheSize = 24;
+
+// Rotation acting on the (x, y) part of a pose covariance.
+Eigen::Matrix3d rot3(double th)
+{
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  R(0, 0) = std::cos(th);
+  R(0, 1) = -std::sin(th);
+  R(1, 0) = std::sin(th);
+  R(1, 1) = std::cos(th);
+  return R;
+}
+
+Eigen::Matrix3d information_of(const Eigen::Matrix3d& cov)
+{
+  Eigen::Matrix3d c = 0.5 * (cov + cov.transpose());
+  c.diagonal() += Eigen::Vector3d(1e-8, 1e-8, 1e-10);
+  Eigen::Matrix3d info = c.inverse();
+  return 0.5 * (info + info.transpose());
+}
+
+Eigen::Vector3d difference(const Pose2& a, const Pose2& b)
+{
+  return {a.x - b.x, a.y - b.y, normalize_angle(a.theta - b.theta)};
+}
+
+}  // namespace
+
+ScanMapper::ScanMapper(ScanMapperOptions options) : options_(std::move(options)) {}
+
+ScanMapper::ScanMapper(ScanMapperOptions options, MapperState state)
+    : options_(std::move(options)), nodes_(std::move(state.nodes))
+{
+  for (auto& n : nodes_) {
+    if (n.normals.size() != n.points.size()) {
+      const PointMap own(n.points);
+      n.normals = own.normals();
+      n.has_normal = own.has_normals();
+    }
+    graph_.add_node(n.map_from_base);
+  }
+  for (const auto& e : state.edges)
+    if (e.from >= 0 && e.to >= 0 && e.from < static_cast<int>(nodes_.size()) && e.to < static_cast<int>(nodes_.size()))
+      graph_.add_edge(e);
+  relocalize_next_ = !nodes_.empty();
+}
+
+MapperState ScanMapper::state() const { return {nodes_, graph_.edges()}; }
+
+void ScanMapper::add_odometry(const OdometrySample& s) { odometry_.add(s); }
+
+void ScanMapper::reset_odometry()
+{
+  odometry_.clear();
+  relocalize_next_ = !nodes_.empty();
+}
+
+std::optional<Pose2> ScanMapper::current_pose() const
+{
+  if (nodes_.empty()) return std::nullopt;
+  return nodes_.back().map_from_base;
+}
+
+std::optional<Pose2> ScanMapper::map_from_odom() const
+{
+  if (nodes_.empty() || relocalize_next_) return std::nullopt;
+  return nodes_.back().map_from_base * nodes_.back().odom_from_base.inverse();
+}
+
+MapperUpdate ScanMapper::add_scan(const Scan& scan)
+{
+  ++stats_.scans_in;
+  const auto odom = odometry_.at(scan.utime, options_.max_odometry_extrapolation_us);
+  if (!odom) {
+    ++stats_.no_odometry;
+    return {};
+  }
+  return process(scan, *odom);
+}
+
+Eigen::Matrix3d ScanMapper::odometry_covariance(const Pose2& inc) const
+{
+  const auto& n = options_.odometry_noise;
+  const double d = inc.translation_norm();
+  const double st = n.min_trans_m + n.trans_per_m * d;
+  const double sr = n.min_rot_rad + n.rot_per_rad * std::fabs(inc.theta) + n.rot_per_m * d;
+  return Eigen::Vector3d(st * st, st * st, sr * sr).asDiagonal();
+}
+
+MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
+{
+  MapperUpdate up;
+  ScanNode node;
+  node.odom_from_base = odom;
+  if (nodes_.empty()) {
+    // The map frame is the odometry frame at the first scan.
+    node.scan = scan;
+    node.map_from_base = odom;
+    node.published = odom;
+    prepare_points(&node);
+    nodes_.push_back(std::move(node));
+    graph_.add_node(nodes_.back().map_from_base);
+    ++stats_.accepted;
+    up.accepted = true;
+    up.node = 0;
+    return up;
+  }
+  const ScanNode& prev = nodes_.back();
+  const bool relocalize = relocalize_next_;
+  // After a restart the odometry origin is unknown: assume the robot is where it was.
+  const Pose2 u = relocalize ? Pose2{} : between(prev.odom_from_base, odom);
+  if (!relocalize && u.translation_norm() < options_.min_travel_m && std::fabs(u.theta) < options_.min_rotation_rad)
+    return up;
+  relocalize_next_ = false;
+
+  node.scan = scan;
+  prepare_points(&node);
+  const Eigen::Matrix3d Q = relocalize ? Eigen::Matrix3d(Eigen::Vector3d(1.0, 1.0, 0.5).asDiagonal())
+                                       : odometry_covariance(u);
+  const Pose2 guess = prev.map_from_base * u;
+
+  Pose2 fused = u;
+  Eigen::Matrix3d P = Q;
+  if (const auto icp = register_locally(node.points, guess, relocalize)) {
+    // Both increments in the previous node's frame.
+    const Pose2 z = between(prev.map_from_base, icp->map_from_scan);
+    const Eigen::Matrix3d R = rot3(-prev.map_from_base.theta) * icp->covariance * rot3(-prev.map_from_base.theta).transpose();
+    const Eigen::Vector3d innov = difference(z, u);
+    const Eigen::Matrix3d S = Q + R;
+    const double chi2 = innov.dot(S.ldlt().solve(innov));
+    if (!relocalize && chi2 > options_.max_innovation_chi2) {
+      ++stats_.match_rejected;
+    } else {
+      const Eigen::Matrix3d K = Q * S.inverse();
+      fused = Pose2::from(u.vector() + K * innov);
+      P = (Eigen::Matrix3d::Identity() - K) * Q;
+      P = 0.5 * (P + P.transpose());
+      up.matched = true;
+      ++stats_.matched;
+    }
+  }
+  node.map_from_base = prev.map_from_base * fused;
+  node.published = node.map_from_base;
+  // First-order propagation of the node covariance.
+  const Eigen::Vector2d dt = Eigen::Vector2d(node.map_from_base.x - prev.map_from_base.x,
+                                             node.map_from_base.y - prev.map_from_base.y);
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  F(0, 2) = -dt.y();
+  F(1, 2) = dt.x();
+  const Eigen::Matrix3d G = rot3(prev.map_from_base.theta);
+  node.covariance = F * prev.covariance * F.transpose() + G * P * G.transpose();
+  node.path_m = prev.path_m + u.translation_norm();
+
+  const int from = static_cast<int>(nodes_.size()) - 1;
+  nodes_.push_back(std::move(node));
+  const int id = graph_.add_node(nodes_.back().map_from_base);
+  // The edge error lives in the frame of the measured increment.
+  const Eigen::Matrix3d Pe = rot3(-fused.theta) * P * rot3(-fused.theta).transpose();
+  graph_.add_edge({from, id, fused, information_of(Pe), false});
+  ++stats_.accepted;
+  up.accepted = true;
+  up.node = id;
+  // While a hypothesis waits for a witness, look every scan.
+  if (options_.loop.enabled && (++since_loop_try_ >= options_.loop.every_n_scans || !pending_.empty())) {
+    since_loop_try_ = 0;
+    up.loop_closed = try_loop_closure(id, &up);
+  }
+  return up;
+}
+
+void ScanMapper::prepare_points(ScanNode* node) const
+{
+  node->points = scan_to_points(node->scan, options_.base_from_laser, options_.points);
+  const PointMap own(node->points);
+  node->normals = own.normals();
+  node->has_normal = own.has_normals();
+}
+
+std::optional<IcpResult> ScanMapper::register_locally(const Points& points, const Pose2& guess, bool wide)
+{
+  const int n = static_cast<int>(nodes_.size());
+  Points model, normals;
+  std::vector<char> has_normal;
+  for (int k = std::max(0, n - options_.local_map_scans); k < n; ++k) {
+    const auto& nk = nodes_[static_cast<size_t>(k)];
+    const auto pts = transform_points(nk.map_from_base, nk.points);
+    model.insert(model.end(), pts.begin(), pts.end());
+    const double c = std::cos(nk.map_from_base.theta), s = std::sin(nk.map_from_base.theta);
+    for (const auto& v : nk.normals) normals.emplace_back(c * v.x() - s * v.y(), s * v.x() + c * v.y());
+    has_normal.insert(has_normal.end(), nk.has_normal.begin(), nk.has_normal.end());
+  }
+  if (model.size() < 10 || points.size() < 10) return std::nullopt;
+  const PointMap map(std::move(model), std::move(normals), std::move(has_normal));
+  IcpResult best = icp_point_to_line(points, map, guess, options_.icp);
+  if (wide || !best.ok || best.inlier_ratio < options_.min_inlier_ratio) {
+    ++stats_.correlative_retries;
+    const LikelihoodGrid grid(map.points(), options_.correlative);
+    CorrelativeWindow window = options_.local_window;
+    if (wide) window = {options_.loop.window_max_m, options_.loop.angular_window_max_rad};
+    const auto cor = correlative_match(thin_points(points, options_.loop.point_spacing_m), grid, guess, window,
+                                       options_.correlative);
+    const IcpResult again = icp_point_to_line(points, map, cor.map_from_scan, options_.icp);
+    if (again.ok && (!best.ok || again.inlier_ratio > best.inlier_ratio)) best = again;
+  }
+  if (!best.ok || best.inlier_ratio < options_.min_accept_inlier_ratio) return std::nullopt;
+  return best;
+}
+
+const ScanMapper::Submap& ScanMapper::submap_around(int anchor)
+{
+  auto it = submaps_.find(anchor);
+  if (it != submaps_.end()) {
+    submap_lru_.remove(anchor);
+    submap_lru_.push_front(anchor);
+    return it->second;
+  }
+  const auto& l = options_.loop;
+  const Pose2 anchor_from_map = nodes_[static_cast<size_t>(anchor)].map_from_base.inverse();
+  const int last = static_cast<int>(nodes_.size()) - 1 - l.min_node_gap;
+  Points pts;
+  const double r2 = l.submap_radius_m * l.submap_radius_m;
+  for (int k = std::max(0, anchor - l.submap_half_nodes); k <= std::min(last, anchor + l.submap_half_nodes); ++k) {
+    const auto& nk = nodes_[static_cast<size_t>(k)];
+    for (const auto& p : transform_points(anchor_from_map * nk.map_from_base, nk.points))
+      if (p.squaredNorm() <= r2) pts.push_back(p);
+  }
+  Submap sm;
+  sm.grid = std::make_unique<LikelihoodGrid>(pts, l.correlative);
+  sm.points = std::make_unique<PointMap>(std::move(pts));
+  submap_lru_.push_front(anchor);
+  if (submap_lru_.size() > kSubmapCacheSize) {
+    submaps_.erase(submap_lru_.back());
+    submap_lru_.pop_back();
+  }
+  return submaps_.emplace(anchor, std::move(sm)).first->second;
+}
+
+std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
+{
+  const auto& l = options_.loop;
+  const ScanNode& cur = nodes_[static_cast<size_t>(n)];
+  // How well each old node is known relative to this one, read off the graph.
+  const auto unc = relative_uncertainty(graph_, n, l.drift);
+  int best = -1;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int m = 0; m + l.min_node_gap <= n; ++m) {
+    const ScanNode& c = nodes_[static_cast<size_t>(m)];
+    if (cur.path_m - c.path_m < l.min_path_gap_m) break;  // path_m grows with m
+    const auto& u = unc[static_cast<size_t>(m)];
+    if (!u.reached()) continue;
+    const double window = std::clamp(l.gate_sigmas * u.sigma_xy(), l.window_base_m, l.window_max_m);
+    const double d = std::hypot(c.map_from_base.x - cur.map_from_base.x, c.map_from_base.y - cur.map_from_base.y);
+    // Beyond the window the true place cannot be this one; prefer the best-known candidates.
+    if (d > l.search_radius_m + window) continue;
+    const double rank = d / (l.search_radius_m + window);
+    if (rank < best_d) {
+      best_d = rank;
+      best = m;
+    }
+  }
+  if (best < 0) return std::nullopt;
+  ++stats_.loop_attempts;
+  // Anchors on a coarse lattice so that nearby attempts share a cached submap.
+  const int step = std::max(1, l.submap_half_nodes);
+  int anchor = static_cast<int>(std::lround(static_cast<double>(best) / step)) * step;
+  anchor = std::min(anchor, n - l.min_node_gap);
+  const Submap& sm = submap_around(anchor);
+  if (sm.points->size() < 20) return std::nullopt;
+  const ScanNode& a = nodes_[static_cast<size_t>(anchor)];
+  const auto& u = unc[static_cast<size_t>(anchor)];
+  const double sxy = u.reached() ? u.sigma_xy() : l.window_max_m;
+  const double sth = u.reached() ? u.sigma_rot() : l.angular_window_max_rad;
+  const Pose2 guess = between(a.map_from_base, cur.map_from_base);
+  const CorrelativeWindow window{std::clamp(l.gate_sigmas * sxy, l.window_base_m, l.window_max_m),
+                                 std::clamp(l.gate_sigmas * sth, l.angular_window_base_rad, l.angular_window_max_rad)};
+  const auto cor = correlative_match(thin_points(cur.points, l.point_spacing_m), *sm.grid, guess, window, l.correlative);
+  if (cor.score < l.min_score) return std::nullopt;
+  const IcpResult icp = icp_point_to_line(cur.points, *sm.points, cor.map_from_scan, options_.icp);
+  if (!icp.ok || icp.inlier_ratio < l.min_inlier_ratio) return std::nullopt;
+  ClosureHypothesis h;
+  h.node = n;
+  h.anchor = anchor;
+  h.anchor_from_node = icp.map_from_scan;
+  h.covariance = l.covariance_scale * rot3(-h.anchor_from_node.theta) * icp.covariance * rot3(-h.anchor_from_node.theta).transpose();
+  // Where the graph already knows the relative pose well, a match that agrees with it needs
+  // no second witness.
+  h.direct = false;
+  if (u.reached() && u.sigma_xy() <= l.direct_max_sigma_m) {
+    const Eigen::Vector3d r = edge_error(graph_.pose(anchor), graph_.pose(n), h.anchor_from_node);
+    Eigen::Matrix3d S = h.covariance;
+    S.diagonal() += Eigen::Vector3d(u.sigma_xy() * u.sigma_xy(), u.sigma_xy() * u.sigma_xy(), u.var_rot);
+    h.direct = r.dot(S.ldlt().solve(r)) <= l.direct_max_chi2;
+  }
+  return h;
+}
+
+bool ScanMapper::try_loop_closure(int n, MapperUpdate* up)
+{
+  const auto& l = options_.loop;
+  const auto h = find_closure(n);
+  // Hypotheses that waited too long for a witness expire.
+  pending_.erase(std::remove_if(pending_.begin(), pending_.end(),
+                                [&](const ClosureHypothesis& p) { return n - p.node > l.confirm_within_nodes; }),
+                 pending_.end());
+  if (!h) return false;
+  std::vector<ClosureHypothesis> accept;
+  if (h->direct) {
+    accept.push_back(*h);
+  } else {
+    for (const auto& p : pending_)
+      if (p.node != h->node && pairwise_consistent(graph_, p, *h, l.consistency)) accept.push_back(p);
+    if (accept.empty()) {
+      pending_.push_back(*h);
+      return false;
+    }
+    accept.push_back(*h);
+    // The witnesses are used; the rest may still be confirmed later.
+    pending_.erase(std::remove_if(pending_.begin(), pending_.end(),
+                                  [&](const ClosureHypothesis& p) {
+                                    return std::any_of(accept.begin(), accept.end(), [&](const ClosureHypothesis& q) {
+                                      return q.node == p.node && q.anchor == p.anchor;
+                                    });
+                                  }),
+                   pending_.end());
+  }
+  const std::vector<Pose2> before = graph_.poses();
+  const size_t first_new = graph_.edges().size();
+  for (const auto& c : accept) graph_.add_edge({c.anchor, c.node, c.anchor_from_node, information_of(c.covariance), true});
+  graph_.optimize(options_.optimizer);
+  // A new closure the rest of the graph still disagrees with is most likely false (a
+  // look-alike place): remove all of this batch and restore the estimate.
+  for (size_t k = first_new; k < graph_.edges().size(); ++k) {
+    const auto& e = graph_.edges()[k];
+    const Eigen::Vector3d r = edge_error(graph_.pose(e.from), graph_.pose(e.to), e.from_from_to);
+    if (r.dot(e.information * r) > l.max_residual_chi2) {
+      while (graph_.edges().size() > first_new) graph_.remove_edge(graph_.edges().size() - 1);
+      for (size_t i = 0; i < before.size(); ++i) graph_.set_pose(static_cast<int>(i), before[i]);
+      ++stats_.loop_rejected_after_opt;
+      return false;
+    }
+  }
+  stats_.loop_closures += static_cast<int64_t>(accept.size());
+  collect_corrections(up);
+  auto& last = nodes_[static_cast<size_t>(n)];
+  const ScanNode& a = nodes_[static_cast<size_t>(accept.back().anchor)];
+  last.covariance = a.covariance + rot3(a.map_from_base.theta) * accept.back().covariance * rot3(a.map_from_base.theta).transpose();
+  // Relative poses inside cached submaps changed.
+  submaps_.clear();
+  submap_lru_.clear();
+  return true;
+}
+
+void ScanMapper::collect_corrections(MapperUpdate* up)
+{
+  const int newest = static_cast<int>(nodes_.size()) - 1;
+  for (int i = 0; i <= newest; ++i) {
+    auto& node = nodes_[static_cast<size_t>(i)];
+    const Pose2& now = graph_.pose(i);
+    node.map_from_base = now;
+    if (i == newest) {  // not published yet
+      node.published = now;
+      continue;
+    }
+    const Eigen::Vector3d d = difference(now, node.published);
+    if (std::hypot(d.x(), d.y()) >= options_.republish_min_change_m || std::fabs(d.z()) >= options_.republish_min_change_rad) {
+      ++node.revision;
+      node.published = now;
+      up->corrected.push_back(i);
+    }
+  }
+}
+
+}  // namespace rgnav::scan_mapper

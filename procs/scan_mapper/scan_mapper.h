@@ -1,0 +1,129 @@
+// The scan mapper (no LCM): incremental scan-matching SLAM after Gutmann & Konolige's local
+// registration / global correlation, as the dissertation's ScanMapper (sec. 5.2).
+//
+//  1. Gating: a scan is accepted once the robot travelled min_travel_m or turned
+//     min_rotation_rad since the last accepted scan (odometry interpolated at scan time).
+//  2. Local registration: point-to-line ICP with a decaying rejection threshold against a
+//     point map of the last local_map_scans accepted scans, started at the odometry guess;
+//     if it fits badly, a correlative search around the guess re-seeds ICP.
+//  3. Kalman fusion: the scan-matched increment and the odometry increment are combined
+//     weighted by their covariances (in a corridor ICP is weak along it; odometry is not).
+//  4. Global correlation: every few scans, an older scan whose relative uncertainty (read off
+//     the graph, loop_search.h) allows it to be here is searched with the correlative matcher
+//     over a window of that uncertainty (a submap around it) and verified with ICP. The
+//     hypothesis is accepted alone only where the graph knows the relative pose well;
+//     elsewhere it waits for a hypothesis from a later scan that agrees with it (pairwise
+//     consistency). Accepted closures become robust edges of the pose graph, which is
+//     re-optimised; a batch left inconsistent after optimising is removed again.
+// Algorithms run on message time only; the same inputs give the same map.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <list>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scan_mapper/correlative_matcher.h"
+#include "scan_mapper/loop_search.h"
+#include "scan_mapper/odometry_buffer.h"
+#include "scan_mapper/point_map.h"
+#include "scan_mapper/pose_graph.h"
+#include "scan_mapper/scan_mapper_options.h"
+
+namespace rgnav::scan_mapper {
+
+// One accepted scan.
+struct ScanNode
+{
+  Scan scan;
+  Pose2 odom_from_base;      // raw odometry at scan time
+  Pose2 map_from_base;       // current estimate
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  int revision = 0;          // +1 every time the estimate is corrected after publication
+  Pose2 published;           // estimate at the last (re)publication
+  double path_m = 0.0;       // odometry path length from the first node
+  Points points;             // thinned scan points in the base frame
+  Points normals;            // their surface normals (base frame), computed once
+  std::vector<char> has_normal;
+};
+
+struct MapperUpdate
+{
+  bool accepted = false;
+  int node = -1;                 // index of the new node
+  bool matched = false;          // scan matching contributed (not odometry alone)
+  bool loop_closed = false;
+  std::vector<int> corrected;    // earlier nodes whose estimate changed (revision bumped)
+};
+
+struct MapperStats
+{
+  int64_t scans_in = 0, accepted = 0, no_odometry = 0, matched = 0, correlative_retries = 0,
+          match_rejected = 0, loop_attempts = 0, loop_closures = 0, loop_rejected_after_opt = 0;
+};
+
+// Everything needed to resume: nodes and graph edges.
+struct MapperState
+{
+  std::vector<ScanNode> nodes;
+  std::vector<PoseGraphEdge> edges;
+};
+
+class ScanMapper
+{
+ public:
+  explicit ScanMapper(ScanMapperOptions options);
+  // Resumes from a persisted state. Odometry after a restart may have a new origin: the
+  // first scan is accepted at the last estimate and relocalised with a wide search.
+  ScanMapper(ScanMapperOptions options, MapperState state);
+
+  void add_odometry(const OdometrySample& sample);
+  // The odometry source restarted (new origin): relocalise the next scan like after a restart.
+  void reset_odometry();
+  MapperUpdate add_scan(const Scan& scan);
+
+  const std::vector<ScanNode>& nodes() const { return nodes_; }
+  const ScanMapperOptions& options() const { return options_; }
+  const MapperStats& stats() const { return stats_; }
+  MapperState state() const;
+  const PoseGraph& graph() const { return graph_; }
+
+  // Newest estimate and the correction from odometry into the map frame at that scan.
+  std::optional<Pose2> current_pose() const;
+  std::optional<Pose2> map_from_odom() const;
+
+ private:
+  struct Submap
+  {
+    std::unique_ptr<LikelihoodGrid> grid;
+    std::unique_ptr<PointMap> points;
+  };
+
+  MapperUpdate process(const Scan& scan, const Pose2& odom);
+  void prepare_points(ScanNode* node) const;
+  Eigen::Matrix3d odometry_covariance(const Pose2& increment) const;
+  // Registers points (base frame) against the local map from guess; nullopt if it fails.
+  std::optional<IcpResult> register_locally(const Points& points, const Pose2& guess, bool wide);
+  // Searches one closure for `node`; nullopt when none is found.
+  std::optional<ClosureHypothesis> find_closure(int node);
+  bool try_loop_closure(int node, MapperUpdate* update);
+  const Submap& submap_around(int anchor);
+  void collect_corrections(MapperUpdate* update);
+
+  const ScanMapperOptions options_;
+  OdometryBuffer odometry_;
+  std::vector<ScanNode> nodes_;
+  PoseGraph graph_;
+  MapperStats stats_;
+  bool relocalize_next_ = false;
+  int since_loop_try_ = 0;
+  std::map<int, Submap> submaps_;   // by anchor node; small LRU
+  std::list<int> submap_lru_;
+  std::vector<ClosureHypothesis> pending_;  // closures waiting for a consistent witness
+};
+
+}  // namespace rgnav::scan_mapper

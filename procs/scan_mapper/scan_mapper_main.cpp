@@ -1,0 +1,19 @@
+// The scan mapper process: LASER_FRONT + ODOMETRY -> ALIGNED_SCAN + SLAM_POSE.
+//   scan_mapper [--config config/scan_mapper.yaml] [--lcm-url URL]
+#include "runtime/process_main.h"
+#include "scan_mapper/scan_mapper_node.h"
+#include "scan_mapper/scan_mapper_options.h"
+
+namespace sm = rgnav::scan_mapper;
+
+int main(int argc, char** argv)
+{
+  return rgnav::runtime::process_main(argc, argv, "scan_mapper", [](rgnav::runtime::ProcessContext& ctx) {
+    const auto options = sm::load_scan_mapper_options(ctx.config.section("scan_mapper"));
+    const auto channels = sm::load_scan_mapper_channels(ctx.config.section("channels"));
+    auto persistence = sm::load_persistence_options(ctx.config.section("persistence"));
+    // --check-config runs on a fake bus: it must not read or write the state file.
+    if (ctx.node.bus().url() == "fake://") persistence.state_file.clear();
+    return std::make_shared<sm::ScanMapperNode>(ctx.node, options, channels, persistence);
+  });
+}

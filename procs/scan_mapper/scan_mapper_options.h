@@ -1,0 +1,81 @@
+// Every parameter of the scan mapper, with defaults; loaded and validated from the
+// `scan_mapper:` section of config/scan_mapper.yaml (see load_scan_mapper_options).
+#pragma once
+
+#include "config/config.h"
+#include "scan_mapper/correlative_matcher.h"
+#include "scan_mapper/icp.h"
+#include "scan_mapper/loop_search.h"
+#include "scan_mapper/pose2.h"
+#include "scan_mapper/pose_graph.h"
+#include "scan_mapper/scan_points.h"
+
+namespace rgnav::scan_mapper {
+
+struct OdometryNoise
+{
+  // Standard deviations of one odometry increment: grow with the distance and turn.
+  double trans_per_m = 0.1;        // [m/m]
+  double rot_per_rad = 0.1;        // [rad/rad]
+  double rot_per_m = 0.05;         // [rad/m]
+  double min_trans_m = 0.01;       // floor
+  double min_rot_rad = 0.01;       // floor
+};
+
+struct LoopClosureOptions
+{
+  bool enabled = true;
+  int every_n_scans = 5;           // try a closure every n accepted scans (every scan while one waits)
+  int min_node_gap = 30;           // a candidate is at least this many accepted scans back
+  double min_path_gap_m = 5.0;     // ... and this far back along the path
+  double search_radius_m = 4.0;    // candidates within this distance of the current estimate
+                                   // plus the search window (which grows with the uncertainty)
+  int submap_half_nodes = 10;      // submap = candidate's neighbours within +- this many scans
+  double submap_radius_m = 12.0;   // submap points farther from its anchor are dropped
+  DriftModel drift;                // how fast the relative uncertainty grows along the graph
+  double gate_sigmas = 3.0;        // window = this many standard deviations of that uncertainty
+  double window_base_m = 0.5;      // ... clamped to [base, max]
+  double window_max_m = 3.0;
+  double angular_window_base_rad = 0.15;
+  double angular_window_max_rad = 0.5;
+  double min_score = 0.6;          // correlative score needed to try ICP
+  double min_inlier_ratio = 0.75;  // ICP agreement needed to accept
+  // Verification: a hypothesis is accepted alone only where the graph already knows the
+  // relative pose well (sigma below direct_max_sigma_m and innovation chi2 below
+  // direct_max_chi2); otherwise it waits until a hypothesis from a later scan (within
+  // confirm_within_nodes) agrees with it within the consistency tolerance.
+  double direct_max_sigma_m = 0.25;
+  double direct_max_chi2 = 9.0;
+  int confirm_within_nodes = 30;
+  ConsistencyTolerance consistency;
+  double max_residual_chi2 = 25.0; // after optimising, a closure this inconsistent is removed
+  double covariance_scale = 4.0;   // loop edges are trusted less than sequential ones
+  double point_spacing_m = 0.1;    // thinner scans for the correlative search
+  // Coarser than local registration: the window is large and ICP refines afterwards.
+  CorrelativeOptions correlative{0.1, 0.1, 4, 2.0};
+};
+
+struct ScanMapperOptions
+{
+  Pose2 base_from_laser;           // laser mounting pose (robot description)
+  double min_travel_m = 0.2;       // accept a scan after this much travel ...
+  double min_rotation_rad = 0.17;  // ... or this much rotation since the last accepted one
+  int64_t max_odometry_extrapolation_us = 100'000;  // hold the newest odometry this long
+  PointFilterOptions points;
+  int local_map_scans = 15;        // recent accepted scans registered against
+  IcpOptions icp;
+  double min_inlier_ratio = 0.5;   // below: retry with the correlative search
+  double min_accept_inlier_ratio = 0.25;  // below even after the retry: odometry alone
+  CorrelativeWindow local_window{0.4, 0.35};  // correlative retry around the odometry guess
+  CorrelativeOptions correlative;
+  double max_innovation_chi2 = 1000.0;  // scan match vs odometry disagreement that rejects the match
+  OdometryNoise odometry_noise;
+  LoopClosureOptions loop;
+  OptimizerOptions optimizer;
+  double republish_min_change_m = 0.005;     // corrections smaller than this are not republished
+  double republish_min_change_rad = 0.002;
+};
+
+ScanMapperOptions load_scan_mapper_options(const config::Config& section);
+
+}  // namespace rgnav::scan_mapper

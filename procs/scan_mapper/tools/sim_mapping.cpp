@@ -1,0 +1,134 @@
+#include "sim_mapping.h"
+
+#include <ctime>
+#include <stdexcept>
+
+#include "sim/tour_planner.h"
+#include "sim/waypoint_follower.h"
+#include "sim/world_yaml.h"
+
+namespace rgnav::scan_mapper {
+namespace {
+
+double thread_cpu_seconds()
+{
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+Pose2 to_pose(const sim::Pose2& p) { return Pose2{p.x, p.y, normalize_angle(p.theta)}; }
+
+Scan to_scan(const sim::LaserScan& s)
+{
+  Scan out;
+  out.utime = s.utime;
+  out.scan_id = s.scan_id + 1;  // ids start at 1 like LASER_FRONT's
+  out.angle_min = static_cast<float>(s.angle_min);
+  out.angle_increment = static_cast<float>(s.angle_increment);
+  out.range_min = static_cast<float>(s.range_min);
+  out.range_max = static_cast<float>(s.range_max);
+  out.ranges = s.ranges;
+  return out;
+}
+
+// True pose at `utime` from the simulator's odometry samples (which carry the truth),
+// interpolated between the two around it.
+class TruthTrack
+{
+ public:
+  void add(int64_t utime, const Pose2& p) { samples_.push_back({utime, p}); }
+  std::optional<Pose2> at(int64_t utime) const
+  {
+    for (size_t k = samples_.size(); k-- > 0;) {
+      if (samples_[k].utime > utime) continue;
+      if (samples_[k].utime == utime || k + 1 == samples_.size()) return samples_[k].pose;
+      const auto& a = samples_[k];
+      const auto& b = samples_[k + 1];
+      const double s = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
+      return interpolate(a.pose, b.pose, s);
+    }
+    return std::nullopt;
+  }
+
+ private:
+  std::vector<TimedPose> samples_;
+};
+
+}  // namespace
+
+SimMappingResult run_sim_mapping(const std::string& world_path, const sim::SimulatorOptions& sim_options,
+                                 ScanMapperOptions mapper_options, const SimMappingOptions& options)
+{
+  SimMappingResult res;
+  const sim::World world = sim::load_world(world_path);
+  res.world = world.name;
+  const sim::Tour tour = sim::plan_tour(world, sim_options.robot);
+  if (tour.waypoints.size() < 2) throw std::runtime_error(world_path + ": no tour through this world");
+  res.tour_length_m = tour.length;
+  res.laps = options.laps;
+  std::vector<sim::Vec2> route;
+  for (int lap = 0; lap < options.laps; ++lap)
+    route.insert(route.end(), tour.waypoints.begin() + (lap == 0 ? 0 : 1), tour.waypoints.end());
+
+  // The laser mounting pose is the simulated robot's, as for a real robot's log.
+  const auto& l = sim_options.laser;
+  mapper_options.base_from_laser = Pose2{l.mount_x, l.mount_y, normalize_angle(l.mount_yaw)};
+  ScanMapper mapper(mapper_options);
+  sim::Simulator simulator(world, sim_options);
+  sim::WaypointFollower follower(route, [&simulator] { return simulator.truth(); });
+  simulator.set_command_source(&follower);
+
+  TruthTrack truth;
+  std::vector<Pose2> truth_at_node, odom_at_node;
+  const std::chrono::microseconds chunk(static_cast<int64_t>(1e6 / l.rate_hz()));
+  double last_truth_distance = 0.0;
+  while (!follower.done()) {
+    if (simulator.time_s() >= options.max_sim_s) {
+      res.capped = true;
+      break;
+    }
+    const double c0 = thread_cpu_seconds();
+    const auto out = simulator.step(chunk);
+    const double c1 = thread_cpu_seconds();
+    res.sim_cpu_seconds += c1 - c0;
+    for (const auto& o : out.odometry) {
+      truth.add(o.utime, to_pose(o.world_from_base));
+      last_truth_distance = o.true_distance;
+    }
+    // Odometry before the scans of the same chunk, as a bus would deliver them by time.
+    size_t oi = 0;
+    for (const auto& s : out.scans) {
+      for (; oi < out.odometry.size() && out.odometry[oi].utime <= s.utime; ++oi)
+        mapper.add_odometry({out.odometry[oi].utime, to_pose(out.odometry[oi].odom_from_base)});
+      const auto up = mapper.add_scan(to_scan(s));
+      if (up.accepted) {
+        const auto t = truth.at(s.utime);
+        if (!t) throw std::runtime_error("no ground truth at a scan");
+        truth_at_node.push_back(*t);
+        odom_at_node.push_back(mapper.nodes().back().odom_from_base);
+      }
+    }
+    for (; oi < out.odometry.size(); ++oi)
+      mapper.add_odometry({out.odometry[oi].utime, to_pose(out.odometry[oi].odom_from_base)});
+    res.mapping_cpu_seconds += thread_cpu_seconds() - c1;
+  }
+  res.sim_seconds = simulator.time_s();
+  res.driven_m = last_truth_distance;
+  res.collisions = simulator.collisions();
+  res.stats = mapper.stats();
+  res.nodes = mapper.nodes();
+
+  std::vector<Pose2> est;
+  std::vector<TimedPose> timed;
+  for (size_t k = 0; k < res.nodes.size(); ++k) {
+    est.push_back(res.nodes[k].map_from_base);
+    timed.push_back({res.nodes[k].scan.utime, truth_at_node[k]});
+  }
+  res.relations = relation_error(est, truth_at_node, select_relations(timed));
+  res.ate_rmse_m = ate_rmse(est, truth_at_node);
+  res.odometry_ate_rmse_m = ate_rmse(odom_at_node, truth_at_node);
+  return res;
+}
+
+}  // namespace rgnav::scan_mapper

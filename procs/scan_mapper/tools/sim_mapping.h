@@ -1,0 +1,44 @@
+// The scan mapper on the simulated B21r with exact ground truth: the lock-step simulator
+// (drivers/sim) drives a closed tour through a world, as fast as the CPU allows, and its
+// scans and odometry go straight into the mapping library (no LCM). The estimate of every
+// accepted scan is compared with the simulator's true pose by the relations metric of
+// Kuemmerle et al. 2009 (consecutive accepted scans, plus all pairs closer than 1 m and more
+// than 30 s apart) and the absolute trajectory error.
+#pragma once
+
+#include <string>
+
+#include "scan_mapper/relations_metric.h"
+#include "scan_mapper/scan_mapper.h"
+#include "sim/simulator.h"
+
+namespace rgnav::scan_mapper {
+
+struct SimMappingOptions
+{
+  int laps = 2;                 // the planned tour is driven this often (more loops)
+  double max_sim_s = 1800.0;    // cap on simulated time per world (a benchmark must end)
+};
+
+struct SimMappingResult
+{
+  std::string world;
+  double tour_length_m = 0.0;   // planned tour, one lap
+  int laps = 0;
+  bool capped = false;          // stopped at max_sim_s before the tour was done
+  double driven_m = 0.0;        // true path length driven
+  double sim_seconds = 0.0;     // simulated time
+  double mapping_cpu_seconds = 0.0;  // CPU time inside the mapping library (this thread)
+  double sim_cpu_seconds = 0.0;      // CPU time of the simulator (ray casting, physics)
+  int64_t collisions = 0;
+  MapperStats stats;
+  RelationError relations;
+  double ate_rmse_m = 0.0;
+  double odometry_ate_rmse_m = 0.0;  // raw odometry at the same scans, for comparison
+  std::vector<ScanNode> nodes;
+};
+
+SimMappingResult run_sim_mapping(const std::string& world_path, const sim::SimulatorOptions& sim_options,
+                                 ScanMapperOptions mapper_options, const SimMappingOptions& options);
+
+}  // namespace rgnav::scan_mapper

@@ -1,0 +1,212 @@
+// rgnav_slam_bench: the SLAM benchmark (see deploy/bench/slam.sh).
+//   rgnav_slam_bench --json OUT.json --maps DIR [--config FILE]
+//     [--real NAME=LOG[@X,Y,THETA][#SECONDS]] ... [--sim NAME=WORLD ... --sim-config sim.yaml]
+// Per real log: agreement with the log's REFERENCE_POSE poses (relations metric, when
+// present), map consistency, realtime factor (log duration / CPU time of the mapping on one
+// core; #SECONDS gives the true duration of a log whose timestamps are synthetic).
+// Per simulated world: the relations metric and ATE against the simulator's exact truth.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <iostream>
+#include <map>
+
+#include "importers/lcm_log_io.h"
+#include "offline_mapping.h"
+#include "runtime/process_main.h"
+#include "scan_mapper/relations_metric.h"
+#include "scan_mapper/scan_mapper_options.h"
+#ifdef RGNAV_SLAM_BENCH_SIM
+#include "sim/sim_options.h"
+#include "sim/world_yaml.h"
+#include "sim_mapping.h"
+#endif
+
+namespace sm = rgnav::scan_mapper;
+
+namespace {
+
+struct RealLog
+{
+  std::string name, path;
+  std::optional<sm::Pose2> mount;
+  double true_seconds = 0.0;  // > 0: the recording's real duration (synthetic timestamps)
+};
+
+RealLog parse_real(const std::string& spec)
+{
+  RealLog r;
+  const auto eq = spec.find('=');
+  if (eq == std::string::npos) throw std::invalid_argument("--real wants NAME=LOG[@X,Y,THETA]: " + spec);
+  r.name = spec.substr(0, eq);
+  r.path = spec.substr(eq + 1);
+  const auto hash = r.path.find('#');
+  if (hash != std::string::npos) {
+    r.true_seconds = std::stod(r.path.substr(hash + 1));
+    r.path = r.path.substr(0, hash);
+  }
+  const auto at = r.path.find('@');
+  if (at != std::string::npos) {
+    double x, y, th;
+    if (std::sscanf(r.path.substr(at + 1).c_str(), "%lf,%lf,%lf", &x, &y, &th) != 3)
+      throw std::invalid_argument("bad mounting pose in " + spec);
+    r.mount = sm::Pose2{x, y, th};
+    r.path = r.path.substr(0, at);
+  }
+  return r;
+}
+
+nlohmann::json evaluate_real(const RealLog& spec, sm::ScanMapperOptions options, const std::string& maps_dir)
+{
+  if (spec.mount) options.base_from_laser = *spec.mount;
+  const auto log = rgnav::importers::read_lcm_log(spec.path);
+  const auto r = sm::run_offline(log, options);
+  const double consistency = sm::write_outputs(r, options, maps_dir + "/" + spec.name);
+  nlohmann::json j;
+  j["consistency"] = consistency;
+  j["realtime_factor"] = r.cpu_seconds > 0 ? r.log_seconds / r.cpu_seconds : 0.0;
+  j["log_seconds"] = r.log_seconds;
+  if (spec.true_seconds > 0) {
+    // The log's timestamps are synthetic: also the factor on the recording's real duration.
+    j["true_log_seconds"] = spec.true_seconds;
+    j["realtime_factor_true_duration"] = r.cpu_seconds > 0 ? spec.true_seconds / r.cpu_seconds : 0.0;
+  }
+  j["cpu_seconds"] = r.cpu_seconds;
+  j["scans"] = r.stats.scans_in;
+  j["accepted_scans"] = r.stats.accepted;
+  j["matched_scans"] = r.stats.matched;
+  j["loop_closures"] = r.stats.loop_closures;
+  j["loop_attempts"] = r.stats.loop_attempts;
+  j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
+  j["correlative_retries"] = r.stats.correlative_retries;
+  j["match_rejected"] = r.stats.match_rejected;
+  j["map_png"] = maps_dir + "/" + spec.name + "/map.png";
+  if (!log.reference.empty()) {
+    std::map<int64_t, const sm::ScanEstimate*> by_id;
+    for (const auto& s : r.scans) by_id[s.scan_id] = &s;
+    std::vector<sm::TimedPose> ref;
+    std::vector<sm::Pose2> ref_poses, est;
+    for (const auto& p : log.reference) {
+      auto it = by_id.find(p.seq);
+      if (it == by_id.end()) continue;
+      ref.push_back({p.utime, sm::Pose2{p.x, p.y, sm::normalize_angle(p.theta)}});
+      ref_poses.push_back(ref.back().pose);
+      est.push_back(it->second->map_from_base);
+    }
+    const auto rel = sm::select_relations(ref);
+    const auto err = sm::relation_error(est, ref_poses, rel);
+    j["ref_poses"] = ref.size();
+    j["ref_relations"] = err.count;
+    j["ref_trans_mean_m"] = err.trans_mean_m;
+    j["ref_trans_std_m"] = err.trans_std_m;
+    j["ref_rot_mean_deg"] = err.rot_mean_deg;
+    j["ref_rot_std_deg"] = err.rot_std_deg;
+    j["ref_ate_rmse_m"] = sm::ate_rmse(est, ref_poses);
+  }
+  return j;
+}
+
+#ifdef RGNAV_SLAM_BENCH_SIM
+nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::SimulatorOptions& sim_options,
+                            const sm::ScanMapperOptions& options, const sm::SimMappingOptions& sim_mapping,
+                            const std::string& maps_dir, std::string* name)
+{
+  const auto eq = spec.find('=');
+  if (eq == std::string::npos) throw std::invalid_argument("--sim wants NAME=WORLD: " + spec);
+  *name = spec.substr(0, eq);
+  const auto r = sm::run_sim_mapping(spec.substr(eq + 1), sim_options, options, sm::SimMappingOptions(sim_mapping));
+  sm::OfflineResult off;
+  off.nodes = r.nodes;
+  sm::ScanMapperOptions written = options;
+  written.base_from_laser = sm::Pose2{sim_options.laser.mount_x, sim_options.laser.mount_y, sim_options.laser.mount_yaw};
+  nlohmann::json j;
+  j["world"] = spec.substr(eq + 1);
+  j["consistency"] = sm::write_outputs(off, written, maps_dir + "/sim_" + *name);
+  j["trans_mean_m"] = r.relations.trans_mean_m;
+  j["trans_std_m"] = r.relations.trans_std_m;
+  j["rot_mean_deg"] = r.relations.rot_mean_deg;
+  j["rot_std_deg"] = r.relations.rot_std_deg;
+  j["relations"] = r.relations.count;
+  j["ate_rmse_m"] = r.ate_rmse_m;
+  j["odometry_ate_rmse_m"] = r.odometry_ate_rmse_m;
+  j["realtime_factor"] = r.mapping_cpu_seconds > 0 ? r.sim_seconds / r.mapping_cpu_seconds : 0.0;
+  j["sim_seconds"] = r.sim_seconds;
+  j["mapping_cpu_seconds"] = r.mapping_cpu_seconds;
+  j["simulator_cpu_seconds"] = r.sim_cpu_seconds;
+  j["tour_length_m"] = r.tour_length_m;
+  j["laps"] = r.laps;
+  j["driven_m"] = r.driven_m;
+  j["capped"] = r.capped;
+  if (r.capped) j["cap_sim_seconds"] = sim_mapping.max_sim_s;
+  j["collisions"] = r.collisions;
+  j["accepted_scans"] = r.stats.accepted;
+  j["loop_closures"] = r.stats.loop_closures;
+  return j;
+}
+#endif
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  CLI::App app{"SLAM benchmark of the scan mapper"};
+  std::string json_path, maps_dir, config_path = rgnav::runtime::default_config_dir() + "/scan_mapper.yaml";
+  std::vector<std::string> reals;
+  app.add_option("--json", json_path, "result file")->required();
+  app.add_option("--maps", maps_dir, "folder for maps and trajectories")->required();
+  app.add_option("--real", reals, "NAME=LOG[@X,Y,THETA] (laser mounting pose of that robot)");
+  app.add_option("--config", config_path, "scan mapper config (one parameter set for everything)");
+  std::vector<std::string> sims;
+  std::string sim_config = rgnav::runtime::default_config_dir() + "/sim.yaml";
+#ifdef RGNAV_SLAM_BENCH_SIM
+  sm::SimMappingOptions sim_mapping;
+  app.add_option("--sim", sims, "NAME=WORLD: drive a closed tour in this simulated world (exact ground truth)");
+  app.add_option("--sim-config", sim_config, "simulator config (robot, drive, odometry error, laser)");
+  app.add_option("--sim-laps", sim_mapping.laps, "laps of the planned tour")->check(CLI::Range(1, 100));
+  app.add_option("--sim-max-s", sim_mapping.max_sim_s, "cap on simulated seconds per world")->check(CLI::PositiveNumber);
+#endif
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const auto cfg = rgnav::config::Config::load(config_path);
+    const auto options = sm::load_scan_mapper_options(cfg.section("scan_mapper"));
+    nlohmann::json out;
+    out["config"] = config_path;
+    for (const auto& spec : reals) {
+      const auto r = parse_real(spec);
+      std::cerr << "real log " << r.name << ": " << r.path << "\n";
+      out["real"][r.name] = evaluate_real(r, options, maps_dir);
+      std::cerr << out["real"][r.name].dump(2) << "\n";
+    }
+#ifdef RGNAV_SLAM_BENCH_SIM
+    if (!sims.empty()) {
+      const auto sim_cfg = rgnav::config::Config::load(sim_config);
+      const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg);
+      const auto& e = sim_options.odometry;
+      out["sim_config"] = sim_config;
+      out["sim_odometry_error"] = {{"scale_translation", e.scale_translation},
+                                   {"scale_rotation", e.scale_rotation},
+                                   {"bias_rotation_per_m", e.bias_rotation_per_m},
+                                   {"sigma_translation", e.sigma_translation},
+                                   {"sigma_rotation", e.sigma_rotation},
+                                   {"sigma_rotation_per_m", e.sigma_rotation_per_m}};
+      for (const auto& spec : sims) {
+        std::string name;
+        std::cerr << "simulated world " << spec << "\n";
+        auto j = evaluate_sim(spec, sim_options, options, sim_mapping, maps_dir, &name);
+        std::cerr << j.dump(2) << "\n";
+        out["sim"][name] = std::move(j);
+      }
+    }
+#else
+    if (!sims.empty()) throw std::runtime_error("built without drivers/sim: no simulated part");
+#endif
+    std::ofstream f(json_path);
+    f << out.dump(2) << "\n";
+    if (!f) throw std::runtime_error("cannot write " + json_path);
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "rgnav_slam_bench: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,165 @@
+// The deputy's logic: which local processes should run, starting them in dependency order,
+// watching each two ways (exit via waitpid, liveness via HEARTBEAT), stopping them with
+// their signal then SIGKILL, restarting with back-off and an intensity limit, holding the
+// robot when a safety-critical process is given up, and adopting the children of a previous
+// supervisor instance. No LCM in here: the node adapter feeds heartbeats and orders in and
+// publishes status() and the hold.
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "launch_plan.h"
+#include "proc_info.h"
+#include "restart_policy.h"
+#include "supervisor_options.h"
+
+namespace rgnav::supervisor {
+
+// Same values as process_status_t::STATE_*.
+enum class ProcState : int8_t { kStopped = 0, kStarting = 1, kRunning = 2, kHung = 3, kBackoff = 4, kFailed = 5, kStopping = 6 };
+const char* to_string(ProcState s);
+
+enum class Order : int8_t { kStart = 1, kStop = 2, kRestart = 3, kShutdown = 4 };
+
+struct ProcessView
+{
+  std::string name;
+  std::string group;
+  ProcState state = ProcState::kStopped;
+  pid_t pid = 0;
+  int restarts = 0;
+  std::string last_exit;
+  int64_t heartbeat_age_us = -1;
+  float cpu_percent = 0;
+  int64_t rss_kb = 0;
+  bool adopted = false;
+};
+
+class Supervisor
+{
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  // Only commands whose host is `host` (or unset) are supervised here. state_dir holds the
+  // state file and the per-process lock files (created if needed).
+  Supervisor(LaunchPlan plan, std::string host, SupervisorOptions options, std::string state_dir);
+  ~Supervisor() = default;
+  Supervisor(const Supervisor&) = delete;
+  Supervisor& operator=(const Supervisor&) = delete;
+
+  // Finds children a previous instance left running: adopts those still in the plan,
+  // stops the others. Call once, before start_all().
+  void recover(Clock::time_point now);
+  // Wants every local command running (the launch).
+  void start_all(Clock::time_point now);
+  // Start/stop/restart a command or group ("" or "everything": all), or shut down.
+  // False (with why) if the target is unknown here.
+  bool order(Order order, const std::string& target, Clock::time_point now, std::string* why);
+  void shutdown(Clock::time_point now);
+  bool shutting_down() const { return shutting_down_; }
+  // After shutdown(): every child has exited.
+  bool finished() const;
+
+  // A heartbeat from this machine (same_machine) is matched to a child by its pid, whatever
+  // name the process gives itself; its name alone also counts as a (remote) dependency's.
+  void on_heartbeat(const std::string& name, pid_t pid, Clock::time_point now, bool same_machine = true);
+  void on_child_exit(pid_t pid, int wait_status, Clock::time_point now);
+  // Reaps exited children (waitpid, non-blocking).
+  void reap(Clock::time_point now);
+  // Timeouts, back-off, dependencies, kill deadlines, adopted children's liveness.
+  void tick(Clock::time_point now);
+
+  std::vector<ProcessView> status(Clock::time_point now);
+  // Held (zero BASE_CMD) while a safety-critical process is down after a crash or hang, until
+  // it runs again, and latched while one is FAILED.
+  bool robot_held() const;
+  const std::string& alert() const { return alert_; }
+  // New alerts since the previous call (for logging).
+  std::vector<std::string> take_alerts();
+  // True once after any state change (publish status promptly).
+  bool take_changed();
+
+  const std::string& host() const { return host_; }
+  const LaunchPlan& plan() const { return plan_; }
+  std::string state_path() const { return state_dir_ + "/supervisor.json"; }
+  std::string lock_path(const std::string& name) const { return state_dir_ + "/" + name + ".lock"; }
+
+ private:
+  enum class StopIntent { kNone, kOperator, kRestart, kHung, kShutdown };
+
+  struct Entry
+  {
+    const PlannedCommand* cmd = nullptr;
+    bool missing = false;
+    bool safety_critical = false;
+    bool auto_respawn = true;
+    std::chrono::milliseconds heartbeat_timeout{500};
+    std::chrono::milliseconds startup_timeout{5000};
+    ProcState state = ProcState::kStopped;
+    bool want_running = false;
+    pid_t pid = 0;
+    uint64_t start_ticks = 0;
+    bool adopted = false;
+    Clock::time_point started{};
+    std::optional<Clock::time_point> last_heartbeat;
+    StopIntent intent = StopIntent::kNone;
+    Clock::time_point kill_at{};
+    bool killed = false;
+    Clock::time_point restart_at{};
+    int restarts = 0;
+    std::string last_exit;
+    std::string hung_reason;
+    bool done = false;           // a oneshot that exited 0
+    bool down_unplanned = false;  // crashed or hung, not running again yet
+    bool name_warned = false;
+    RestartPolicy policy;
+    explicit Entry(const RestartOptions& r) : policy(r) {}
+  };
+
+  struct Orphan
+  {
+    std::string name;
+    pid_t pid = 0;
+    uint64_t start_ticks = 0;
+    Clock::time_point kill_at{};
+    bool killed = false;
+  };
+
+  Entry* find(const std::string& name);
+  Entry* find_pid(pid_t pid);
+  std::vector<Entry*> targets(const std::string& target);
+  bool dependencies_up(const Entry& e, Clock::time_point now) const;
+  bool dependents_alive(const Entry& e) const;
+  void spawn(Entry& e, Clock::time_point now);
+  void adopt(Entry& e, pid_t pid, uint64_t start_ticks, Clock::time_point now);
+  void begin_stop(Entry& e, StopIntent intent, Clock::time_point now);
+  void exited(Entry& e, const std::string& how, Clock::time_point now);
+  void failure(Entry& e, const std::string& reason, Clock::time_point now);
+  void set_state(Entry& e, ProcState s);
+  void running_again(Entry& e);
+  void raise_alert(const std::string& text);
+  void save();
+
+  LaunchPlan plan_;
+  std::string host_;
+  const SupervisorOptions options_;
+  std::string state_dir_;
+  std::vector<Entry> entries_;  // local commands, in start order
+  std::vector<Orphan> orphans_;
+  std::vector<std::pair<std::string, Clock::time_point>> seen_;  // newest heartbeat per name
+  bool shutting_down_ = false;
+  bool held_ = false;
+  bool changed_ = true;
+  std::string alert_;
+  std::vector<std::string> new_alerts_;
+  Clock::time_point last_adopted_check_{};
+  CpuMeter cpu_;
+};
+
+}  // namespace rgnav::supervisor

@@ -1,0 +1,264 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sim/simulator.h"
+#include "sim/synchro_drive.h"
+
+namespace rgnav::sim {
+namespace {
+
+using std::chrono::microseconds;
+
+// A fixed command for tests.
+class Constant final : public DriveCommandSource
+{
+ public:
+  explicit Constant(DriveCommand c) : c_(c) {}
+  std::optional<DriveCommand> command_at(int64_t) override { return c_; }
+  DriveCommand c_;
+};
+
+World box_world(double half = 10.0)
+{
+  World w;
+  const Vec2 c[4] = {{-half, -half}, {half, -half}, {half, half}, {-half, half}};
+  for (int i = 0; i < 4; ++i) {
+    Wall wall;
+    wall.a = c[i];
+    wall.b = c[(i + 1) % 4];
+    w.walls.push_back(wall);
+  }
+  return w;
+}
+
+SimulatorOptions quiet_options()
+{
+  SimulatorOptions o;
+  o.laser.noise_sigma = 0.0;
+  return o;
+}
+
+TEST(SynchroDrive, RespectsAccelerationAndVelocityLimits)
+{
+  SynchroDriveOptions o;
+  o.v_max = 0.9;
+  o.omega_max = 2.0;
+  o.accel = 0.8;
+  o.alpha = 2.5;
+  SynchroDrive d(o);
+  const double dt = 0.001;
+  double prev_v = 0, prev_w = 0;
+  for (int i = 0; i < 3000; ++i) {
+    d.step({5.0, -9.0}, dt);
+    EXPECT_LE(std::fabs(d.v() - prev_v), o.accel * dt + 1e-12);
+    EXPECT_LE(std::fabs(d.omega() - prev_w), o.alpha * dt + 1e-12);
+    prev_v = d.v();
+    prev_w = d.omega();
+  }
+  EXPECT_DOUBLE_EQ(d.v(), 0.9);
+  EXPECT_DOUBLE_EQ(d.omega(), -2.0);
+  // Independent axes: rotation reached its limit long before translation did.
+  SynchroDrive e(o);
+  BaseMotion total;
+  for (int i = 0; i < 1000; ++i) {
+    const auto m = e.step({0.5, 0.0}, dt);
+    total.ds += m.ds;
+    total.dtheta += m.dtheta;
+  }
+  // 0.5 m/s reached after 0.625 s: distance = 0.5 * 0.625 / 2 + 0.5 * 0.375.
+  EXPECT_NEAR(total.ds, 0.15625 + 0.1875, 1e-6);
+  EXPECT_EQ(total.dtheta, 0.0);
+}
+
+TEST(SynchroDrive, ArcsAreExact)
+{
+  // A full circle of radius 1 comes back to the start.
+  Pose2 p{0, 0, 0};
+  for (int i = 0; i < 1000; ++i) p = apply_motion(p, 2 * M_PI / 1000, 2 * M_PI / 1000);
+  EXPECT_NEAR(p.x, 0.0, 1e-9);
+  EXPECT_NEAR(p.y, 0.0, 1e-9);
+  const Pose2 q = apply_motion({0, 0, 0}, M_PI / 2, M_PI / 2);  // quarter circle, radius 1
+  EXPECT_NEAR(q.x, 1.0, 1e-12);
+  EXPECT_NEAR(q.y, 1.0, 1e-12);
+}
+
+TEST(Odometry, SystematicAndRandomErrorStatistics)
+{
+  // 200 runs of 10 m straight: the mean error is the scale error, the spread grows as
+  // sigma * sqrt(distance), the heading drifts by the bias.
+  OdometryErrorOptions o;
+  o.scale_translation = 0.02;
+  o.sigma_translation = 0.01;
+  o.bias_rotation_per_m = 0.003;
+  o.sigma_rotation_per_m = 0.002;
+  const int runs = 200;
+  double sum = 0, sum2 = 0, heading = 0, heading2 = 0;
+  for (int r = 0; r < runs; ++r) {
+    OdometryModel odo(o, Rng::derive(5, static_cast<uint64_t>(r)));
+    for (int k = 0; k < 1000; ++k) odo.integrate({0.01, 0.0});
+    const double e = odo.translation_total() - 10.0;
+    sum += e;
+    sum2 += e * e;
+    heading += odo.rotation_total();
+    heading2 += odo.rotation_total() * odo.rotation_total();
+  }
+  const double mean = sum / runs, sd = std::sqrt(sum2 / runs - mean * mean);
+  EXPECT_NEAR(mean, 0.2, 0.01);                    // 2 % of 10 m (sd of the mean: 0.0022)
+  EXPECT_NEAR(sd, 0.01 * std::sqrt(10.0), 0.01);   // 0.0316
+  const double hmean = heading / runs, hsd = std::sqrt(heading2 / runs - hmean * hmean);
+  EXPECT_NEAR(hmean, 0.03, 0.002);
+  EXPECT_NEAR(hsd, 0.002 * std::sqrt(10.0), 0.002);
+}
+
+TEST(Odometry, ErrorStatisticsDoNotDependOnStepSize)
+{
+  OdometryErrorOptions o;
+  o.sigma_translation = 0.02;
+  auto spread = [&](int steps) {
+    double s2 = 0;
+    for (int r = 0; r < 300; ++r) {
+      OdometryModel odo(o, Rng::derive(11, static_cast<uint64_t>(r)));
+      for (int k = 0; k < steps; ++k) odo.integrate({4.0 / steps, 0.0});
+      s2 += std::pow(odo.translation_total() - 4.0, 2);
+    }
+    return std::sqrt(s2 / 300);
+  };
+  EXPECT_NEAR(spread(40), 0.04, 0.008);
+  EXPECT_NEAR(spread(4000), 0.04, 0.008);
+}
+
+TEST(Collision, RobotStopsAtTheWallAndNeverPassesThrough)
+{
+  World w = box_world(3.0);
+  w.start = {0, 0, 0};
+  Simulator sim(w, quiet_options());
+  Constant forward({0.9, 0.0});
+  sim.set_command_source(&forward);
+  std::vector<CollisionEvent> events;
+  for (int i = 0; i < 100; ++i) {
+    auto out = sim.step(microseconds(100000));
+    for (auto& e : out.collisions) events.push_back(e);
+    EXPECT_LE(sim.truth().x, 3.0 - 0.26 + 1e-6);
+  }
+  ASSERT_EQ(events.size(), 1u) << "one contact, reported once";
+  EXPECT_EQ(events[0].with, "wall[1]");
+  EXPECT_NEAR(sim.truth().x, 3.0 - 0.26, 1e-3);
+  EXPECT_EQ(sim.drive().v(), 0.0);
+  EXPECT_EQ(sim.collisions(), 1);
+  // Backing out is allowed.
+  Constant back({-0.3, 0.0});
+  sim.set_command_source(&back);
+  sim.step(microseconds(2'000'000));
+  EXPECT_LT(sim.truth().x, 3.0 - 0.26 - 0.2);
+}
+
+TEST(Collision, TabletopStopsTheBodyAlthoughTheLaserMissesIt)
+{
+  World w = box_world(6.0);
+  Table t;
+  t.name = "desk";
+  t.center = {2.0, 0.0};
+  t.size = {1.2, 0.8};
+  w.tables.push_back(t);
+  Simulator sim(w, quiet_options());
+  Constant forward({0.5, 0.0});
+  sim.set_command_source(&forward);
+  StepOutput out = sim.step(microseconds(6'000'000));
+  ASSERT_FALSE(out.collisions.empty());
+  EXPECT_EQ(out.collisions[0].with, "desk.top");
+  EXPECT_NEAR(sim.truth().x, 1.4 - 0.26, 1e-3);
+  // The last scan's centre beam sees the far wall, not the table (legs are off-axis).
+  ASSERT_FALSE(out.scans.empty());
+  EXPECT_GT(out.scans.back().ranges[90], 4.0);
+}
+
+TEST(Commands, StaleCommandDeceleratesToAStop)
+{
+  World w = box_world(20.0);
+  SimulatorOptions o = quiet_options();
+  Simulator sim(w, o);
+  TimedCommandSource cmd;
+  sim.set_command_source(&cmd);
+  cmd.set(sim.now_utime(), {0.8, 0.0}, 2'000'000);
+  StepOutput out = sim.step(microseconds(1'500'000));
+  EXPECT_NEAR(sim.drive().v(), 0.8, 1e-9);
+  EXPECT_TRUE(out.odometry.back().commanded);
+  // The deadline passes at 2 s; with 0.8 m/s^2 the drive is at rest 1 s later.
+  out = sim.step(microseconds(600'000));
+  EXPECT_LT(sim.drive().v(), 0.8);
+  EXPECT_GT(sim.drive().v(), 0.0);
+  EXPECT_FALSE(out.odometry.back().commanded);
+  sim.step(microseconds(1'000'000));
+  EXPECT_EQ(sim.drive().v(), 0.0);
+  const double x = sim.truth().x;
+  sim.step(microseconds(1'000'000));
+  EXPECT_EQ(sim.truth().x, x);
+}
+
+TEST(Simulator, RatesOfScansAndOdometry)
+{
+  Simulator sim(box_world(), quiet_options());
+  const StepOutput out = sim.step(microseconds(2'000'000));
+  EXPECT_EQ(out.scans.size(), 150u);  // 75 Hz
+  EXPECT_EQ(out.odometry.size(), 100u);  // 50 Hz
+  for (size_t i = 1; i < out.scans.size(); ++i) {
+    EXPECT_EQ(out.scans[i].scan_id, out.scans[i - 1].scan_id + 1);
+    EXPECT_NEAR(out.scans[i].utime - out.scans[i - 1].utime, 13333, 1);
+  }
+  // Interlaced 0.5 deg: 37.5 Hz.
+  SimulatorOptions o = quiet_options();
+  o.laser.beams = 361;
+  Simulator fine(box_world(), o);
+  EXPECT_EQ(fine.step(microseconds(2'000'000)).scans.size(), 75u);
+}
+
+TEST(People, WalkTheirPathsAndAreSeen)
+{
+  World w = box_world(8.0);
+  w.start = {-6, 0, 0};
+  Person p;
+  p.name = "walker";
+  p.path = {{2, -4}, {2, 4}};
+  p.speed = 1.0;
+  p.loop = false;
+  w.people.push_back(p);
+  Simulator sim(w, quiet_options());
+  const Vec2 at0 = sim.people()[0].center;
+  sim.step(microseconds(3'000'000));
+  const Vec2 at3 = sim.people()[0].center;
+  EXPECT_NEAR(at3.y() - at0.y(), 3.0, 1e-6);
+  // Back and forth: after 8 m it is at the far end, after 11 m it has walked 3 m back.
+  sim.step(microseconds(8'000'000));
+  EXPECT_NEAR(sim.people()[0].center.y(), 1.0, 1e-6);
+  // The laser sees it when it crosses the beam: at y = 0 the centre beam reads 8 - 0.22 - 0.12.
+  World still = box_world(8.0);
+  still.start = {-6, 0, 0};
+  Person s;
+  s.path = {{2, 0}};
+  still.people.push_back(s);
+  Simulator sim2(still, quiet_options());
+  const StepOutput out = sim2.step(microseconds(20000));
+  ASSERT_FALSE(out.scans.empty());
+  EXPECT_NEAR(out.scans[0].ranges[90], 8.0 - 0.22 - 0.12, 0.0011);
+}
+
+TEST(Doors, ScheduledDoorClosesDuringTheRun)
+{
+  World w = box_world(8.0);
+  Door d;
+  d.name = "d";
+  d.hinge = {3, -0.5};
+  d.latch = {3, 0.5};
+  d.open = true;
+  d.schedule = {{1.0, false}};
+  w.doors.push_back(d);
+  Simulator sim(w, quiet_options());
+  StepOutput out = sim.step(microseconds(500'000));
+  EXPECT_GT(out.scans.back().ranges[90], 7.0);
+  out = sim.step(microseconds(1'000'000));
+  EXPECT_NEAR(out.scans.back().ranges[90], 3.0 - 0.12, 0.0011);
+}
+
+}  // namespace
+}  // namespace rgnav::sim

@@ -1,0 +1,163 @@
+#include "bus_observer.h"
+
+#include <cmath>
+
+#include "bus/typed.h"
+#include "rgnav/heartbeat_t.hpp"
+#include "rgnav/aligned_scan_t.hpp"
+#include "rgnav/odometry_t.hpp"
+#include "rgnav/rg_map_t.hpp"
+#include "rgnav/velocity_cmd_t.hpp"
+
+namespace rgnav::fault {
+
+BusObserver::BusObserver(const std::string& url, const std::string& host, const std::vector<std::string>& input_channels,
+                         const std::map<std::string, std::string>& state_channels, const Channels& channels)
+    : bus_(url), host_(host)
+{
+  bus::subscribe<heartbeat_t>(
+      bus_, "HEARTBEAT",
+      [this](const heartbeat_t& hb, const bus::RawMessage&) {
+        const auto now = Clock::now();
+        auto& t = hb_[hb.name];
+        if (t.pid == hb.pid && t.last != Clock::time_point{}) {
+          t.max_gap = std::max(t.max_gap, std::chrono::duration_cast<std::chrono::milliseconds>(now - t.last));
+        }
+        t.pid = hb.pid;
+        t.last = now;
+        t.dropped = hb.messages_dropped;
+        hb_log_.push_back({now, {hb.name, hb.pid}});
+      },
+      &drops_);
+  bus::subscribe<supervisor_status_t>(
+      bus_, "SUPERVISOR_STATUS",
+      [this](const supervisor_status_t& s, const bus::RawMessage&) {
+        if (s.host != host_) return;
+        const auto now = Clock::now();
+        last_status_ = s;
+        have_status_ = true;
+        last_status_time_ = now;
+        for (const auto& p : s.processes) status_log_.push_back({now, p});
+      },
+      &drops_);
+  for (const auto& [process, channel] : state_channels) {
+    state_channel_of_[channel] = process;
+    bus::subscribe<velocity_cmd_t>(
+        bus_, channel,
+        [this, process = process](const velocity_cmd_t& m, const bus::RawMessage&) {
+          state_log_[process].push_back({Clock::now(), m.seq});
+        },
+        &drops_);
+  }
+  for (const auto& ch : input_channels) {
+    bus_.subscribe(ch, [this](const bus::RawMessage& m) {
+      // Keep a valid copy: flood material must be what the process normally reads.
+      if (m.size >= 8) inputs_[m.channel].assign(m.data, m.data + m.size);
+    });
+  }
+  bus::subscribe<velocity_cmd_t>(
+      bus_, channels.base_cmd,
+      [this](const velocity_cmd_t& m, const bus::RawMessage&) {
+        cmd_log_.push_back({Clock::now(), m.v, m.omega, m.source == "supervisor", m.deadline_us});
+      },
+      &drops_);
+  bus::subscribe<odometry_t>(
+      bus_, channels.drive_odometry,
+      [this](const odometry_t& m, const bus::RawMessage&) { drive_log_.push_back({Clock::now(), m.v, m.omega, false, 0}); },
+      &drops_);
+  bus::subscribe<rg_map_t>(
+      bus_, channels.rg_map,
+      [this](const rg_map_t& m, const bus::RawMessage&) {
+        MapSample s{Clock::now(), m.version, m.last_scan_id, {}, {}};
+        for (const auto& r : m.regions) s.region_ids.push_back(r.id);
+        for (const auto& g : m.gateways) s.gateway_ids.push_back(g.id);
+        map_log_.push_back(std::move(s));
+      },
+      &drops_);
+  bus::subscribe<aligned_scan_t>(
+      bus_, channels.aligned_scan,
+      [this](const aligned_scan_t& m, const bus::RawMessage&) { aligned_log_.push_back({Clock::now(), m.scan_id, m.revision}); },
+      &drops_);
+}
+
+void BusObserver::spin(std::chrono::milliseconds d)
+{
+  const auto until = Clock::now() + d;
+  while (Clock::now() < until)
+    bus_.handle(std::max(std::chrono::milliseconds(1), std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now())));
+}
+
+bool BusObserver::wait_until(const std::function<bool()>& pred, std::chrono::milliseconds timeout)
+{
+  const auto until = Clock::now() + timeout;
+  while (!pred()) {
+    if (Clock::now() >= until) return false;
+    bus_.handle(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
+const HeartbeatTrack* BusObserver::heartbeat(const std::string& name) const
+{
+  const auto it = hb_.find(name);
+  return it == hb_.end() ? nullptr : &it->second;
+}
+
+void BusObserver::reset_gaps()
+{
+  for (auto& [n, t] : hb_) t.max_gap = std::chrono::milliseconds(0);
+}
+
+std::chrono::milliseconds BusObserver::gap_now(const std::string& name) const
+{
+  const auto* t = heartbeat(name);
+  if (!t) return std::chrono::milliseconds(-1);
+  return std::max(t->max_gap, std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - t->last));
+}
+
+std::optional<process_status_t> BusObserver::status(const std::string& name) const
+{
+  if (!have_status_) return std::nullopt;
+  for (const auto& p : last_status_.processes)
+    if (p.name == name) return p;
+  return std::nullopt;
+}
+
+std::optional<Clock::time_point> BusObserver::first_status(const std::string& name, Clock::time_point t,
+                                                           const std::function<bool(const process_status_t&)>& pred) const
+{
+  for (const auto& s : status_log_)
+    if (s.when >= t && s.p.name == name && pred(s.p)) return s.when;
+  return std::nullopt;
+}
+
+std::optional<Clock::time_point> BusObserver::first_heartbeat_new_pid(const std::string& name, int old_pid, Clock::time_point t) const
+{
+  for (const auto& [when, np] : hb_log_)
+    if (when >= t && np.first == name && np.second != old_pid) return when;
+  return std::nullopt;
+}
+
+std::optional<int64_t> BusObserver::state(const std::string& name) const
+{
+  const auto it = state_log_.find(name);
+  if (it == state_log_.end() || it->second.empty()) return std::nullopt;
+  return it->second.back().second;
+}
+
+std::optional<int64_t> BusObserver::first_state_since(const std::string& name, Clock::time_point t) const
+{
+  const auto it = state_log_.find(name);
+  if (it == state_log_.end()) return std::nullopt;
+  for (const auto& [when, v] : it->second)
+    if (when >= t) return v;
+  return std::nullopt;
+}
+
+const std::vector<uint8_t>* BusObserver::captured_input(const std::string& channel) const
+{
+  const auto it = inputs_.find(channel);
+  return it == inputs_.end() ? nullptr : &it->second;
+}
+
+}  // namespace rgnav::fault

@@ -1,0 +1,128 @@
+// What the fault harness sees on the bus: every HEARTBEAT (per process: newest pid, gaps
+// between heartbeats, dropped-input counts), every SUPERVISOR_STATUS (a timeline of process
+// states), the state counters probes publish, raw copies of each process's inputs (to
+// flood them with), and the drive chain (BASE_CMD, ODOMETRY).
+#pragma once
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "bus/drop_counter.h"
+#include "bus/lcm_bus.h"
+#include "rgnav/supervisor_status_t.hpp"
+
+namespace rgnav::fault {
+
+using Clock = std::chrono::steady_clock;
+
+struct HeartbeatTrack
+{
+  int pid = 0;
+  Clock::time_point last{};
+  std::chrono::milliseconds max_gap{0};  // since reset_gaps()
+  int64_t dropped = 0;                   // messages_dropped of the newest heartbeat
+};
+
+struct StatusSample
+{
+  Clock::time_point when;
+  process_status_t p;
+};
+
+class BusObserver
+{
+ public:
+  struct Channels
+  {
+    std::string base_cmd = "BASE_CMD";
+    std::string drive_odometry = "ODOMETRY";
+    std::string rg_map = "RG_MAP";
+    std::string aligned_scan = "ALIGNED_SCAN";
+  };
+  BusObserver(const std::string& url, const std::string& host, const std::vector<std::string>& input_channels,
+              const std::map<std::string, std::string>& state_channels, const Channels& channels);
+
+  // Dispatches messages for `d`.
+  void spin(std::chrono::milliseconds d);
+  // Spins until pred() or timeout; returns pred().
+  bool wait_until(const std::function<bool()>& pred, std::chrono::milliseconds timeout);
+
+  bus::Bus& bus() { return bus_; }
+  const HeartbeatTrack* heartbeat(const std::string& name) const;
+  void reset_gaps();
+  // Heartbeat gap of `name` including the silence up to now.
+  std::chrono::milliseconds gap_now(const std::string& name) const;
+
+  std::optional<process_status_t> status(const std::string& name) const;
+  const supervisor_status_t* last_status() const { return have_status_ ? &last_status_ : nullptr; }
+  Clock::time_point last_status_time() const { return last_status_time_; }
+  // First status sample of `name` at or after t that satisfies pred.
+  std::optional<Clock::time_point> first_status(const std::string& name, Clock::time_point t,
+                                                const std::function<bool(const process_status_t&)>& pred) const;
+  // First heartbeat of `name` from a pid other than old_pid at or after t.
+  std::optional<Clock::time_point> first_heartbeat_new_pid(const std::string& name, int old_pid, Clock::time_point t) const;
+
+  // Newest state counter a probe published, and its first value at or after t.
+  std::optional<int64_t> state(const std::string& name) const;
+  std::optional<int64_t> first_state_since(const std::string& name, Clock::time_point t) const;
+
+  const std::vector<uint8_t>* captured_input(const std::string& channel) const;
+
+  // Drive chain: every BASE_CMD (commanded) and every odometry of the drive under test
+  // (measured, from base_driver), in arrival order.
+  struct VelocitySample
+  {
+    Clock::time_point when;
+    double v = 0;
+    double omega = 0;
+    bool from_supervisor = false;  // the supervisor's hold
+    int64_t deadline_us = 0;        // a command is void this long after it was sent
+    bool zero() const { return std::fabs(v) < 1e-3 && std::fabs(omega) < 1e-3; }
+  };
+  const std::vector<VelocitySample>& commands() const { return cmd_log_; }
+  const std::vector<VelocitySample>& drive_odometry() const { return drive_log_; }
+
+  // Stateful processes' published state: RG_MAP (rg_kernel) and ALIGNED_SCAN (scan_mapper).
+  struct MapSample
+  {
+    Clock::time_point when;
+    int64_t version = 0;
+    int64_t last_scan_id = 0;
+    std::vector<int64_t> region_ids;
+    std::vector<int64_t> gateway_ids;
+  };
+  struct AlignedSample
+  {
+    Clock::time_point when;
+    int64_t scan_id = 0;
+    int32_t revision = 0;
+  };
+  const std::vector<MapSample>& rg_maps() const { return map_log_; }
+  const std::vector<AlignedSample>& aligned_scans() const { return aligned_log_; }
+
+ private:
+  bus::LcmBus bus_;
+  bus::DropCounter drops_;
+  std::string host_;
+  std::map<std::string, HeartbeatTrack> hb_;
+  std::vector<std::pair<Clock::time_point, std::pair<std::string, int>>> hb_log_;  // (when, (name, pid))
+  std::vector<StatusSample> status_log_;
+  supervisor_status_t last_status_;
+  bool have_status_ = false;
+  Clock::time_point last_status_time_{};
+  std::map<std::string, std::string> state_channel_of_;  // channel -> process
+  std::map<std::string, std::vector<std::pair<Clock::time_point, int64_t>>> state_log_;
+  std::map<std::string, std::vector<uint8_t>> inputs_;
+  std::vector<VelocitySample> cmd_log_;
+  std::vector<VelocitySample> drive_log_;
+  std::vector<MapSample> map_log_;
+  std::vector<AlignedSample> aligned_log_;
+};
+
+}  // namespace rgnav::fault

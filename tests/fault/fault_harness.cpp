@@ -1,0 +1,763 @@
+#include "fault_harness.h"
+
+#include <dirent.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <random>
+#include <set>
+#include <spdlog/spdlog.h>
+
+#include "bus/typed.h"
+#include "bus_observer.h"
+#include "child_process.h"
+#include "launch_parser.h"
+#include "launch_plan.h"
+#include "proc_info.h"
+#include "recording.h"
+#include "rgnav/supervisor_order_t.hpp"
+#include "time/message_time.h"
+
+namespace rgnav::fault {
+
+namespace sup = rgnav::supervisor;
+
+const std::vector<std::string>& all_faults()
+{
+  static const std::vector<std::string> f = {"sigkill", "sigstop", "crash_loop", "flood", "malformed", "loss_dup_delay"};
+  return f;
+}
+
+namespace {
+
+const std::set<std::string> kDriveChain = {"lld", "base_driver", "collision_avoidance"};
+
+double ms_between(Clock::time_point a, Clock::time_point b)
+{
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+std::string arg_after(const std::vector<std::string>& argv, const std::string& flag)
+{
+  for (size_t i = 0; i + 1 < argv.size(); ++i)
+    if (argv[i] == flag) return argv[i + 1];
+  return "";
+}
+
+int count_instances(const std::vector<std::string>& argv)
+{
+  int n = 0;
+  DIR* d = opendir("/proc");
+  if (!d) return -1;
+  while (dirent* e = readdir(d)) {
+    const int pid = std::atoi(e->d_name);
+    if (pid <= 0) continue;
+    const auto st = sup::read_proc_stat(pid);
+    if (st && st->state != 'Z' && sup::read_cmdline(pid) == argv) ++n;
+  }
+  closedir(d);
+  return n;
+}
+
+class Harness
+{
+ public:
+  explicit Harness(const HarnessOptions& o) : o_(o) {}
+
+  std::vector<FaultRow> run()
+  {
+    const char* root = std::getenv("RGNAV_ROOT");
+    const char* build = std::getenv("RGNAV_BUILD");
+    // The supervisor's run folder for this host: exec lines may name files in it.
+    setenv("RGNAV_RUN_DIR", (o_.state_dir + "/" + o_.host).c_str(), 1);
+    sup::PlanOptions po{root ? root : "", build ? std::string(build) + "/bin" : "", true};
+    plan_ = sup::make_plan(sup::parse_launch_file(o_.launch), po);
+    std::vector<std::string> inputs;
+    std::map<std::string, std::string> state_channels;
+    for (const auto& c : plan_.commands) {
+      if (!c.spec.host.empty() && c.spec.host != o_.host) continue;
+      local_.push_back(&c);
+      for (const auto& i : c.spec.inputs) inputs.push_back(i);
+      const auto out = arg_after(c.argv, "--output");
+      if (!out.empty() && !arg_after(c.argv, "--state").empty()) state_channels[c.spec.name] = out;
+    }
+    BusObserver::Channels channels;
+    for (const auto* c : local_) learn_role(*c, channels);
+    obs_ = std::make_unique<BusObserver>(o_.lcm_url, o_.host, inputs, state_channels, channels);
+    // A process whose dependency is not built never starts: it is pending too.
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (const auto* c : local_) {
+        if (c->executable.empty() || blocked_.count(c->spec.name)) continue;
+        for (const auto& d : c->spec.depends) {
+          const auto* dep = plan_.find(d);
+          if (dep && (dep->executable.empty() || blocked_.count(d))) {
+            blocked_[c->spec.name] = d;
+            grew = true;
+          }
+        }
+      }
+    }
+
+    std::vector<FaultRow> rows;
+    const auto faults = o_.faults.empty() ? all_faults() : o_.faults;
+    std::ofstream(o_.log_file, std::ios::trunc);  // the log is read back (checkpoint reports)
+    start_supervisor();
+    if (!wait_all_running(std::chrono::seconds(30))) {
+      // Report every process rather than nothing: the ones that are built failed to come up.
+      for (const auto* c : local_) {
+        FaultRow row;
+        row.process = c->spec.name;
+        row.fault = "startup";
+        const auto s = obs_->status(c->spec.name);
+        row.status = c->executable.empty() || blocked_.count(c->spec.name) ? "pending" : "fail";
+        row.note = row.status == "pending" ? "not built (or a dependency is not)"
+                                           : std::string("stack did not come up within 30 s; state ") +
+                                                 (s ? std::to_string(s->state) + " " + s->last_exit : "unknown") + " (see " + o_.log_file + ")";
+        rows.push_back(row);
+      }
+      stop_supervisor();
+      return rows;
+    }
+    if (!mapper_proc_.empty()) {
+      if (const auto n = resumed_scans(0)) mapper_base_ = *n;
+      mapper_instance_start_ = sup_started_;
+    }
+    // Normal jitter of every heartbeat, for the "others undisturbed" check.
+    obs_->reset_gaps();
+    obs_->spin(std::chrono::milliseconds(2000));
+    for (const auto* c : running_commands()) baseline_gap_[c->spec.name] = obs_->gap_now(c->spec.name);
+
+    for (const auto* c : local_) {
+      // Every process is watched; only the selected ones get faults.
+      if (!o_.processes.empty() && std::find(o_.processes.begin(), o_.processes.end(), c->spec.name) == o_.processes.end()) continue;
+      for (const auto& f : faults) {
+        FaultRow row;
+        row.process = c->spec.name;
+        row.fault = f;
+        if (c->executable.empty() || blocked_.count(c->spec.name)) {
+          row.status = "pending";
+          row.note = c->executable.empty() ? "process not built yet (" + c->argv[0] + ")"
+                                           : "depends on " + blocked_.at(c->spec.name) + ", which is not built yet";
+        } else {
+          run_fault(*c, f, row);
+          if (!wait_all_running(std::chrono::seconds(15))) row.note += "; stack not back to running after the fault";
+          obs_->spin(std::chrono::milliseconds(300));
+        }
+        spdlog::info("{:<16} {:<15} {:<7} detect={} restart={} {}", row.process, row.fault, row.status,
+                     row.detect_ms ? std::to_string(static_cast<int>(*row.detect_ms)) : "-",
+                     row.restart_ms ? std::to_string(static_cast<int>(*row.restart_ms)) : "-", row.note);
+        rows.push_back(row);
+      }
+    }
+    if (o_.supervisor_fault && running_commands().empty()) {
+      FaultRow row;
+      row.process = "supervisor";
+      row.fault = "sigkill_adopt";
+      row.status = "pending";
+      row.note = "no process of this launch config is built: nothing to adopt";
+      rows.push_back(row);
+    } else if (o_.supervisor_fault) {
+      rows.push_back(supervisor_fault());
+      const auto& r = rows.back();
+      spdlog::info("{:<16} {:<15} {:<7} detect={} restart={} {}", r.process, r.fault, r.status,
+                   r.detect_ms ? std::to_string(static_cast<int>(*r.detect_ms)) : "-",
+                   r.restart_ms ? std::to_string(static_cast<int>(*r.restart_ms)) : "-", r.note);
+    }
+    stop_supervisor();
+    return rows;
+  }
+
+  ~Harness()
+  {
+    if (sup_pid_ > 0) stop_supervisor();
+  }
+
+ private:
+  // What a process is, from its real config: the RG map keeper (persistence.state_dir +
+  // channels.rg_map), the scan mapper (persistence.state_file + channels.aligned_scan), the
+  // base driver (drives.*), so the checks follow the configs rather than names.
+  void learn_role(const sup::PlannedCommand& c, BusObserver::Channels& channels)
+  {
+    const std::string path = arg_after(c.argv, "--config");
+    if (path.empty() || c.executable.empty()) return;
+    YAML::Node y;
+    try {
+      y = YAML::LoadFile(path);
+    } catch (const std::exception&) {
+      return;
+    }
+    const auto str = [&](const char* a, const char* b) -> std::string {
+      const auto sa = y[a];
+      if (!sa || !sa.IsMap()) return "";
+      const auto v = sa[b];
+      return v && v.IsScalar() ? v.as<std::string>() : "";
+    };
+    if (!str("persistence", "state_dir").empty() && !str("channels", "rg_map").empty()) {
+      rg_map_proc_ = c.spec.name;
+      channels.rg_map = str("channels", "rg_map");
+    }
+    if (!str("persistence", "state_file").empty() && !str("channels", "aligned_scan").empty()) {
+      mapper_proc_ = c.spec.name;
+      channels.aligned_scan = str("channels", "aligned_scan");
+    }
+    const auto drives = y["drives"];
+    if (drives && drives.IsMap() && drives["translation"] && !str("channels", "odometry").empty()) {
+      base_proc_ = c.spec.name;
+      channels.drive_odometry = str("channels", "odometry");
+      decel_v_ = drives["translation"]["max_acceleration"] ? drives["translation"]["max_acceleration"].as<double>() : 1.0;
+      decel_w_ = drives["rotation"] && drives["rotation"]["max_acceleration"] ? drives["rotation"]["max_acceleration"].as<double>() : 1.0;
+    }
+    const auto chs = y["channels"];
+    if (chs && chs.IsMap() && chs["base_cmd"]) channels.base_cmd = "BASE_CMD";  // the hold's channel
+  }
+
+  // A oneshot job that finished (exit 0) is done, not down.
+  bool done(const std::string& name) const
+  {
+    const auto s = obs_->status(name);
+    return s && s->state == process_status_t::STATE_STOPPED && s->last_exit.rfind("done", 0) == 0;
+  }
+
+  std::vector<const sup::PlannedCommand*> running_commands() const
+  {
+    std::vector<const sup::PlannedCommand*> out;
+    for (const auto* c : local_)
+      if (!c->executable.empty() && !blocked_.count(c->spec.name) && !done(c->spec.name)) out.push_back(c);
+    return out;
+  }
+
+  void start_supervisor()
+  {
+    std::vector<std::string> argv = {o_.supervisor_bin, "--launch", o_.launch, "--host", o_.host, "--state-dir", o_.state_dir,
+                                     "--skip-missing"};
+    if (!o_.supervisor_config.empty()) {
+      argv.push_back("--config");
+      argv.push_back(o_.supervisor_config);
+    }
+    if (!o_.lcm_url.empty()) {
+      argv.push_back("--lcm-url");
+      argv.push_back(o_.lcm_url);
+    }
+    std::string line = "exec";
+    for (const auto& a : argv) line += " '" + a + "'";
+    line += " >>'" + o_.log_file + "' 2>&1";
+    const auto r = sup::spawn_child({"/bin/sh", {"sh", "-c", line}, {}, ""});
+    if (r.pid == 0) throw std::runtime_error("cannot start supervisor: " + r.error);
+    sup_pid_ = r.pid;
+    sup_started_ = Clock::now();
+  }
+
+  void stop_supervisor()
+  {
+    if (sup_pid_ <= 0) return;
+    kill(sup_pid_, SIGTERM);
+    for (int i = 0; i < 300; ++i) {
+      obs_->spin(std::chrono::milliseconds(100));
+      int status = 0;
+      if (waitpid(sup_pid_, &status, WNOHANG) == sup_pid_) {
+        sup_pid_ = 0;
+        return;
+      }
+    }
+    kill(sup_pid_, SIGKILL);
+    waitpid(sup_pid_, nullptr, 0);
+    sup_pid_ = 0;
+  }
+
+  bool all_running() const
+  {
+    if (obs_->last_status_time() < sup_started_) return false;
+    for (const auto* c : running_commands()) {
+      const auto s = obs_->status(c->spec.name);
+      if (!s || s->state != process_status_t::STATE_RUNNING) return false;
+      if (c->spec.heartbeat) {
+        const auto* hb = obs_->heartbeat(c->spec.name);
+        if (!hb || hb->pid != s->pid) return false;
+      }
+    }
+    return true;
+  }
+
+  bool wait_all_running(std::chrono::milliseconds timeout)
+  {
+    return obs_->wait_until([this] { return all_running(); }, timeout);
+  }
+
+  std::map<std::string, std::pair<int, int>> snapshot() const
+  {
+    std::map<std::string, std::pair<int, int>> s;
+    for (const auto* c : running_commands())
+      if (const auto p = obs_->status(c->spec.name)) s[c->spec.name] = {p->pid, p->restarts};
+    return s;
+  }
+
+  // Others restarted, and the largest heartbeat gap among them beyond their normal jitter.
+  void check_others(const std::string& self, const std::map<std::string, std::pair<int, int>>& before, FaultRow& row)
+  {
+    double worst = 0;
+    std::string jittery;
+    for (const auto* c : running_commands()) {
+      const auto& n = c->spec.name;
+      if (n == self) continue;
+      const auto p = obs_->status(n);
+      if (!p || before.count(n) == 0 || p->pid != before.at(n).first || p->restarts != before.at(n).second) {
+        row.others_restarted = true;
+        row.note += "; " + n + " restarted";
+      }
+      if (!c->spec.heartbeat) continue;
+      const double gap = static_cast<double>(obs_->gap_now(n).count());
+      worst = std::max(worst, gap);
+      // Normal jitter: the gap seen in the quiet baseline, doubled, with a floor for a loaded machine.
+      const double base = static_cast<double>(baseline_gap_[n].count());
+      const double bound = std::max(2.0 * base, static_cast<double>(o_.heartbeat_period.count()) + 150.0);
+      if (gap > bound) jittery += " " + n + "(" + std::to_string(static_cast<int>(gap)) + ">" + std::to_string(static_cast<int>(bound)) + "ms)";
+    }
+    row.max_other_gap_ms = worst;
+    if (!jittery.empty()) row.note += "; heartbeat gap beyond jitter:" + jittery;
+    gaps_ok_ = jittery.empty();
+  }
+
+  // The drive chain after a fault of one of its processes: the commanded velocity (BASE_CMD:
+  // the dead commander's last command expiring, or the supervisor's hold) at zero within
+  // stop_bound, and the drive's measured velocity (the base driver's odometry) at zero within
+  // stop_bound plus the braking time from the velocity at the fault at the configured
+  // deceleration. `back`: when the process was running again (the window ends there).
+  void measure_drive(const sup::PlannedCommand& c, Clock::time_point t0, std::optional<Clock::time_point> back, FaultRow& row)
+  {
+    if (!c.spec.safety_critical && !kDriveChain.count(c.spec.name)) return;
+    const auto end = back ? *back : t0 + o_.restart_bound;
+    obs_->wait_until([&] { return Clock::now() >= end + std::chrono::milliseconds(100); }, o_.restart_bound + std::chrono::seconds(1));
+    const bool consumer = c.spec.name == base_proc_;
+    const auto& cmds = obs_->commands();
+    // Commanded velocity.
+    std::optional<Clock::time_point> cmd_zero;
+    int nonzero_after = 0;
+    if (consumer) {
+      // Nobody listens to BASE_CMD while the base driver is down; the supervisor's hold is
+      // what it finds when it returns. Other commanders keep going (their business).
+      for (const auto& m : cmds)
+        if (m.when >= t0 && m.from_supervisor && m.zero()) {
+          cmd_zero = m.when;
+          break;
+        }
+    } else {
+      // The effective command: the newest unexpired one. Zero from the moment the last
+      // non-zero one expires or is replaced by a zero (the hold) until `end`.
+      const VelocitySampleRef last = last_nonzero(cmds, t0 - std::chrono::seconds(2), end);
+      if (!last.sample) {
+        cmd_zero = t0;
+      } else {
+        Clock::time_point t = last.sample->when + std::chrono::microseconds(last.sample->deadline_us);
+        for (size_t i = last.index + 1; i < cmds.size() && cmds[i].when < t; ++i)
+          if (cmds[i].zero()) {
+            t = cmds[i].when;
+            break;
+          }
+        if (last.sample->when >= t0) ++nonzero_after;
+        cmd_zero = std::max(t, t0);
+      }
+    }
+    if (cmd_zero) row.cmd_zero_ms = ms_between(t0, *cmd_zero);
+    else row.note += "; BASE_CMD never zero (no hold)";
+    if (nonzero_after > 0) row.note += "; non-zero BASE_CMD after the fault";
+    bool ok = cmd_zero && *row.cmd_zero_ms <= o_.stop_bound.count();
+
+    // Measured velocity.
+    const auto& odo = obs_->drive_odometry();
+    const BusObserver::VelocitySample* at_fault = nullptr;
+    for (const auto& m : odo)
+      if (m.when < t0) at_fault = &m;
+    if (base_proc_.empty() || !at_fault) {
+      row.note += "; no drive odometry to measure";
+    } else {
+      const double brake_ms = 1000.0 * std::max(std::fabs(at_fault->v) / decel_v_, std::fabs(at_fault->omega) / decel_w_);
+      row.drive_bound_ms = o_.stop_bound.count() + brake_ms;
+      if (at_fault->zero()) row.note += "; robot at rest at the fault: braking not exercised";
+      // First sample from which every sample up to `end` is zero.
+      std::optional<Clock::time_point> zero_from;
+      for (const auto& m : odo) {
+        if (m.when < t0 || m.when > end) continue;
+        if (!m.zero()) zero_from.reset();
+        else if (!zero_from) zero_from = m.when;
+      }
+      if (!zero_from) {
+        row.note += "; measured velocity not at zero before the process was back";
+        ok = false;
+      } else {
+        row.drive_zero_ms = ms_between(t0, *zero_from);
+        if (consumer) {
+          // Unobservable while the base driver itself is down: its successor's first report.
+          row.note += "; drives quick-stop on the lost master heartbeat; first velocity after restart is zero";
+        } else if (*row.drive_zero_ms > *row.drive_bound_ms) {
+          ok = false;
+          row.note += "; measured velocity at zero later than " + std::to_string(static_cast<int>(*row.drive_bound_ms)) + " ms";
+        }
+      }
+    }
+    if (row.cmd_zero_ms || row.drive_zero_ms)
+      row.robot_stopped_ms = std::max(row.cmd_zero_ms.value_or(0.0), row.drive_zero_ms.value_or(0.0));
+    drive_ok_ = ok;
+  }
+
+  struct VelocitySampleRef
+  {
+    const BusObserver::VelocitySample* sample = nullptr;
+    size_t index = 0;
+  };
+  static VelocitySampleRef last_nonzero(const std::vector<BusObserver::VelocitySample>& v, Clock::time_point from, Clock::time_point to)
+  {
+    VelocitySampleRef r;
+    for (size_t i = 0; i < v.size(); ++i)
+      if (v[i].when >= from && v[i].when <= to && !v[i].zero() && !v[i].from_supervisor) r = {&v[i], i};
+    return r;
+  }
+
+  size_t log_size() const
+  {
+    std::ifstream in(o_.log_file, std::ios::ate | std::ios::binary);
+    return in ? static_cast<size_t>(in.tellg()) : 0;
+  }
+
+  // The scan mapper's checkpoint as its restarted instance reports it ("resuming from persisted
+  // state ... (N scans"), from the supervisor's log (children write to it) after `offset`.
+  std::optional<int64_t> resumed_scans(size_t offset) const
+  {
+    std::ifstream in(o_.log_file, std::ios::binary);
+    if (!in) return std::nullopt;
+    in.seekg(static_cast<std::streamoff>(offset));
+    std::string line;
+    std::optional<int64_t> n;
+    static const std::regex resumed(R"(resuming from persisted state .* \((\d+) scans)");
+    std::smatch m;
+    while (std::getline(in, line)) {
+      if (std::regex_search(line, m, resumed)) n = std::stoll(m[1]);
+      else if (line.find("starting a new map") != std::string::npos) n = 0;
+    }
+    return n;
+  }
+
+  // State after a restart equals state before: for the RG map keeper, its first RG_MAP from
+  // the new instance against its last one before the fault; for the scan mapper, the scans in
+  // its reloaded checkpoint against the scans it had published.
+  void check_restart_state(const std::string& name, Clock::time_point t0, Clock::time_point t_new, size_t log_offset, FaultRow& row)
+  {
+    if (name == rg_map_proc_) {
+      const BusObserver::MapSample* before = nullptr;
+      for (const auto& m : obs_->rg_maps())
+        if (m.when < t0) before = &m;
+      if (!before) {
+        row.note += "; no RG_MAP before the fault: state not compared";
+        return;
+      }
+      const auto before_copy = *before;
+      const BusObserver::MapSample* after = nullptr;
+      obs_->wait_until([&] {
+        for (const auto& m : obs_->rg_maps())
+          if (m.when >= t_new) return (after = &m) != nullptr;
+        return false;
+      }, std::chrono::seconds(5));
+      if (!after) {
+        row.state_lost = true;
+        row.note += "; no RG_MAP within 5 s of the restart";
+        return;
+      }
+      const bool same_input = after->last_scan_id == before_copy.last_scan_id;
+      row.state_lost = after->version < before_copy.version || after->last_scan_id < before_copy.last_scan_id ||
+                       (same_input && (after->region_ids != before_copy.region_ids || after->gateway_ids != before_copy.gateway_ids));
+      row.note += "; RG_MAP v" + std::to_string(before_copy.version) + " scan " + std::to_string(before_copy.last_scan_id) + " " +
+                  std::to_string(before_copy.region_ids.size()) + " regions before, v" + std::to_string(after->version) + " scan " +
+                  std::to_string(after->last_scan_id) + " " + std::to_string(after->region_ids.size()) + " regions after";
+    } else if (name == mapper_proc_) {
+      std::set<int64_t> published;
+      for (const auto& a : obs_->aligned_scans())
+        if (a.revision == 0 && a.when > mapper_instance_start_ && a.when < t_new) published.insert(a.scan_id);
+      const int64_t expected = mapper_base_ + static_cast<int64_t>(published.size());
+      std::optional<int64_t> n;
+      obs_->wait_until([&] { return (n = resumed_scans(log_offset)).has_value(); }, std::chrono::seconds(5));
+      if (!n) {
+        row.state_lost = true;
+        row.note += "; the restarted scan mapper did not report its checkpoint";
+        return;
+      }
+      row.state_lost = *n < expected;
+      row.note += "; checkpoint reloaded " + std::to_string(*n) + " scans, " + std::to_string(expected) + " published before";
+      mapper_base_ = *n;
+      mapper_instance_start_ = t_new;
+    }
+  }
+
+  void send_order(int8_t order, const std::string& target)
+  {
+    supervisor_order_t o;
+    o.utime = time::wall_utime();
+    o.order_id = ++order_id_;
+    o.host = o_.host;
+    o.order = order;
+    o.target = target;
+    for (int i = 0; i < 3; ++i) bus::publish(obs_->bus(), "SUPERVISOR_ORDERS", o);
+  }
+
+  void run_fault(const sup::PlannedCommand& c, const std::string& fault, FaultRow& row)
+  {
+    const std::string& name = c.spec.name;
+    if (done(name)) {
+      row.status = "n/a";
+      row.note = "a oneshot job that had finished before this fault";
+      return;
+    }
+    if (fault == "sigstop" && !c.spec.heartbeat) {
+      row.status = "n/a";
+      row.note = "no heartbeat: a stopped process is invisible to the supervisor (its dependents notice)";
+      return;
+    }
+    const auto log_offset = log_size();
+    obs_->spin(std::chrono::milliseconds(200));
+    const auto before = snapshot();
+    const int old_pid = before.count(name) ? before.at(name).first : 0;
+    const auto state_before = obs_->state(name);
+    obs_->reset_gaps();
+    const double detect_bound = static_cast<double>((o_.heartbeat_timeout + o_.heartbeat_period).count()) + 100.0;
+    bool ok = true;
+    gaps_ok_ = true;
+    drive_ok_ = true;
+    const auto t0 = Clock::now();
+
+    if (fault == "sigkill" || fault == "sigstop") {
+      kill(old_pid, fault == "sigkill" ? SIGKILL : SIGSTOP);
+      const bool back = obs_->wait_until([&] { return obs_->first_heartbeat_new_pid(name, old_pid, t0).has_value() ||
+                                                      (!c.spec.heartbeat && obs_->status(name) && obs_->status(name)->pid != old_pid &&
+                                                       obs_->status(name)->state == process_status_t::STATE_RUNNING); },
+                                         o_.restart_bound + std::chrono::milliseconds(3000));
+      if (fault == "sigstop") kill(old_pid, SIGCONT);  // in case the supervisor did not act
+      const auto det = obs_->first_status(name, t0, [&](const process_status_t& p) {
+        return p.pid != old_pid || p.state != process_status_t::STATE_RUNNING;
+      });
+      if (det) row.detect_ms = ms_between(t0, *det);
+      if (back) {
+        auto t = obs_->first_heartbeat_new_pid(name, old_pid, t0);
+        if (!t) t = obs_->first_status(name, t0, [&](const process_status_t& p) { return p.pid != old_pid && p.state == process_status_t::STATE_RUNNING; });
+        if (t) row.restart_ms = ms_between(t0, *t);
+      }
+      ok = det && back && *row.detect_ms <= detect_bound && row.restart_ms && *row.restart_ms <= o_.restart_bound.count();
+      if (!det) row.note += "; not detected";
+      else if (*row.detect_ms > detect_bound) row.note += "; detected later than " + std::to_string(static_cast<int>(detect_bound)) + " ms";
+      if (!back) row.note += "; not restarted";
+      const auto t_new = obs_->first_status(name, t0, [&](const process_status_t& p) { return p.pid != 0 && p.pid != old_pid; });
+      measure_drive(c, t0, back ? std::optional<Clock::time_point>(t0 + std::chrono::microseconds(static_cast<int64_t>(*row.restart_ms * 1000))) : std::nullopt, row);
+      if (t_new) check_restart_state(name, t0, *t_new, log_offset, row);
+    } else if (fault == "crash_loop") {
+      // Kill every new instance at once until the supervisor gives up on it.
+      int killed_pid = old_pid;
+      kill(old_pid, SIGKILL);
+      int kills = 1;
+      const bool failed = obs_->wait_until(
+          [&] {
+            const auto s = obs_->status(name);
+            if (!s) return false;
+            if (s->state == process_status_t::STATE_FAILED) return true;
+            if (s->pid != 0 && s->pid != killed_pid) {
+              killed_pid = s->pid;
+              kill(killed_pid, SIGKILL);
+              ++kills;
+            }
+            return false;
+          },
+          std::chrono::seconds(60));
+      if (failed) {
+        row.detect_ms = ms_between(t0, *obs_->first_status(name, t0, [](const process_status_t& p) {
+          return p.state == process_status_t::STATE_FAILED;
+        }));
+        const auto* st = obs_->last_status();
+        row.note += "; FAILED after " + std::to_string(kills) + " kills, alert: \"" + (st ? st->alert : "") + "\"";
+        if (!st || st->alert.empty()) ok = false;
+        obs_->spin(std::chrono::milliseconds(300));
+        check_others(name, before, row);  // the others kept running while it was failing
+        const auto t1 = Clock::now();
+        send_order(supervisor_order_t::ORDER_START, name);
+        const bool back = obs_->wait_until([&] {
+          const auto s = obs_->status(name);
+          return s && s->state == process_status_t::STATE_RUNNING && s->pid != killed_pid;
+        }, o_.restart_bound + std::chrono::milliseconds(3000));
+        if (back) row.restart_ms = ms_between(t1, Clock::now());
+        else row.note += "; not restarted by a start order";
+        ok = ok && back;
+        if (back) check_restart_state(name, t0, t1, log_offset, row);
+      } else {
+        ok = false;
+        row.note += "; never marked FAILED after " + std::to_string(kills) + " kills";
+      }
+    } else if (fault == "flood" || fault == "malformed" || fault == "loss_dup_delay") {
+      if (c.spec.inputs.empty()) {
+        row.status = "n/a";
+        row.note = "no inputs declared";
+        return;
+      }
+      const int64_t dropped_before = obs_->heartbeat(name) ? obs_->heartbeat(name)->dropped : 0;
+      if (fault == "loss_dup_delay") {
+        // A relay of this stack in front of one of its inputs is switched to impair for 2 s.
+        const sup::PlannedCommand* relay = nullptr;
+        for (const auto* r : local_)
+          for (const auto& in : c.spec.inputs)
+            if (arg_after(r->argv, "--to") == in && !r->executable.empty()) relay = r;
+        if (!relay) {
+          row.status = "pending";
+          row.note = "no lcm_relay in front of its inputs in this launch config";
+          return;
+        }
+        const auto rs = obs_->status(relay->spec.name);
+        if (!rs || rs->pid == 0) {
+          row.status = "fail";
+          row.note = "relay " + relay->spec.name + " not running";
+          return;
+        }
+        kill(rs->pid, SIGUSR1);
+        obs_->spin(std::chrono::milliseconds(2000));
+        kill(rs->pid, SIGUSR2);
+        row.note += "impaired by " + relay->spec.name;
+      } else {
+        std::mt19937 rng(42);
+        const int n = fault == "flood" ? o_.flood_messages : 1000;
+        for (int i = 0; i < n; ++i) {
+          for (const auto& in : c.spec.inputs) {
+            const auto* valid = obs_->captured_input(in);
+            std::vector<uint8_t> msg;
+            if (fault == "flood" && valid) {
+              msg = *valid;
+            } else if (valid && i % 3 == 0) {
+              msg.assign(valid->begin(), valid->begin() + static_cast<long>(rng() % valid->size()));  // truncated
+            } else if (valid && i % 3 == 1) {
+              msg = *valid;
+              msg[8 + rng() % (msg.size() - 8)] ^= static_cast<uint8_t>(1 + rng() % 255);  // corrupted after the fingerprint
+            } else {
+              msg.resize(1 + rng() % 512);
+              for (auto& b : msg) b = static_cast<uint8_t>(rng());
+            }
+            obs_->bus().publish(in, msg.data(), msg.size());
+          }
+          // Paced (a runaway publisher, not a denial of service): LCM's udpm delivers every
+          // datagram to every process on the host, which filters channels in user space, so an
+          // unpaced flood on any channel loads them all.
+          if (i % 20 == 19) {
+            const auto due = t0 + std::chrono::microseconds(static_cast<int64_t>(1e6 * (i + 1) / o_.flood_rate_hz));
+            while (Clock::now() < due) obs_->bus().handle(std::chrono::duration_cast<std::chrono::milliseconds>(due - Clock::now()) + std::chrono::milliseconds(1));
+          }
+        }
+        if (fault == "flood" && !obs_->captured_input(c.spec.inputs[0])) row.note += "no valid input captured: flooded with random bytes";
+        obs_->spin(std::chrono::milliseconds(1000));
+      }
+      const auto s = obs_->status(name);
+      const bool same = s && s->pid == old_pid && before.count(name) && s->restarts == before.at(name).second;
+      const double own_gap = static_cast<double>(obs_->gap_now(name).count());
+      if (!same) row.note += "; the process itself was restarted";
+      if (own_gap > o_.heartbeat_timeout.count()) row.note += "; its own heartbeat stopped for " + std::to_string(static_cast<int>(own_gap)) + " ms";
+      if (fault == "malformed") {
+        const int64_t dropped = obs_->heartbeat(name) ? obs_->heartbeat(name)->dropped - dropped_before : 0;
+        row.note += (row.note.empty() ? "" : "; ") + std::to_string(dropped) + " inputs dropped as invalid";
+      }
+      ok = same && own_gap <= o_.heartbeat_timeout.count();
+    }
+
+    if (fault != "crash_loop") {
+      obs_->spin(std::chrono::milliseconds(200));
+      check_others(name, before, row);
+    }
+    if (state_before) {
+      obs_->wait_until([&] { return obs_->first_state_since(name, t0 + std::chrono::milliseconds(1)).has_value(); },
+                       std::chrono::milliseconds(3000));
+      const auto after = obs_->first_state_since(name, Clock::now() - std::chrono::milliseconds(500));
+      const auto first_after = obs_->first_state_since(name, t0);
+      row.state_lost = !first_after || *first_after < *state_before;
+      if (*row.state_lost) row.note += "; state " + std::to_string(*state_before) + " before, " + (first_after ? std::to_string(*first_after) : "none") + " after";
+      (void)after;
+    }
+    if (!drive_ok_) ok = false;
+    ok = ok && !row.others_restarted && gaps_ok_ && !(row.state_lost && *row.state_lost);
+    if (row.status.empty()) row.status = ok ? "pass" : "fail";
+    if (!row.note.empty() && row.note.rfind("; ", 0) == 0) row.note = row.note.substr(2);
+  }
+
+  FaultRow supervisor_fault()
+  {
+    FaultRow row;
+    row.process = "supervisor";
+    row.fault = "sigkill_adopt";
+    const auto before = snapshot();
+    kill(sup_pid_, SIGKILL);
+    waitpid(sup_pid_, nullptr, 0);
+    sup_pid_ = 0;
+    const auto t0 = Clock::now();
+    obs_->spin(std::chrono::milliseconds(300));
+    start_supervisor();
+    const bool up = wait_all_running(std::chrono::seconds(10));
+    bool ok = up;
+    if (up) row.restart_ms = ms_between(t0, Clock::now());
+    else row.note += "; stack not running under the new supervisor";
+    int dups = 0;
+    for (const auto* c : running_commands()) {
+      if (c->spec.oneshot && before.count(c->spec.name) == 0) continue;  // done before the kill
+      const auto s = obs_->status(c->spec.name);
+      if (!s || before.count(c->spec.name) == 0 || s->pid != before.at(c->spec.name).first) {
+        row.others_restarted = true;
+        row.note += "; " + c->spec.name + " not adopted";
+      }
+      const int n = count_instances(c->argv);
+      if (n != 1) {
+        ++dups;
+        row.note += "; " + std::to_string(n) + " instances of " + c->spec.name;
+      }
+    }
+    // An adopted child that dies is noticed through /proc and restarted.
+    const auto cmds = running_commands();
+    if (up && !cmds.empty()) {
+      const auto& name = cmds.back()->spec.name;
+      const int pid = obs_->status(name)->pid;
+      const auto t1 = Clock::now();
+      kill(pid, SIGKILL);
+      const bool back = obs_->wait_until([&] { return obs_->first_heartbeat_new_pid(name, pid, t1).has_value(); },
+                                         o_.restart_bound + std::chrono::milliseconds(3000));
+      const auto det = obs_->first_status(name, t1, [&](const process_status_t& p) { return p.pid != pid; });
+      if (det) row.detect_ms = ms_between(t1, *det);
+      row.note += "; killed adopted " + name + (back ? ", restarted" : ", NOT restarted");
+      ok = ok && back && det;
+    }
+    ok = ok && !row.others_restarted && dups == 0;
+    row.status = ok ? "pass" : "fail";
+    if (row.note.rfind("; ", 0) == 0) row.note = row.note.substr(2);
+    return row;
+  }
+
+  HarnessOptions o_;
+  sup::LaunchPlan plan_;
+  std::vector<const sup::PlannedCommand*> local_;
+  std::unique_ptr<BusObserver> obs_;
+  std::map<std::string, std::chrono::milliseconds> baseline_gap_;
+  std::map<std::string, std::string> blocked_;  // process -> the unbuilt dependency
+  pid_t sup_pid_ = 0;
+  Clock::time_point sup_started_{};
+  int64_t order_id_ = 1000;
+  bool gaps_ok_ = true;
+  bool drive_ok_ = true;
+  std::string rg_map_proc_, mapper_proc_, base_proc_;
+  double decel_v_ = 1.0, decel_w_ = 1.0;
+  int64_t mapper_base_ = 0;                  // scans the mapper's current instance resumed with
+  Clock::time_point mapper_instance_start_{};
+};
+
+}  // namespace
+
+std::vector<FaultRow> run_harness(const HarnessOptions& options)
+{
+  Harness h(options);
+  return h.run();
+}
+
+}  // namespace rgnav::fault

@@ -1,0 +1,54 @@
+// The fault-injection harness: launches a stack under a real supervisor and, for every
+// process of the launch config, injects each fault and checks the supervisor's answer.
+#pragma once
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rgnav::fault {
+
+struct HarnessOptions
+{
+  std::string launch;             // launch config
+  std::string host = "faulthost";
+  std::string supervisor_bin;
+  std::string supervisor_config;  // "" = the supervisor's default
+  std::string state_dir;          // supervisor state + probe state files
+  std::string log_file;           // supervisor output
+  std::string lcm_url;
+  std::vector<std::string> processes;  // "" = all
+  std::vector<std::string> faults;     // "" = all
+  bool supervisor_fault = true;   // also SIGKILL and restart the supervisor (adoption)
+  std::chrono::milliseconds heartbeat_timeout{500};
+  std::chrono::milliseconds heartbeat_period{200};
+  std::chrono::milliseconds restart_bound{3000};  // fault → heartbeating again
+  int flood_messages = 3000;
+  double flood_rate_hz = 2000;  // per input channel
+  std::chrono::milliseconds stop_bound{200};  // fault -> commanded zero (plus braking for the measured)
+};
+
+struct FaultRow
+{
+  std::string process;
+  std::string fault;
+  std::optional<double> detect_ms;
+  std::optional<double> restart_ms;
+  bool others_restarted = false;
+  std::optional<bool> state_lost;
+  std::optional<double> robot_stopped_ms;  // max of the two below
+  std::optional<double> cmd_zero_ms;       // fault -> BASE_CMD zero (the supervisor's hold) and staying zero
+  std::optional<double> drive_zero_ms;     // fault -> the drive's measured velocity at zero
+  std::optional<double> drive_bound_ms;    // 200 ms + braking time from the velocity at the fault
+  std::optional<double> max_other_gap_ms;
+  std::string status;  // pass, fail, pending
+  std::string note;
+};
+
+const std::vector<std::string>& all_faults();
+
+// Runs everything; rows in launch-config order.
+std::vector<FaultRow> run_harness(const HarnessOptions& options);
+
+}  // namespace rgnav::fault

@@ -1,0 +1,31 @@
+#!/bin/sh
+# Writes the configs of tests/fault/sim_stack.pmd into $RGNAV_FAULT_STATE/config: the real
+# process configs with private state (map checkpoints, the CAN bus socket) and with the
+# inputs that get loss/duplication/delay moved behind the stack's lcm_relays. Every result
+# is validated by its process (--check-config) so a stale key fails here, not mid-test.
+set -eu
+: "${RGNAV_ROOT:?}" "${RGNAV_BUILD:?}" "${RGNAV_FAULT_STATE:?}"
+c=$RGNAV_ROOT/config
+out=$RGNAV_FAULT_STATE/config
+s=$RGNAV_FAULT_STATE
+ov=$RGNAV_BUILD/bin/config_overlay
+mkdir -p "$out"
+"$ov" "$c/sim.yaml" "$out/sim.yaml" channels.command=BASE_CMD_RELAYED
+"$ov" "$c/tour_runner.yaml" "$out/tour_runner.yaml" channels.odometry=ODOMETRY_RELAYED
+"$ov" "$c/scan_mapper.yaml" "$out/scan_mapper.yaml" channels.laser=LASER_FRONT_RELAYED \
+  persistence.state_file="$s/scan_mapper.state"
+"$ov" "$c/rg_kernel.yaml" "$out/rg_kernel.yaml" channels.aligned_scan=ALIGNED_SCAN_RELAYED \
+  persistence.state_dir="$s/rg_kernel"
+# The drive chain: the real base_driver on a virtual CAN bus of its own with two emulated
+# CiA 402 drives; it follows the same (relayed) BASE_CMD as the simulated robot and reports
+# on DRIVE_ODOMETRY, so the simulator's ODOMETRY stays the only one.
+"$ov" "$c/base_driver_sim.yaml" "$out/base_driver.yaml" can.virtual_bus_path="$s/vcan.sock" \
+  channels.base_cmd=BASE_CMD_RELAYED channels.odometry=DRIVE_ODOMETRY
+check() {
+  "$RGNAV_BUILD/bin/$1" --config "$out/$2.yaml" --check-config >/dev/null || { echo "sim_stack_configs: $2.yaml rejected" >&2; exit 2; }
+}
+for p in rgnav_sim:sim tour_runner:tour_runner scan_mapper:scan_mapper rg_kernel:rg_kernel base_driver:base_driver; do
+  bin=${p%%:*}; cfg=${p#*:}
+  [ -x "$RGNAV_BUILD/bin/$bin" ] && check "$bin" "$cfg"
+done
+exit 0

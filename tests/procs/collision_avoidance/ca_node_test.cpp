@@ -1,0 +1,150 @@
+#include "collision_avoidance/ca_node.h"
+
+#include <gtest/gtest.h>
+
+#include "bus/fake_bus.h"
+#include "collision_avoidance/chain_planner.h"
+#include "msg/conversions.h"
+#include "rgnav/heartbeat_t.hpp"
+#include "rgnav/laser_scan_t.hpp"
+#include "rgnav/odometry_t.hpp"
+#include "rgnav/target_list_t.hpp"
+#include "rgnav/trajectory_t.hpp"
+#include "scan_fixture.h"
+#include "trajectory/trajectory_conversions.h"
+
+namespace rgnav::collision_avoidance {
+namespace {
+
+constexpr int64_t kT0 = 1'700'000'000'000'000;
+
+laser_scan_t scan_msg(int64_t utime, int64_t id, const std::vector<testing::Wall>& walls)
+{
+  laser_scan_t m{};
+  m.utime = utime;
+  m.scan_id = id;
+  m.sensor = "laser_front";
+  m.angle_min = static_cast<float>(-M_PI_2);
+  m.angle_increment = static_cast<float>(M_PI / 180.0);
+  m.range_min = 0.02f;
+  m.range_max = 8.0f;
+  m.scan_time = 1.0f / 75;
+  // The laser sits 0.12 m ahead of the base (config default) at the odom origin.
+  for (const auto& r : testing::cast(geometry::Pose2(0.12, 0, 0), walls)) m.ranges.push_back(static_cast<float>(r.range));
+  m.nranges = static_cast<int32_t>(m.ranges.size());
+  return m;
+}
+
+odometry_t odo_msg(int64_t utime, int64_t seq)
+{
+  odometry_t m{};
+  m.utime = utime;
+  m.seq = seq;
+  m.status = odometry_t::STATUS_OK;
+  return m;
+}
+
+struct Fixture
+{
+  bus::FakeBus* fake;
+  std::unique_ptr<runtime::Node> node;
+  std::unique_ptr<CaNode> ca;
+
+  Fixture()
+  {
+    auto bus = std::make_unique<bus::FakeBus>();
+    fake = bus.get();
+    runtime::NodeOptions no;
+    no.name = "collision_avoidance";
+    node = std::make_unique<runtime::Node>(no, std::move(bus));
+    ca = std::make_unique<CaNode>(*node, CaNodeOptions{});
+  }
+  std::vector<trajectory::Trajectory> trajectories() const
+  {
+    std::vector<trajectory::Trajectory> out;
+    for (const auto& p : fake->published_on("TRAJECTORY")) {
+      trajectory_t m;
+      std::string why;
+      EXPECT_TRUE(bus::decode(p.data.data(), p.data.size(), &m, &why)) << why;
+      auto t = trajectory::from_msg(m, &why);
+      EXPECT_TRUE(t) << why;
+      if (t) out.push_back(*t);
+    }
+    return out;
+  }
+  void targets(std::vector<geometry::Pose2> poses)
+  {
+    target_list_t m{};
+    m.utime = kT0;
+    m.goal_id = 1;
+    for (const auto& p : poses) m.odom_from_target.push_back(msg::to_msg(p));
+    m.ntargets = static_cast<int32_t>(m.odom_from_target.size());
+    m.max_speed = 0.5f;
+    m.final_is_goal = true;
+    ASSERT_TRUE(bus::publish(*fake, "TARGETS", m));
+  }
+};
+
+const std::vector<testing::Wall> kCorridor = {{{-1, -1.5}, {12, -1.5}}, {{-1, 1.5}, {12, 1.5}}};
+
+TEST(CaNode, PlansAroundABoxOverTheBus)
+{
+  Fixture f;
+  auto walls = kCorridor;
+  for (const auto& w : testing::box(1.3, -0.3, 1.7, 0.3)) walls.push_back(w);
+  ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0, 1)));
+  ASSERT_TRUE(bus::publish(*f.fake, "LASER_FRONT", scan_msg(kT0, 1, walls)));
+  f.targets({geometry::Pose2(1.0, 0.0, 0.0), geometry::Pose2(2.0, 0.0, 0.0), geometry::Pose2(3.0, 0.0, 0.0)});
+  ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0 + 20'000, 2)));
+  const auto ts = f.trajectories();
+  ASSERT_FALSE(ts.empty());
+  const auto& t = ts.back();
+  ASSERT_FALSE(t.chain.empty());
+  // Never into the box: the whole chain keeps the footprint clear of the scanned obstacles.
+  const auto& map = f.ca->ca().map();
+  EXPECT_FALSE(first_collision(t.chain, map, 0.26, 0.01));
+  EXPECT_EQ(f.ca->ca().mode(), Mode::kPlanned);
+}
+
+TEST(CaNode, BlockedCorridorStopsAndReports)
+{
+  Fixture f;
+  auto walls = kCorridor;
+  walls.push_back({{0.9, -1.5}, {0.9, 1.5}});  // closed 0.9 m ahead
+  ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0, 1)));
+  ASSERT_TRUE(bus::publish(*f.fake, "LASER_FRONT", scan_msg(kT0, 1, walls)));
+  f.targets({geometry::Pose2(1.5, 0.0, 0.0), geometry::Pose2(2.5, 0.0, 0.0)});
+  const auto ts = f.trajectories();
+  ASSERT_FALSE(ts.empty());
+  for (const auto& t : ts) {
+    // Only stops or turns on the spot: nothing drives toward the wall.
+    for (const auto& s : t.chain.segments()) EXPECT_EQ(s.kind(), trajectory::Kind::kTurn);
+  }
+  EXPECT_EQ(f.ca->ca().mode(), Mode::kReactive);
+  f.node->publish_heartbeat();
+  heartbeat_t hb;
+  std::string why;
+  const auto hbs = f.fake->published_on("HEARTBEAT");
+  ASSERT_FALSE(hbs.empty());
+  ASSERT_TRUE(bus::decode(hbs.back().data.data(), hbs.back().data.size(), &hb, &why));
+  EXPECT_EQ(hb.state, heartbeat_t::STATE_DEGRADED);
+  EXPECT_NE(hb.status.find("reactive"), std::string::npos);
+}
+
+TEST(CaNode, StaleScansStop)
+{
+  Fixture f;
+  ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0, 1)));
+  ASSERT_TRUE(bus::publish(*f.fake, "LASER_FRONT", scan_msg(kT0, 1, kCorridor)));
+  f.targets({geometry::Pose2(2.0, 0.0, 0.0), geometry::Pose2(4.0, 0.0, 0.0)});
+  ASSERT_FALSE(f.trajectories().empty());
+  ASSERT_FALSE(f.trajectories().back().chain.empty());
+  // Odometry goes on, scans do not.
+  for (int i = 1; i <= 40; ++i) ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0 + i * 20'000, 1 + i)));
+  const auto ts = f.trajectories();
+  EXPECT_TRUE(ts.back().chain.empty());  // the stop
+  EXPECT_EQ(f.ca->ca().mode(), Mode::kStaleStop);
+}
+
+}  // namespace
+}  // namespace rgnav::collision_avoidance

@@ -1,0 +1,332 @@
+// control_bench: closes the loop lld + collision avoidance around the simulated B21r
+// (drivers/sim, lock-step, odometry noise, ray-cast LMS 2xx, walking people) and measures
+//   - tracking: cross-track error of the odometry pose the lld tracks (and of the true pose)
+//     over mixed chains (lines, arcs, clothoids) at 0.3 and 0.6 m/s; predicted vs actual time;
+//   - obstacle courses: randomised corridors with boxes and people; collisions, targets
+//     reached, time.
+// Loop timing of the real lld executable is measured by deploy/bench/control.sh.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <random>
+
+#include "collision_avoidance/ca_options.h"
+#include "collision_avoidance/collision_avoidance.h"
+#include "config/config.h"
+#include "lld/follower.h"
+#include "lld/lld_options.h"
+#include "sim/simulator.h"
+#include "trajectory/construct.h"
+
+using namespace rgnav;
+using trajectory::Chain;
+using trajectory::Segment;
+using geometry::Pose2;
+
+namespace {
+
+constexpr double kPeriod = 0.05;
+const auto kPeriodUs = std::chrono::microseconds(50'000);
+
+sim::SimulatorOptions sim_options(uint64_t seed, bool laser)
+{
+  sim::SimulatorOptions o;
+  o.seed = seed;
+  o.laser_enabled = laser;
+  o.odometry.scale_translation = 0.01;
+  o.odometry.scale_rotation = -0.02;
+  o.odometry.bias_rotation_per_m = 0.005;
+  o.odometry.sigma_translation = 0.01;
+  o.odometry.sigma_rotation = 0.02;
+  o.odometry.sigma_rotation_per_m = 0.005;
+  return o;
+}
+
+Pose2 to_pose(const sim::Pose2& p) { return Pose2(p.x, p.y, p.theta); }
+
+// A mixed G2 chain: lines, clothoid-arc-clothoid turns both ways, a clothoid S-bend.
+Chain mixed_chain(std::mt19937& rng, double v)
+{
+  std::uniform_real_distribution<double> turn(0.6, 1.8), len(0.8, 2.0), kap(0.8, 2.0);
+  Chain c;
+  c.push_back(Segment::line(Pose2(), len(rng)));
+  double sign = 1.0;
+  for (int i = 0; i < 4; ++i) {
+    const Chain t = trajectory::smooth_turn(c.end(), sign * turn(rng), kap(rng));
+    for (const auto& s : t.segments()) c.append_at_end(s);
+    c.append_at_end(Segment::line(Pose2(), len(rng)));
+    sign = -sign;
+  }
+  // S-bend by a G1 clothoid to a parallel offset pose (curvature jumps at its ends).
+  const Pose2 e = c.end();
+  if (auto s = trajectory::clothoid_g1(e, e * Pose2(2.0, 0.4, 0.0))) c.append_at_end(*s);
+  c.append_at_end(Segment::line(Pose2(), 1.0));
+  std::vector<Segment> segs;
+  for (auto s : c.segments()) {
+    s.set_v_max(v);
+    segs.push_back(s);
+  }
+  return Chain(segs);
+}
+
+struct Stats
+{
+  double sum2 = 0.0, max = 0.0;
+  int64_t n = 0;
+  void add(double x)
+  {
+    sum2 += x * x;
+    max = std::max(max, std::fabs(x));
+    ++n;
+  }
+  double rms() const { return n ? std::sqrt(sum2 / n) : 0.0; }
+};
+
+nlohmann::json tracking(const lld::LldOptions& lo, double v, int chains, uint64_t seed, double* time_err_max,
+                        Stats* odo_all)
+{
+  std::mt19937 rng(static_cast<uint32_t>(seed));
+  Stats odo, truth;
+  double terr_sum = 0.0, terr_max = 0.0;
+  int done = 0;
+  for (int k = 0; k < chains; ++k) {
+    sim::World world;
+    world.name = "empty";
+    sim::Simulator sim(world, sim_options(seed + k, false));
+    sim::TimedCommandSource cmd;
+    sim.set_command_source(&cmd);
+    lld::Follower f(lo.follower);
+    trajectory::Trajectory t;
+    t.id = 1;
+    t.chain = mixed_chain(rng, v);
+    t.a_max = 0.5;
+    t.omega_max = 1.2;
+    lld::OdometryInput odi;
+    bool have = false;
+    for (const auto& o : sim.step(kPeriodUs).odometry) {  // first odometry
+      odi = {to_pose(o.odom_from_base), o.v, o.omega, time::from_utime(o.utime)};
+      have = true;
+    }
+    auto now = time::from_utime(sim.now_utime());
+    f.replace(lld::make_plan(t, lo.follower, 0.0), now);
+    const double predicted = f.plan()->profile.total_time();
+    const Chain& chain = f.plan()->trajectory.chain;
+    double finished = -1.0;
+    const double t_start = sim.time_s();
+    double s_true = 0.0;
+    for (int i = 0; i < 20000; ++i) {
+      now = time::from_utime(sim.now_utime());
+      const auto& st = f.step(now, kPeriod, have ? &odi : nullptr);
+      f.refresh(1, now);
+      cmd.set(sim.now_utime(), {st.command.v, st.command.omega}, lo.loop.command_deadline_ms * 1000);
+      if (st.state == lld::FollowerState::kTracking && have && st.progress > 0.05 && st.progress < chain.length() - 0.05) {
+        odo.add(st.cross_track);
+        odo_all->add(st.cross_track);
+        // True pose relative to the same chain (the odom frame starts at the true start pose).
+        const auto pr = chain.project(to_pose(sim.truth()).translation(), std::max(0.0, s_true - 1.0), s_true + 1.0);
+        s_true = pr.s;
+        truth.add(pr.local.lateral);
+      }
+      if (st.state == lld::FollowerState::kDone) {
+        finished = sim.time_s() - t_start;
+        break;
+      }
+      const auto out = sim.step(kPeriodUs);
+      if (!out.odometry.empty()) {
+        const auto& o = out.odometry.back();
+        odi = {to_pose(o.odom_from_base), o.v, o.omega, time::from_utime(o.utime)};
+        have = true;
+      }
+    }
+    if (finished > 0) {
+      ++done;
+      const double err = std::fabs(finished - predicted) / predicted * 100.0;
+      terr_sum += err;
+      terr_max = std::max(terr_max, err);
+    }
+  }
+  *time_err_max = std::max(*time_err_max, terr_max);
+  return {{"speed_mps", v},          {"chains", chains},          {"completed", done},
+          {"xtrack_rms_m", odo.rms()}, {"xtrack_max_m", odo.max}, {"true_xtrack_rms_m", truth.rms()},
+          {"true_xtrack_max_m", truth.max}, {"time_pred_err_mean_pct", done ? terr_sum / done : -1.0},
+          {"time_pred_err_max_pct", terr_max}};
+}
+
+// A corridor 3 m wide, 14 m long, with boxes and people; targets 1 m apart along its centre.
+struct Course
+{
+  sim::World world;
+  std::vector<Pose2> targets;  // odom frame == world frame (start pose at the origin)
+};
+
+Course make_course(std::mt19937& rng)
+{
+  Course c;
+  const double L = 14.0, W = 3.0;
+  auto wall = [](double x0, double y0, double x1, double y1) {
+    sim::Wall w;
+    w.a = {x0, y0};
+    w.b = {x1, y1};
+    return w;
+  };
+  c.world.name = "course";
+  c.world.walls = {wall(-1, -W / 2, L, -W / 2), wall(-1, W / 2, L, W / 2), wall(-1, -W / 2, -1, W / 2),
+                   wall(L, -W / 2, L, W / 2)};
+  std::uniform_real_distribution<double> ux(2.0, 10.5), uy(-0.8, 0.8), us(0.3, 0.7), uyaw(0, M_PI);
+  std::uniform_int_distribution<int> nbox(2, 4), nppl(1, 2);
+  const int nb = nbox(rng);
+  for (int i = 0; i < nb; ++i) {
+    sim::Box b;
+    b.name = "box" + std::to_string(i);
+    b.center = {ux(rng), uy(rng)};
+    b.size = {us(rng), us(rng)};
+    b.yaw = uyaw(rng);
+    c.world.boxes.push_back(b);
+  }
+  std::uniform_real_distribution<double> px(3.0, 11.0), pv(0.4, 0.9), pd(0.0, 8.0);
+  const int np = nppl(rng);
+  for (int i = 0; i < np; ++i) {
+    sim::Person p;
+    p.name = "p" + std::to_string(i);
+    const double x = px(rng);
+    p.path = {{x, -1.2}, {x + 0.5, 1.2}};  // crossing the corridor back and forth
+    p.loop = false;
+    p.speed = pv(rng);
+    p.start_delay = pd(rng);
+    c.world.people.push_back(p);
+  }
+  for (double x = 1.0; x <= 12.0 + 1e-9; x += 1.0) c.targets.emplace_back(x, 0.0, 0.0);
+  return c;
+}
+
+nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaOptions& co, int n, uint64_t seed)
+{
+  std::mt19937 rng(static_cast<uint32_t>(seed));
+  int64_t collisions = 0;
+  int reached = 0;
+  double time_sum = 0.0;
+  int64_t fallbacks = 0, replans = 0;
+  nlohmann::json failures = nlohmann::json::array();
+  for (int k = 0; k < n; ++k) {
+    Course course = make_course(rng);
+    sim::Simulator sim(course.world, sim_options(seed + 100 + k, true));
+    sim::TimedCommandSource cmd;
+    sim.set_command_source(&cmd);
+    lld::Follower f(lo.follower);
+    collision_avoidance::CollisionAvoidance ca(co);
+    collision_avoidance::Targets tg;
+    tg.poses = course.targets;
+    tg.max_speed = 0.6;
+    tg.final_is_goal = true;
+    ca.set_targets(tg);
+    lld::OdometryInput odi;
+    bool have = false, arrived = false;
+    int64_t last_id = 0;
+    double t_end = 0.0;
+    for (int i = 0; i < static_cast<int>(120.0 / kPeriod); ++i) {
+      const auto out = sim.step(kPeriodUs);
+      for (const auto& e : out.collisions)
+        if (getenv("CB_DEBUG"))
+          std::cerr << "course " << k << " collision at t=" << sim.time_s() << " with " << e.with << " mode "
+                    << collision_avoidance::mode_name(ca.mode()) << " '" << ca.status() << "' pose " << e.world_from_base.x
+                    << "," << e.world_from_base.y << "\n";
+      for (const auto& o : out.odometry) {
+        odi = {to_pose(o.odom_from_base), o.v, o.omega, time::from_utime(o.utime)};
+        have = true;
+        ca.on_odometry(odi.stamp, odi.pose, o.v);
+      }
+      for (const auto& s : out.scans) {
+        std::vector<collision_avoidance::PolarReading> r;
+        for (size_t b = 0; b < s.ranges.size(); ++b)
+          if (s.ranges[b] > s.range_min) r.push_back({s.angle_min + b * s.angle_increment, s.ranges[b]});
+        ca.on_scan(time::from_utime(s.utime), r, s.range_max);
+      }
+      const auto now = time::from_utime(sim.now_utime());
+      const auto& fs = f.status();
+      ca.on_drive_feedback({fs.trajectory_id, static_cast<int>(fs.state), fs.progress, fs.cross_track, fs.command.v});
+      if (auto t = ca.update(now)) {
+        if (t->id != last_id) {
+          f.replace(lld::make_plan(*t, lo.follower, f.last_command().v), now);
+          last_id = t->id;
+        } else {
+          f.refresh(t->id, now);
+        }
+      }
+      const auto& st = f.step(now, kPeriod, have ? &odi : nullptr);
+      cmd.set(sim.now_utime(), {st.command.v, st.command.omega}, lo.loop.command_deadline_ms * 1000);
+      if (getenv("CB_DEBUG") && i % 10 == 0)
+        std::cerr << "t=" << sim.time_s() << " truth=" << sim.truth().x << "," << sim.truth().y << " th=" << sim.truth().theta
+                  << " next=" << ca.next_target() << " mode=" << collision_avoidance::mode_name(ca.mode()) << " '" << ca.status()
+                  << "' v=" << st.command.v << " w=" << st.command.omega << " lld=" << static_cast<int>(st.state)
+                  << " id=" << st.trajectory_id << " len=" << (ca.active() ? ca.active()->chain.length() : -1)
+                  << " nseg=" << (ca.active() ? ca.active()->chain.size() : 0) << " map=" << ca.map().size() << "\n";
+      if (ca.mode() == collision_avoidance::Mode::kArrived) {
+        arrived = true;
+        t_end = sim.time_s();
+        break;
+      }
+    }
+    collisions += sim.collisions();
+    fallbacks += ca.fallbacks();
+    replans += ca.replans();
+    if (arrived) {
+      ++reached;
+      time_sum += t_end;
+    } else {
+      failures.push_back({{"course", k}, {"x", sim.truth().x}, {"y", sim.truth().y}, {"mode", collision_avoidance::mode_name(ca.mode())}});
+    }
+  }
+  return {{"courses", n},
+          {"collisions", collisions},
+          {"reached", reached},
+          {"reached_ratio", n ? static_cast<double>(reached) / n : 0.0},
+          {"mean_time_s", reached ? time_sum / reached : -1.0},
+          {"course_length_m", 12.0},
+          {"replans", replans},
+          {"fallbacks", fallbacks},
+          {"failures", failures}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  CLI::App app("control_bench");
+  std::string config_dir = "config", out_path;
+  int chains = 6, ncourses = 50;
+  uint64_t seed = 1;
+  app.add_option("--config-dir", config_dir);
+  app.add_option("--out", out_path)->required();
+  app.add_option("--chains", chains);
+  app.add_option("--courses", ncourses);
+  app.add_option("--seed", seed);
+  CLI11_PARSE(app, argc, argv);
+
+  const auto lcfg = config::Config::load(config_dir + "/lld.yaml");
+  const lld::LldOptions lo = lld::load_lld_options(lcfg);
+  const auto ccfg = config::Config::load(config_dir + "/collision_avoidance.yaml");
+  const auto co = collision_avoidance::load_ca_options(ccfg);
+
+  nlohmann::json j;
+  j["plant"] = "sim";
+  double terr_max = 0.0;
+  Stats all_06;
+  Stats dummy;
+  j["tracking"] = nlohmann::json::array();
+  j["tracking"].push_back(tracking(lo, 0.3, chains, seed, &terr_max, &dummy));
+  j["tracking"].push_back(tracking(lo, 0.6, chains, seed + 50, &terr_max, &all_06));
+  j["xtrack_rms_m"] = all_06.rms();
+  j["xtrack_max_m"] = all_06.max;
+  j["time_pred_err_pct"] = terr_max;
+  const auto cj = courses(lo, co.ca, ncourses, seed);
+  j["obstacle_courses"] = cj;
+  j["courses"] = cj["courses"];
+  j["collisions"] = cj["collisions"];
+  j["reached_ratio"] = cj["reached_ratio"];
+  std::ofstream(out_path) << j.dump(2) << "\n";
+  std::cout << j.dump(2) << "\n";
+  return 0;
+}

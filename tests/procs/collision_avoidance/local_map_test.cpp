@@ -1,0 +1,44 @@
+#include "collision_avoidance/local_map.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace rgnav::collision_avoidance {
+namespace {
+
+TEST(LocalMap, ClearanceFromScansInOdomFrame)
+{
+  LocalMap map(LocalMapOptions{});
+  ScanPoints s;
+  s.stamp = time::from_utime(1'000'000);
+  s.odom_from_base = Pose2(1.0, 2.0, M_PI / 2);
+  s.points = {{1.0, 0.0}};  // 1 m ahead of a robot facing +y: odom (1, 3)
+  map.add_scan(s);
+  map.rebuild(time::from_utime(1'100'000));
+  EXPECT_NEAR(map.clearance({1.0, 2.5}, 1.0), 0.5, 1e-9);
+  EXPECT_TRUE(std::isinf(map.clearance({3.0, 3.0}, 1.0)));
+  // Old scans fall out.
+  map.rebuild(time::from_utime(3'000'000));
+  EXPECT_EQ(map.size(), 0u);
+}
+
+TEST(LocalMap, GridPointsAndScanCount)
+{
+  LocalMapOptions o;
+  o.max_scans = 2;
+  LocalMap map(o);
+  for (int i = 0; i < 3; ++i) {
+    ScanPoints s;
+    s.stamp = time::from_utime(1'000'000 + i);
+    s.points = {{1.0 + i, 0.0}};
+    map.add_scan(s);
+  }
+  map.set_grid_points(time::from_utime(1'000'000), {{0.0, -0.4}});
+  map.rebuild(time::from_utime(1'000'010));
+  EXPECT_EQ(map.size(), 3u);  // two scans + one grid point
+  EXPECT_NEAR(map.clearance({0.0, 0.0}, 1.0), 0.4, 1e-9);
+}
+
+}  // namespace
+}  // namespace rgnav::collision_avoidance

@@ -1,0 +1,256 @@
+#include "lld/follower.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "trajectory/construct.h"
+#include "unicycle_plant.h"
+
+namespace rgnav::lld {
+namespace {
+
+using trajectory::Chain;
+using trajectory::Segment;
+
+constexpr double kDt = 0.05;  // 20 Hz
+
+FollowerOptions options()
+{
+  FollowerOptions o;
+  o.limits.v_max = 0.7;  // profiles at 85 %: ~0.6 m/s
+  o.limits.a_max = 0.5;
+  o.limits.a_lat_max = 0.5;
+  o.limits.omega_max = 1.2;
+  o.limits.alpha_max = 2.0;
+  o.feedforward_lead = 0.1;  // the plant's lag
+  return o;
+}
+
+trajectory::Trajectory make_trajectory(Chain chain, int64_t id)
+{
+  trajectory::Trajectory t;
+  t.id = id;
+  t.chain = std::move(chain);
+  t.a_max = 0.5;
+  t.omega_max = 1.2;
+  return t;
+}
+
+struct FollowRun
+{
+  double max_xtrack_last_half = 0.0;
+  double max_xtrack = 0.0;
+  double end_error = 0.0;
+  double time = 0.0;
+  double predicted = 0.0;
+  double max_dv = 0.0, max_dw = 0.0;
+  bool done = false;
+};
+
+// Follows `chain` from the robot pose `start` with the lagged unicycle.
+FollowRun follow(const Chain& chain, const geometry::Pose2& start, double v_max = 0.6)
+{
+  FollowerOptions o = options();
+  o.limits.v_max = v_max;
+  Follower f(o);
+  testing::UnicyclePlant plant;
+  plant.pose = start;
+  time::Time now = time::from_utime(1'000'000'000);
+  f.replace(make_plan(make_trajectory(chain, 1), o, 0.0), now);
+  FollowRun r;
+  r.predicted = f.plan()->profile.total_time();
+  VelocityCommand prev;
+  for (int i = 0; i < 2000; ++i) {
+    OdometryInput odo{plant.pose, plant.v, plant.omega, now};
+    const FollowerStatus& st = f.step(now, kDt, &odo);
+    f.refresh(1, now);
+    r.max_dv = std::max(r.max_dv, std::fabs(st.command.v - prev.v));
+    r.max_dw = std::max(r.max_dw, std::fabs(st.command.omega - prev.omega));
+    prev = st.command;
+    if (st.state == FollowerState::kTracking) {
+      r.max_xtrack = std::max(r.max_xtrack, std::fabs(st.cross_track));
+      if (st.progress > 0.5 * chain.length())
+        r.max_xtrack_last_half = std::max(r.max_xtrack_last_half, std::fabs(st.cross_track));
+    }
+    if (st.state == FollowerState::kDone) {
+      r.done = true;
+      r.time = i * kDt;
+      break;
+    }
+    plant.advance(st.command, kDt);
+    now += time::Duration(50'000);
+  }
+  r.end_error = (plant.pose.translation() - chain.end().translation()).norm();
+  return r;
+}
+
+TEST(Follower, ConvergesOnLineFromOffset)
+{
+  const Chain line({Segment::line(geometry::Pose2(0, 0, 0), 4.0)});
+  const FollowRun r = follow(line, geometry::Pose2(0.0, 0.15, -0.2));
+  EXPECT_TRUE(r.done);
+  EXPECT_GT(r.max_xtrack, 0.1);             // it did start off the path
+  EXPECT_LT(r.max_xtrack_last_half, 0.01);  // and converged
+  EXPECT_LT(r.end_error, 0.05);
+}
+
+TEST(Follower, ConvergesOnArcAndClothoid)
+{
+  Chain c;
+  c.push_back(Segment::clothoid(geometry::Pose2(0, 0, 0), 0.0, 1.0, 1.0));
+  c.append_at_end(Segment::arc({}, 1.0, 1.5));
+  c.append_at_end(Segment::clothoid({}, 1.0, 0.0, 1.0));
+  c.append_at_end(Segment::line({}, 1.5));
+  const FollowRun r = follow(c, geometry::Pose2(-0.05, -0.1, 0.15));
+  EXPECT_TRUE(r.done);
+  EXPECT_LT(r.max_xtrack_last_half, 0.02);
+  EXPECT_LT(r.end_error, 0.05);
+  // Traversal time as predicted by the profile (the lag adds a little at the start).
+  EXPECT_NEAR(r.time, r.predicted, 0.05 * r.predicted + 0.3);
+}
+
+TEST(Follower, LyapunovFunctionDecreasesWithoutLag)
+{
+  // Ideal unicycle (no lag, no saturation): V must not increase along the closed loop.
+  FollowerOptions o = options();
+  const Chain line({Segment::line(geometry::Pose2(0, 0, 0), 6.0)});
+  // Reference moving at constant v_r = 0.3 on the line, robot starting off it.
+  geometry::Pose2 robot(0.0, 0.2, 0.3);
+  double prev_v = INFINITY;
+  for (int i = 0; i < 400; ++i) {
+    const double t = i * 0.005;
+    const geometry::Pose2 ref(0.3 * t + 0.1, 0.0, 0.0);
+    const TrackingError e = tracking_error(ref, robot);
+    const double V = lyapunov(e, o.gains);
+    EXPECT_LE(V, prev_v + 1e-9) << i;
+    prev_v = V;
+    const VelocityCommand u = kanayama(e, 0.3, 0.0, o.gains);
+    robot = robot * geometry::Pose2(u.v * 0.005, 0, u.omega * 0.005);
+  }
+  EXPECT_LT(prev_v, 0.01);
+}
+
+TEST(Follower, TurnInPlaceThenDrive)
+{
+  Chain c;
+  c.push_back(Segment::turn(geometry::Pose2(0, 0, 0), M_PI / 2));
+  c.append_at_end(Segment::line({}, 1.0));
+  const FollowRun r = follow(c, geometry::Pose2(0, 0, 0));
+  EXPECT_TRUE(r.done);
+  EXPECT_LT(r.end_error, 0.05);
+}
+
+TEST(Follower, ReplacementWithoutVelocityJump)
+{
+  FollowerOptions o = options();
+  Follower f(o);
+  testing::UnicyclePlant plant;
+  time::Time now = time::from_utime(1'000'000'000);
+  f.replace(make_plan(make_trajectory(Chain({Segment::line({}, 5.0)}), 1), o, 0.0), now);
+  VelocityCommand prev;
+  double max_dv = 0, max_dw = 0, v_at_switch = 0;
+  for (int i = 0; i < 200; ++i) {
+    if (i == 60) {
+      // A new chain, veering left from where the robot is, at its current speed.
+      v_at_switch = f.last_command().v;
+      Chain c;
+      c.push_back(Segment::arc(plant.pose, 0.8, 1.0));
+      c.append_at_end(Segment::line({}, 1.0));
+      f.replace(make_plan(make_trajectory(c, 2), o, f.last_command().v), now);
+    }
+    OdometryInput odo{plant.pose, plant.v, plant.omega, now};
+    const FollowerStatus& st = f.step(now, kDt, &odo);
+    f.refresh(st.trajectory_id, now);
+    max_dv = std::max(max_dv, std::fabs(st.command.v - prev.v));
+    max_dw = std::max(max_dw, std::fabs(st.command.omega - prev.omega));
+    prev = st.command;
+    plant.advance(st.command, kDt);
+    now += time::Duration(50'000);
+  }
+  EXPECT_GT(v_at_switch, 0.3);  // replaced while driving
+  EXPECT_EQ(f.status().trajectory_id, 2);
+  EXPECT_LE(max_dv, o.limits.a_max * kDt + 1e-9);
+  EXPECT_LE(max_dw, o.limits.alpha_max * kDt + 1e-9);
+}
+
+TEST(Follower, StaleOdometryStopsWithinLimits)
+{
+  FollowerOptions o = options();
+  Follower f(o);
+  testing::UnicyclePlant plant;
+  time::Time now = time::from_utime(1'000'000'000);
+  f.replace(make_plan(make_trajectory(Chain({Segment::line({}, 8.0)}), 1), o, 0.0), now);
+  OdometryInput odo;
+  for (int i = 0; i < 60; ++i) {
+    odo = {plant.pose, plant.v, plant.omega, now};
+    f.step(now, kDt, &odo);
+    f.refresh(1, now);
+    plant.advance(f.last_command(), kDt);
+    now += time::Duration(50'000);
+  }
+  const double v0 = f.last_command().v;
+  ASSERT_GT(v0, 0.3);
+  // Odometry freezes at `odo`.
+  int steps = 0;
+  double prev = v0;
+  while (f.last_command().v > 0 && steps < 100) {
+    f.step(now, kDt, &odo);
+    f.refresh(1, now);
+    EXPECT_LE(prev - f.last_command().v, o.stop_decel * kDt + 1e-9);
+    prev = f.last_command().v;
+    now += time::Duration(50'000);
+    ++steps;
+  }
+  EXPECT_EQ(f.last_command().v, 0.0);
+  EXPECT_EQ(f.status().stop_reason, StopReason::kStaleOdometry);
+  // Stopped within the timeout plus the braking time at stop_decel.
+  // (the command may still grow during the timeout itself)
+  EXPECT_LE(steps * kDt, o.odometry_timeout + (v0 + o.limits.a_max * o.odometry_timeout) / o.stop_decel + 2 * kDt);
+}
+
+TEST(Follower, StaleTrajectoryStops)
+{
+  FollowerOptions o = options();
+  Follower f(o);
+  testing::UnicyclePlant plant;
+  time::Time now = time::from_utime(1'000'000'000);
+  f.replace(make_plan(make_trajectory(Chain({Segment::line({}, 20.0)}), 1), o, 0.0), now);
+  bool stopped = false;
+  for (int i = 0; i < 200 && !stopped; ++i) {  // never refreshed
+    OdometryInput odo{plant.pose, plant.v, plant.omega, now};
+    f.step(now, kDt, &odo);
+    plant.advance(f.last_command(), kDt);
+    now += time::Duration(50'000);
+    stopped = f.status().stop_reason == StopReason::kStaleTrajectory && f.last_command().v == 0.0;
+  }
+  EXPECT_TRUE(stopped);
+  EXPECT_LT(plant.pose.x(), 20.0);
+}
+
+TEST(Follower, EmptyTrajectoryCancels)
+{
+  FollowerOptions o = options();
+  Follower f(o);
+  testing::UnicyclePlant plant;
+  time::Time now = time::from_utime(1'000'000'000);
+  f.replace(make_plan(make_trajectory(Chain({Segment::line({}, 20.0)}), 1), o, 0.0), now);
+  for (int i = 0; i < 40; ++i) {
+    OdometryInput odo{plant.pose, plant.v, plant.omega, now};
+    f.step(now, kDt, &odo);
+    plant.advance(f.last_command(), kDt);
+    now += time::Duration(50'000);
+  }
+  ASSERT_GT(f.last_command().v, 0.2);
+  f.replace(make_plan(make_trajectory(Chain(), 2), o, 0.0), now);
+  for (int i = 0; i < 40; ++i) {
+    OdometryInput odo{plant.pose, plant.v, plant.omega, now};
+    f.step(now, kDt, &odo);
+    now += time::Duration(50'000);
+  }
+  EXPECT_EQ(f.last_command().v, 0.0);
+  EXPECT_EQ(f.status().state, FollowerState::kIdle);
+}
+
+}  // namespace
+}  // namespace rgnav::lld

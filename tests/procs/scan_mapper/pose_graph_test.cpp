@@ -1,0 +1,101 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "scan_mapper/pose_graph.h"
+
+namespace sm = rgnav::scan_mapper;
+
+namespace {
+
+// A square loop of 4 x 10 steps of 0.5 m with a 90 deg turn at each corner.
+std::vector<sm::Pose2> square_loop()
+{
+  std::vector<sm::Pose2> poses{{0, 0, 0}};
+  for (int side = 0; side < 4; ++side) {
+    for (int k = 0; k < 10; ++k) poses.push_back(poses.back() * sm::Pose2{0.5, 0, 0});
+    poses.back() = poses.back() * sm::Pose2{0, 0, M_PI / 2};
+  }
+  return poses;
+}
+
+Eigen::Matrix3d info(double st, double sr) { return Eigen::Vector3d(1 / (st * st), 1 / (st * st), 1 / (sr * sr)).asDiagonal(); }
+
+struct Built
+{
+  sm::PoseGraph graph;
+  std::vector<sm::Pose2> truth;
+  double initial_end_error = 0.0;
+};
+
+Built build(bool with_closure, bool with_false_closure)
+{
+  Built b;
+  b.truth = square_loop();
+  std::mt19937 rng(42);
+  std::normal_distribution<double> nt(0.0, 0.02), nr(0.0, 0.01);
+  b.graph.add_node(b.truth[0]);
+  for (size_t i = 1; i < b.truth.size(); ++i) {
+    const sm::Pose2 z = sm::between(b.truth[i - 1], b.truth[i]) * sm::Pose2{nt(rng), nt(rng), nr(rng) + 0.01};  // biased
+    b.graph.add_node(b.graph.pose(static_cast<int>(i) - 1) * z);
+    b.graph.add_edge({static_cast<int>(i) - 1, static_cast<int>(i), z, info(0.02, 0.01), false});
+  }
+  const int last = static_cast<int>(b.truth.size()) - 1;
+  b.initial_end_error = std::hypot(b.graph.pose(last).x - b.truth[last].x, b.graph.pose(last).y - b.truth[last].y);
+  if (with_closure) b.graph.add_edge({0, last, sm::between(b.truth[0], b.truth[last]), info(0.01, 0.005), true});
+  if (with_false_closure)  // claims node 15 sits on node 35 (they are 5 m apart)
+    b.graph.add_edge({15, 35, sm::Pose2{0.1, 0.0, 0.0}, info(0.01, 0.005), true});
+  return b;
+}
+
+double max_error(const sm::PoseGraph& g, const std::vector<sm::Pose2>& truth)
+{
+  double e = 0;
+  for (size_t i = 0; i < truth.size(); ++i)
+    e = std::max(e, std::hypot(g.pose(static_cast<int>(i)).x - truth[i].x, g.pose(static_cast<int>(i)).y - truth[i].y));
+  return e;
+}
+
+}  // namespace
+
+TEST(PoseGraph, EdgeErrorIsZeroForConsistentPoses)
+{
+  const sm::Pose2 a{1, 2, 0.3}, b{2, 1, -0.4};
+  EXPECT_LT(sm::edge_error(a, b, sm::between(a, b)).norm(), 1e-12);
+}
+
+TEST(PoseGraph, LoopClosureRemovesAccumulatedDrift)
+{
+  auto b = build(true, false);
+  ASSERT_GT(b.initial_end_error, 0.3);  // the bias made real drift
+  const auto sum = b.graph.optimize({});
+  EXPECT_LT(sum.final_cost, sum.initial_cost);
+  // The bias cannot be undone exactly from one closure; the error must shrink a lot.
+  EXPECT_LT(max_error(b.graph, b.truth), 0.3 * b.initial_end_error);
+  const int last = static_cast<int>(b.truth.size()) - 1;
+  EXPECT_LT(std::hypot(b.graph.pose(last).x, b.graph.pose(last).y), 0.03);
+  EXPECT_EQ(b.graph.pose(0).x, 0.0);  // the origin is fixed
+}
+
+TEST(PoseGraph, RobustKernelLimitsAFalseClosure)
+{
+  sm::OptimizerOptions robust;
+  sm::OptimizerOptions plain = robust;
+  plain.robust_scale = 1e6;  // effectively no kernel
+  auto with_kernel = build(true, true);
+  auto without = build(true, true);
+  with_kernel.graph.optimize(robust);
+  without.graph.optimize(plain);
+  const double e_robust = max_error(with_kernel.graph, with_kernel.truth);
+  const double e_plain = max_error(without.graph, without.truth);
+  EXPECT_GT(e_plain, 1.0);              // the false closure folds the square
+  EXPECT_LT(e_robust, 0.5 * e_plain);   // the kernel keeps it mostly in shape
+  const auto& false_edge = with_kernel.graph.edges().back();
+  EXPECT_LT(with_kernel.graph.edge_weight(false_edge, robust), 0.1);
+
+  sm::OptimizerOptions cauchy = robust;
+  cauchy.kernel = sm::RobustKernel::kCauchy;
+  auto c = build(true, true);
+  c.graph.optimize(cauchy);
+  EXPECT_LT(max_error(c.graph, c.truth), e_plain);
+}

@@ -1,0 +1,226 @@
+// The mapping library end to end on a synthetic run: drifting odometry, scans of a known
+// world; plus odometry interpolation, options validation and state persistence.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "config/config.h"
+#include "scan_mapper/mapper_state_io.h"
+#include "scan_mapper/odometry_buffer.h"
+#include "scan_mapper/relations_metric.h"
+#include "scan_mapper/scan_mapper.h"
+#include "synthetic_world.h"
+
+namespace sm = rgnav::scan_mapper;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct SyntheticRun
+{
+  std::vector<sm::Pose2> truth;   // per scan
+  std::vector<sm::Pose2> odom;    // drifting odometry per scan
+  std::vector<sm::Scan> scans;
+};
+
+// Drives a loop through the synthetic office twice with biased odometry (2 % scale, 1 deg/m).
+SyntheticRun make_run()
+{
+  SyntheticRun r;
+  std::mt19937 rng(1);
+  const auto world = sm::testing::office_world();
+  sm::testing::LaserModel m;
+  m.noise_m = 0.01;
+  const std::vector<Eigen::Vector2d> waypoints = {{1, 0}, {10, 0}, {10, 4}, {1, 4.5}, {1, 0}};
+  sm::Pose2 truth{1, 0, 0}, odom{1, 0, 0};
+  int64_t t = 1'000'000, id = 0;
+  for (int lap = 0; lap < 2; ++lap)
+    for (size_t w = 1; w < waypoints.size(); ++w) {
+      const Eigen::Vector2d goal = waypoints[w];
+      for (int guard = 0; guard < 500; ++guard) {
+        const Eigen::Vector2d d = goal - Eigen::Vector2d(truth.x, truth.y);
+        if (d.norm() < 0.05) break;
+        const double heading = std::atan2(d.y(), d.x());
+        const double turn = sm::normalize_angle(heading - truth.theta);
+        const sm::Pose2 step = std::fabs(turn) > 0.05 ? sm::Pose2{0, 0, std::clamp(turn, -0.1, 0.1)}
+                                                      : sm::Pose2{std::min(0.05, d.norm()), 0, turn};
+        truth = truth * step;
+        // Odometry: scale and heading bias.
+        odom = odom * sm::Pose2{step.x * 1.02, 0, step.theta * 1.01 + step.x * (M_PI / 180)};
+        t += 50'000;
+        r.truth.push_back(truth);
+        r.odom.push_back(odom);
+        r.scans.push_back(sm::testing::cast_scan(world, truth, m, &rng, ++id, t));
+      }
+    }
+  return r;
+}
+
+sm::ScanMapperOptions test_options()
+{
+  sm::ScanMapperOptions o;
+  o.base_from_laser = sm::Pose2{};
+  return o;
+}
+
+}  // namespace
+
+TEST(OdometryBuffer, InterpolatesAndHoldsBriefly)
+{
+  sm::OdometryBuffer b;
+  b.add({1000, {0, 0, 0}});
+  b.add({2000, {1, 0, 0.2}});
+  b.add({2000, {1.1, 0, 0.2}});  // same time: the later one wins
+  b.add({1500, {9, 9, 9}});      // older than the newest: ignored
+  EXPECT_FALSE(b.at(999, 0).has_value());
+  EXPECT_NEAR(b.at(1500, 0)->x, 0.55, 1e-12);
+  EXPECT_NEAR(b.at(1500, 0)->theta, 0.1, 1e-12);
+  EXPECT_NEAR(b.at(2000, 0)->x, 1.1, 1e-12);
+  EXPECT_TRUE(b.at(2050, 100).has_value());
+  EXPECT_FALSE(b.at(2200, 100).has_value());
+}
+
+TEST(ScanMapperOptions, LoadsAndRejectsBadValues)
+{
+  const auto ok = rgnav::config::Config::parse("scan_mapper:\n  gating:\n    min_travel_m: 0.3\n", "test");
+  EXPECT_DOUBLE_EQ(sm::load_scan_mapper_options(ok.section("scan_mapper")).min_travel_m, 0.3);
+  const auto bad = rgnav::config::Config::parse("scan_mapper:\n  gating:\n    min_travel_m: -1\n", "test");
+  EXPECT_THROW(sm::load_scan_mapper_options(bad.section("scan_mapper")), rgnav::config::ConfigError);
+  const auto typo = rgnav::config::Config::parse("scan_mapper:\n  gating:\n    min_travle_m: 0.3\n", "test");
+  sm::load_scan_mapper_options(typo.section("scan_mapper"));
+  EXPECT_THROW(typo.finish(), rgnav::config::ConfigError);
+  // The shipped config is valid and complete.
+  const auto shipped = rgnav::config::Config::load(std::string(RGNAV_SOURCE_DIR) + "/config/scan_mapper.yaml");
+  sm::load_scan_mapper_options(shipped.section("scan_mapper"));
+}
+
+TEST(ScanMapper, GatesCorrectsDriftAndClosesTheLoop)
+{
+  const SyntheticRun run = make_run();
+  sm::ScanMapper mapper(test_options());
+  std::vector<int> accepted_index;  // run index of every node
+  int corrections = 0;
+  for (size_t i = 0; i < run.scans.size(); ++i) {
+    mapper.add_odometry({run.scans[i].utime, run.odom[i]});
+    const auto up = mapper.add_scan(run.scans[i]);
+    if (up.accepted) accepted_index.push_back(static_cast<int>(i));
+    corrections += static_cast<int>(up.corrected.size());
+  }
+  const auto& nodes = mapper.nodes();
+  ASSERT_EQ(nodes.size(), accepted_index.size());
+  EXPECT_LT(nodes.size(), run.scans.size() / 2);  // gating dropped most scans
+  EXPECT_GT(nodes.size(), 50u);
+  EXPECT_GE(mapper.stats().loop_closures, 1);
+  EXPECT_GT(corrections, 0);
+  // Accuracy against the truth (the map frame = odometry frame at the first scan = truth there).
+  std::vector<sm::Pose2> est, ref;
+  std::vector<sm::TimedPose> timed;
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    est.push_back(nodes[k].map_from_base);
+    ref.push_back(run.truth[static_cast<size_t>(accepted_index[k])]);
+    timed.push_back({nodes[k].scan.utime, ref.back()});
+  }
+  const auto err = sm::relation_error(est, ref, sm::select_relations(timed));
+  EXPECT_LT(err.trans_mean_m, 0.02);
+  EXPECT_LT(err.rot_mean_deg, 0.4);
+  EXPECT_LT(sm::ate_rmse(est, ref), 0.05);
+  // Raw odometry is far off by the end: the mapper did real work.
+  EXPECT_GT(std::hypot(run.odom.back().x - run.truth.back().x, run.odom.back().y - run.truth.back().y), 0.5);
+}
+
+TEST(ScanMapper, IsDeterministic)
+{
+  const SyntheticRun run = make_run();
+  auto once = [&] {
+    sm::ScanMapper mapper(test_options());
+    for (size_t i = 0; i < run.scans.size(); ++i) {
+      mapper.add_odometry({run.scans[i].utime, run.odom[i]});
+      mapper.add_scan(run.scans[i]);
+    }
+    return mapper.nodes();
+  };
+  const auto a = once(), b = once();
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].map_from_base.x, b[k].map_from_base.x);
+    EXPECT_EQ(a[k].map_from_base.theta, b[k].map_from_base.theta);
+  }
+}
+
+TEST(ScanMapper, ScansWithoutOdometryAreCountedNotUsed)
+{
+  sm::ScanMapper mapper(test_options());
+  const SyntheticRun run = make_run();
+  EXPECT_FALSE(mapper.add_scan(run.scans[0]).accepted);
+  EXPECT_EQ(mapper.stats().no_odometry, 1);
+}
+
+TEST(MapperState, SaveLoadRoundTripAndResume)
+{
+  const SyntheticRun run = make_run();
+  const size_t half = run.scans.size() / 2;
+  sm::ScanMapper first(test_options());
+  for (size_t i = 0; i < half; ++i) {
+    first.add_odometry({run.scans[i].utime, run.odom[i]});
+    first.add_scan(run.scans[i]);
+  }
+  const auto dir = fs::temp_directory_path() / ("rgnav_sm_state_" + std::to_string(::getpid()));
+  const auto path = (dir / "state.bin").string();
+  sm::save_state(first.state(), path);
+  EXPECT_FALSE(fs::exists(path + ".tmp"));
+  const auto loaded = sm::load_state(path);
+  ASSERT_TRUE(loaded.has_value());
+  ASSERT_EQ(loaded->nodes.size(), first.nodes().size());
+  ASSERT_EQ(loaded->edges.size(), first.graph().edges().size());
+  EXPECT_EQ(loaded->nodes.back().scan.ranges, first.nodes().back().scan.ranges);
+  EXPECT_EQ(loaded->nodes.back().map_from_base.x, first.nodes().back().map_from_base.x);
+
+  // Resume with an odometry origin that moved (driver restarted): the first scan relocalises.
+  sm::ScanMapper resumed(test_options(), *loaded);
+  const sm::Pose2 new_origin_from_old = sm::Pose2{5, -3, 1.0}.inverse();
+  for (size_t i = half; i < run.scans.size(); ++i) {
+    resumed.add_odometry({run.scans[i].utime, new_origin_from_old * run.odom[i]});
+    resumed.add_scan(run.scans[i]);
+  }
+  ASSERT_GT(resumed.nodes().size(), loaded->nodes.size() + 10);
+  // Every resumed node is still in the map frame of the first run (truth = map frame).
+  size_t j = half;
+  for (size_t k = loaded->nodes.size(); k < resumed.nodes().size(); ++k) {
+    const auto& n = resumed.nodes()[k];
+    while (run.scans[j].scan_id != n.scan.scan_id) ++j;
+    EXPECT_LT(std::hypot(n.map_from_base.x - run.truth[j].x, n.map_from_base.y - run.truth[j].y), 0.15) << k;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(MapperState, DamagedFilesAreRefused)
+{
+  const auto dir = fs::temp_directory_path() / ("rgnav_sm_state_bad_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  EXPECT_FALSE(sm::load_state((dir / "missing.bin").string()).has_value());
+  const SyntheticRun run = make_run();
+  sm::ScanMapper m(test_options());
+  for (size_t i = 0; i < 60; ++i) {
+    m.add_odometry({run.scans[i].utime, run.odom[i]});
+    m.add_scan(run.scans[i]);
+  }
+  const auto path = (dir / "state.bin").string();
+  sm::save_state(m.state(), path);
+  const auto size = fs::file_size(path);
+  fs::copy_file(path, dir / "cut.bin");
+  fs::resize_file(dir / "cut.bin", size - 10);
+  EXPECT_THROW(sm::load_state((dir / "cut.bin").string()), std::runtime_error);
+  fs::copy_file(path, dir / "flip.bin");
+  {
+    std::fstream f(dir / "flip.bin", std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(size / 2));
+    f.put('\x5a');
+  }
+  EXPECT_THROW(sm::load_state((dir / "flip.bin").string()), std::runtime_error);
+  std::ofstream(dir / "junk.bin") << "not a state file at all, but long enough to have a header";
+  EXPECT_THROW(sm::load_state((dir / "junk.bin").string()), std::runtime_error);
+  fs::remove_all(dir);
+}
