@@ -1,13 +1,15 @@
 #include "persist/journal.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
+#include <thread>
+#include <chrono>
 
 #include "persist/atomic_file.h"
 
@@ -35,10 +37,29 @@ Journal::Journal(std::string path, bool fsync_each) : path_(std::move(path)), fs
 {
   const auto p = std::filesystem::path(path_);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw std::runtime_error(path_ + ": cannot open journal: " + std::strerror(errno));
+  // One writer only: a previous instance that is still dying (SIGSTOP, then SIGTERM/SIGKILL
+  // from the supervisor) must not append while this one reads and truncates.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+  while (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    if (errno != EWOULDBLOCK || std::chrono::steady_clock::now() > deadline) {
+      ::close(fd_);
+      throw std::runtime_error(path_ + ": journal is locked by another live instance");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
   std::string data;
   {
-    std::ifstream in(path_, std::ios::binary);
-    if (in) data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    char buf[65536];
+    off_t off = 0;
+    for (;;) {
+      const ssize_t n = ::pread(fd_, buf, sizeof buf, off);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      data.append(buf, static_cast<size_t>(n));
+      off += n;
+    }
   }
   size_t pos = 0;
   while (pos < data.size()) {
@@ -63,8 +84,6 @@ Journal::Journal(std::string path, bool fsync_each) : path_(std::move(path)), fs
     recovered_.push_back({tag, std::move(bytes)});
     pos += kHeader + len;
   }
-  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error(path_ + ": cannot open journal: " + std::strerror(errno));
   // Cut off a damaged tail so new records follow the last good one.
   if (::ftruncate(fd_, static_cast<off_t>(pos)) != 0 || ::lseek(fd_, static_cast<off_t>(pos), SEEK_SET) < 0)
     throw std::runtime_error(path_ + ": cannot truncate damaged tail: " + std::strerror(errno));

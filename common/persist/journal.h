@@ -19,8 +19,9 @@ struct JournalRecord
 class Journal
 {
  public:
-  // Opens (creating if needed) and reads every intact record; a damaged tail is truncated
-  // away and described in damage().
+  // Opens (creating if needed), takes an exclusive lock (waiting up to 3 s for a dying
+  // previous owner; throws std::runtime_error if it stays locked), and reads every intact
+  // record; a damaged tail is truncated away and described in damage().
   explicit Journal(std::string path, bool fsync_each = true);
   ~Journal();
   Journal(const Journal&) = delete;

@@ -26,7 +26,8 @@ BusObserver::BusObserver(const std::string& url, const std::string& host, const 
         t.pid = hb.pid;
         t.last = now;
         t.dropped = hb.messages_dropped;
-        hb_log_.push_back({now, {hb.name, hb.pid}});
+        t.messages_in = hb.messages_in;
+        hb_log_.push_back({now, hb.name, hb.pid, hb.messages_in});
       },
       &drops_);
   bus::subscribe<supervisor_status_t>(
@@ -133,8 +134,15 @@ std::optional<Clock::time_point> BusObserver::first_status(const std::string& na
 
 std::optional<Clock::time_point> BusObserver::first_heartbeat_new_pid(const std::string& name, int old_pid, Clock::time_point t) const
 {
-  for (const auto& [when, np] : hb_log_)
-    if (when >= t && np.first == name && np.second != old_pid) return when;
+  for (const auto& h : hb_log_)
+    if (h.when >= t && h.name == name && h.pid != old_pid) return h.when;
+  return std::nullopt;
+}
+
+std::optional<Clock::time_point> BusObserver::first_heartbeat_with_input(const std::string& name, int pid, Clock::time_point t) const
+{
+  for (const auto& h : hb_log_)
+    if (h.when >= t && h.name == name && h.pid == pid && h.messages_in > 0) return h.when;
   return std::nullopt;
 }
 

@@ -27,6 +27,7 @@ struct HeartbeatTrack
   Clock::time_point last{};
   std::chrono::milliseconds max_gap{0};  // since reset_gaps()
   int64_t dropped = 0;                   // messages_dropped of the newest heartbeat
+  int64_t messages_in = 0;               // accepted inputs of the newest heartbeat
 };
 
 struct StatusSample
@@ -67,6 +68,8 @@ class BusObserver
                                                 const std::function<bool(const process_status_t&)>& pred) const;
   // First heartbeat of `name` from a pid other than old_pid at or after t.
   std::optional<Clock::time_point> first_heartbeat_new_pid(const std::string& name, int old_pid, Clock::time_point t) const;
+  // First heartbeat of `name`, pid `pid`, at or after t that counts accepted inputs (its live input began).
+  std::optional<Clock::time_point> first_heartbeat_with_input(const std::string& name, int pid, Clock::time_point t) const;
 
   // Newest state counter a probe published, and its first value at or after t.
   std::optional<int64_t> state(const std::string& name) const;
@@ -111,7 +114,14 @@ class BusObserver
   bus::DropCounter drops_;
   std::string host_;
   std::map<std::string, HeartbeatTrack> hb_;
-  std::vector<std::pair<Clock::time_point, std::pair<std::string, int>>> hb_log_;  // (when, (name, pid))
+  struct HeartbeatSample
+  {
+    Clock::time_point when;
+    std::string name;
+    int pid = 0;
+    int64_t messages_in = 0;
+  };
+  std::vector<HeartbeatSample> hb_log_;
   std::vector<StatusSample> status_log_;
   supervisor_status_t last_status_;
   bool have_status_ = false;

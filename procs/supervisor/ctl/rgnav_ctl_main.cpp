@@ -46,6 +46,7 @@ class Controller
   {
     rgnav::supervisor_order_t o;
     o.utime = rgnav::time::wall_utime();
+    last_order_utime_ = o.utime;
     o.order_id = ++next_id_;
     o.host = host;
     o.order = order;
@@ -83,14 +84,17 @@ class Controller
     return false;
   }
 
-  bool wait_for(const std::string& target, const std::string& want, std::chrono::milliseconds timeout)
+  // Statuses sent at or after `since` (wall us; take it before sending the order: a deputy may
+  // act and report, even exit, while the order is still being repeated).
+  bool wait_for(const std::string& target, const std::string& want, std::chrono::milliseconds timeout, int64_t since = -1)
   {
-    const int64_t since = rgnav::time::wall_utime();
+    if (since < 0) since = last_order_utime_ > 0 ? last_order_utime_ : rgnav::time::wall_utime();
     const auto until = Clock::now() + timeout;
     while (Clock::now() < until) {
       spin(std::chrono::milliseconds(50));
       int matched = 0, ok = 0;
       for (const auto& [h, s] : fresh(since)) {
+        if (!host_filter_.empty() && h != host_filter_) continue;  // orders went to that deputy only
         for (const auto& p : s.processes) {
           if (!matches(p, target)) continue;
           // A process not built (launched with --skip-missing) cannot run: not waited for.
@@ -113,6 +117,10 @@ class Controller
   rgnav::bus::DropCounter drops_;
   std::string orders_channel_;
   int64_t next_id_ = 0;
+  int64_t last_order_utime_ = 0;
+
+ public:
+  std::string host_filter_;
   std::map<std::string, rgnav::supervisor_status_t> status_;
 };
 
@@ -166,6 +174,7 @@ int main(int argc, char** argv)
 
   try {
     Controller ctl(url, status_channel, orders_channel);
+    ctl.host_filter_ = host;
     if (status->parsed()) {
       if (once) {
         ctl.spin(std::chrono::milliseconds(static_cast<int64_t>(listen_s * 1000)));
@@ -179,16 +188,18 @@ int main(int argc, char** argv)
     }
     for (const auto& [name, sub] : order_apps) {
       if (!sub->parsed()) continue;
+      const int64_t since = rgnav::time::wall_utime();
       ctl.send(order_cmds[name], target == "everything" ? "" : target, host);
       if (!wait) return 0;
-      const bool ok = ctl.wait_for(target, name == "stop" ? "stopped" : "running", std::chrono::milliseconds(timeout_ms));
+      const bool ok = ctl.wait_for(target, name == "stop" ? "stopped" : "running", std::chrono::milliseconds(timeout_ms), since);
       if (!ok) std::cerr << "timed out waiting for " << target << "\n";
       return ok ? 0 : 1;
     }
     if (shutdown->parsed()) {
+      const int64_t since = rgnav::time::wall_utime();
       ctl.send(rgnav::supervisor_order_t::ORDER_SHUTDOWN, "", host);
       if (!wait) return 0;
-      return ctl.wait_for("", "stopped", std::chrono::milliseconds(timeout_ms)) ? 0 : 1;
+      return ctl.wait_for("", "stopped", std::chrono::milliseconds(timeout_ms), since) ? 0 : 1;
     }
     if (script->parsed()) {
       const auto config = sup::parse_launch_file(launch_path);

@@ -198,15 +198,27 @@ TEST(Journal, CorruptRecordCutsTheTailAndIsReported)
     f.seekp(16 + 5 + 16 + 2);  // inside the payload of "second"
     f.put('#');
   }
-  persist::Journal j(d + "/j", false);
-  ASSERT_EQ(j.recovered().size(), 1u);
-  EXPECT_EQ(j.recovered()[0].bytes, "first");
-  EXPECT_NE(j.damage().find("CRC"), std::string::npos);
-  j.append(3, "fourth");
+  {
+    persist::Journal j(d + "/j", false);
+    ASSERT_EQ(j.recovered().size(), 1u);
+    EXPECT_EQ(j.recovered()[0].bytes, "first");
+    EXPECT_NE(j.damage().find("CRC"), std::string::npos);
+    j.append(3, "fourth");
+  }
   persist::Journal again(d + "/j", false);
   ASSERT_EQ(again.recovered().size(), 2u);
   EXPECT_EQ(again.recovered()[1].bytes, "fourth");
   EXPECT_TRUE(again.damage().empty());
+}
+
+TEST(Journal, OneWriterAtATime)
+{
+  const std::string d = fresh_dir("lock");
+  persist::Journal first(d + "/j", false);
+  first.append(1, "a");
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_THROW(persist::Journal(d + "/j", false), std::runtime_error);
+  EXPECT_GE(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));  // it waited for the owner
 }
 
 }  // namespace
