@@ -396,12 +396,23 @@ class Harness
         ok = false;
         row.note += "; no odometry from the restarted base driver";
       } else {
-        row.drive_zero_ms = ms_between(t0, first->when);
-        if (!first->zero()) {
-          ok = false;
-          row.note += "; the restarted base driver found the drives moving";
-        } else {
+        if (first->zero()) {
+          row.drive_zero_ms = ms_between(t0, first->when);
           row.note += "; drives at rest when the base driver came back";
+        } else {
+          // Back before they could stop: they must be braking at least at the configured rate.
+          const double braking_s = std::max(0.0, ms_between(t0, first->when) - o_.stop_bound.count()) / 1000.0;
+          const double v_max = std::max(0.0, std::fabs(at_fault->v) - decel_v_ * braking_s) + 0.02;
+          const double w_max = std::max(0.0, std::fabs(at_fault->omega) - decel_w_ * braking_s) + 0.05;
+          char buf[200];
+          std::snprintf(buf, sizeof buf, "; back after %.0f ms, drives still braking: v %.2f->%.2f m/s, w %.2f->%.2f rad/s",
+                        ms_between(t0, first->when), std::fabs(at_fault->v), std::fabs(first->v), std::fabs(at_fault->omega),
+                        std::fabs(first->omega));
+          row.note += buf;
+          if (std::fabs(first->v) > v_max || std::fabs(first->omega) > w_max) {
+            ok = false;
+            row.note += " (slower than the configured deceleration)";
+          }
         }
       }
     } else {
