@@ -63,7 +63,7 @@ while :; do
   if ! kill -0 "$sup" 2>/dev/null; then echo "demo: the supervisor stopped; see $run/supervisor.log" >&2; exit 1; fi
   table=$(ctl status --once 2>/dev/null || true)
   line=$(grep -E '^ +tour_runner ' <<<"$table" || true)
-  state=$(awk '{print $2}' <<<"$line")
+  state=$(grep -oE '\b(stopped|starting|running|HUNG|backoff|FAILED|stopping)\b' <<<"$line" | head -1 || true)
   reached=$(grep -o 'target [0-9]*/[0-9]*' "$run/supervisor.log" 2>/dev/null | tail -1 || true)
   printf 'demo: %4ds  tour_runner %-8s %s\n' "$(( $(date +%s) - start ))" "${state:-?}" "$reached" >&2
   if [[ "$state" == stopped || "$state" == FAILED ]]; then break; fi

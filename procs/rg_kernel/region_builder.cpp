@@ -203,6 +203,8 @@ void RegionBuilder::fill_region(rgmap::Region* region, const Vector2d& lo, const
   // The bitmap is aligned with the region frame's cell grid, so cell (x, y) maps exactly.
   const int32_t x0 = static_cast<int32_t>(std::floor(lo.x() / res)), y0 = static_cast<int32_t>(std::floor(lo.y() / res));
   const int32_t x1 = static_cast<int32_t>(std::floor(hi.x() / res)), y1 = static_cast<int32_t>(std::floor(hi.y() / res));
+  // Bounded: at most 2000 x 2000 cells (300 m at 15 cm); a larger box means bad input.
+  if (static_cast<int64_t>(x1) - x0 >= 2000 || static_cast<int64_t>(y1) - y0 >= 2000) return;
   rgmap::FreespaceBitmap fs(res, geometry::Pose2(x0 * res, y0 * res, 0.0), x1 - x0 + 1, y1 - y0 + 1);
   for (const auto& [x, y] : cells) fs.set_free(x - x0, y - y0, true);
   region->freespace = std::move(fs);

@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
+
 namespace rgnav::rg_kernel {
 
 using Eigen::Vector2d;
@@ -41,6 +43,14 @@ void RgKernel::enter(int64_t region_id, int64_t utime)
 
 bool RgKernel::add_scan(const ScanInput& s)
 {
+  // A pose beyond any building (a corrupted or hostile input that is still finite) would make
+  // the region's grids absurdly large: such a scan is refused, never stored or journaled twice.
+  constexpr double kMaxCoordinate = 1e5;  // [m]
+  if (std::fabs(s.map_from_base.x()) > kMaxCoordinate || std::fabs(s.map_from_base.y()) > kMaxCoordinate ||
+      std::fabs(s.base_from_laser.x()) > 10 || std::fabs(s.base_from_laser.y()) > 10) {
+    spdlog::warn("scan {} refused: pose outside +-{} m", s.scan_id, kMaxCoordinate);
+    return false;
+  }
   map_.utime = std::max(map_.utime, s.utime);
   auto known = region_of_scan_.find(s.scan_id);
   if (known != region_of_scan_.end()) {

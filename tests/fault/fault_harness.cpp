@@ -651,6 +651,8 @@ class Harness
       if (!det) row.note += "; not detected";
       else if (*row.detect_ms > detect_bound) row.note += "; detected later than " + std::to_string(static_cast<int>(detect_bound)) + " ms";
       if (!back) row.note += "; not restarted";
+      else if (!row.restart_ms || *row.restart_ms > o_.restart_bound.count())
+        row.note += "; running again later than the " + std::to_string(o_.restart_bound.count()) + " ms bound";
       const auto t_new = obs_->first_status(name, t0, [&](const process_status_t& p) { return p.pid != 0 && p.pid != old_pid; });
       measure_drive(c, t0, back ? std::optional<Clock::time_point>(t0 + std::chrono::microseconds(static_cast<int64_t>(*row.restart_ms * 1000))) : std::nullopt, row);
       if (t_new) check_restart_state(name, t0, *t_new, log_offset, in_before, row);

@@ -128,6 +128,18 @@ TEST(RgKernel, CorrectedScanIsReplacedNotDuplicated)
   EXPECT_EQ(d.kernel.stats().raw_points, before.raw_points);
 }
 
+TEST(RgKernel, AbsurdPoseRefused)
+{
+  Drive d;
+  ScanInput s;
+  s.scan_id = 9;
+  s.utime = 5;
+  s.map_from_base = geometry::Pose2(1e9, 0, 0);  // finite, so it passes the wire checks
+  s.laser_points = {Vector2d(1, 0), Vector2d(1, 0.1)};
+  EXPECT_FALSE(d.kernel.add_scan(s));
+  EXPECT_EQ(d.kernel.map().regions().size(), 0u);
+}
+
 TEST(RgKernel, SameInputsSameMap)
 {
   auto run = [] {
