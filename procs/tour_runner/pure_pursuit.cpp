@@ -53,6 +53,7 @@ Command pursue(const PursuitOptions& o, const geometry::Pose2& odom_from_base, c
       }
     }
     c.omega = std::isfinite(best_cost) ? std::clamp(1.5 * best, -o.max_omega, o.max_omega) : 0.0;
+    if (std::isfinite(best_cost)) c.escape_heading = best;
     return c;
   }
 
@@ -63,6 +64,23 @@ Command pursue(const PursuitOptions& o, const geometry::Pose2& odom_from_base, c
     v *= std::clamp((free_ahead - o.stop_distance) / (o.slow_distance - o.stop_distance), 0.1, 1.0);
   c.v = v;
   if (dist > 1e-6) c.omega = std::clamp(v * 2.0 * t.y() / (dist * dist) + 0.5 * heading_error, -o.max_omega, o.max_omega);
+  return c;
+}
+
+Command escape(const PursuitOptions& o, double heading_error, const std::vector<Eigen::Vector2d>& obstacles_in_base)
+{
+  Command c;
+  if (std::fabs(heading_error) > 0.15) {
+    c.omega = std::clamp(1.5 * heading_error, -o.max_omega, o.max_omega);
+    return c;
+  }
+  const double free_ahead = free_distance(obstacles_in_base, 0.0, o.robot_radius + 0.05);
+  if (free_ahead <= o.stop_distance) {
+    c.blocked = true;
+    return c;
+  }
+  c.v = std::min(0.2, o.max_v);
+  c.omega = std::clamp(1.5 * heading_error, -o.max_omega, o.max_omega);
   return c;
 }
 

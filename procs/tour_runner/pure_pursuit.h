@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <vector>
 
 #include "geometry/pose2.h"
@@ -27,10 +28,17 @@ struct Command
   double v = 0;
   double omega = 0;
   bool blocked = false;   // stopped by an obstacle
+  // When blocked: the free heading (base frame, rad) closest to the target, NaN if none.
+  double escape_heading = std::numeric_limits<double>::quiet_NaN();
 };
 
 // obstacles: laser end points in the base frame.
 Command pursue(const PursuitOptions& o, const geometry::Pose2& odom_from_base, const Eigen::Vector2d& odom_target,
                const std::vector<Eigen::Vector2d>& obstacles_in_base);
+
+// Leaving a blocked spot: turn to `heading_error` (the committed free heading relative to the
+// robot's), then creep along it while it stays free. Committing to that heading for a short
+// distance is what keeps the follower from turning back into the obstacle at once.
+Command escape(const PursuitOptions& o, double heading_error, const std::vector<Eigen::Vector2d>& obstacles_in_base);
 
 }  // namespace rgnav::tour_runner

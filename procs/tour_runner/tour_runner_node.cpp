@@ -106,7 +106,21 @@ void TourRunnerNode::on_odometry(const odometry_t& m)
     publish_cmd(m.utime, 0, 0);
     return;
   }
+  if (escape_) {
+    // Leave the blocked spot along the committed free heading: 0.5 m, or 3 s at most.
+    const bool done = (odom_from_base.translation() - escape_->odom_start.translation()).norm() >= 0.5 ||
+                      m.utime - escape_->start_utime > 3'000'000;
+    if (!done) {
+      const double err = geometry::normalize_angle(escape_->odom_heading - odom_from_base.theta());
+      const Command e = escape(options_.follower, err, obstacles_);
+      publish_cmd(m.utime, e.v, e.omega);
+      return;
+    }
+    escape_.reset();
+  }
   const Command c = pursue(options_.follower, odom_from_base, sequencer_->upcoming().front(), obstacles_);
+  if (c.blocked && std::isfinite(c.escape_heading))
+    escape_ = Escape{odom_from_base, odom_from_base.theta() + c.escape_heading, m.utime};
   if (c.blocked != blocked_) {
     blocked_ = c.blocked;
     if (blocked_) spdlog::warn("path to target {}/{} blocked: waiting", sequencer_->reached() + 1, sequencer_->size());

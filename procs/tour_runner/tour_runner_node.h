@@ -62,6 +62,13 @@ class TourRunnerNode
   int64_t cmd_seq_ = 0;
   bool finished_ = false;
   bool blocked_ = false;   // last state logged, to log transitions only
+  struct Escape
+  {
+    geometry::Pose2 odom_start;
+    double odom_heading = 0;  // committed free heading, odom frame
+    int64_t start_utime = 0;
+  };
+  std::optional<Escape> escape_;
 };
 
 }  // namespace rgnav::tour_runner

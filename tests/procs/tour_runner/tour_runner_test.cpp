@@ -94,6 +94,17 @@ TEST(PurePursuit, StopsForObstacleAheadAndSteersTowardTarget)
   EXPECT_TRUE(turn.blocked);
   EXPECT_EQ(turn.v, 0);
   EXPECT_GT(turn.omega, 0);
+  ASSERT_TRUE(std::isfinite(turn.escape_heading));
+  EXPECT_GT(turn.escape_heading, 0);
+  // Escaping: first turn to the committed heading, then creep along it while it is free.
+  const auto rotate = escape(o, turn.escape_heading, wall_right);
+  EXPECT_EQ(rotate.v, 0);
+  EXPECT_GT(rotate.omega, 0);
+  std::vector<Vector2d> wall_ahead_right;
+  for (double y = -1.5; y <= -0.4; y += 0.05) wall_ahead_right.emplace_back(0.35, y);
+  const auto creep = escape(o, 0.05, wall_ahead_right);
+  EXPECT_GT(creep.v, 0);
+  EXPECT_TRUE(escape(o, 0.0, wall_right).blocked);
 }
 
 struct NodeHarness
