@@ -64,7 +64,7 @@ int process_main(int argc, char** argv, const std::string& default_name, const P
     if (check_only) {
       // Build everything but the bus: a config check must not need a network.
       Node node(node_options, std::make_unique<bus::FakeBus>());
-      ProcessContext ctx{cfg, node, config_path};
+      ProcessContext ctx{cfg, node, config_path, true};
       auto keep = setup(ctx);
       cfg.finish();
       std::cout << config_path << ": ok\n";

@@ -29,6 +29,9 @@ struct ProcessContext
   const config::Config& config;
   Node& node;
   std::string config_path;
+  // --check-config: build everything to validate it, but touch no devices, files or threads
+  // (open no journal, no serial port, start no control loop).
+  bool checking_only = false;
 };
 
 // Returns whatever must stay alive while the node runs (the node adapter).

@@ -13,6 +13,7 @@ int main(int argc, char** argv)
       [&](runtime::ProcessContext& ctx) {
         auto config = rg_kernel::load_node_config(ctx.config, runtime::default_config_dir() + "/..");
         if (!state_dir.empty()) config.state_dir = state_dir;
+        if (ctx.checking_only) config.state_dir.clear();  // a config check opens no journal
         return std::make_shared<rg_kernel::RgKernelNode>(ctx.node, config);
       },
       [&](CLI::App& app) { app.add_option("--state-dir", state_dir, "journal and rgmap.json folder (overrides persistence.state_dir)"); });
