@@ -115,6 +115,11 @@ void Journal::append(uint32_t tag, const std::string& bytes)
   ++records_;
 }
 
+void Journal::sync()
+{
+  if (::fdatasync(fd_) != 0) throw std::runtime_error(path_ + ": fdatasync failed: " + std::strerror(errno));
+}
+
 void Journal::reset()
 {
   if (::ftruncate(fd_, 0) != 0 || ::lseek(fd_, 0, SEEK_SET) < 0) throw std::runtime_error(path_ + ": cannot reset journal");

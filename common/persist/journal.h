@@ -32,6 +32,9 @@ class Journal
 
   // Throws std::runtime_error if the record cannot be written durably.
   void append(uint32_t tag, const std::string& bytes);
+  // Makes every record appended so far durable (fdatasync): for callers that append with
+  // fsync_each = false and commit in groups. Throws std::runtime_error on failure.
+  void sync();
   // Empties the journal (after a checkpoint made its records redundant).
   void reset();
   int64_t records() const { return records_; }

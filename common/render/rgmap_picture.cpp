@@ -115,6 +115,14 @@ void draw_rgmap(const rgmap::RgMap& map, const rgmap::RgGraph& graph, Canvas* c)
     for (const auto& s : r.segments) c->line(f * s.a, f * s.b, {20, 20, 20}, 1.5, false);
     for (const auto& o : r.objects) {
       const geometry::Pose2 p = f * o.center;
+      if (o.shape == rgmap::Object2d::Shape::kCircle) {
+        // Circles (pillars) as polygons: drawn in metres like everything else in the map.
+        std::vector<Vector2d> ring;
+        for (int k = 0; k < 24; ++k)
+          ring.push_back(p.translation() + 0.5 * o.length * Vector2d(std::cos(k * M_PI / 12), std::sin(k * M_PI / 12)));
+        c->polygon(ring, {40, 80, 120}, 0.7);
+        continue;
+      }
       const Vector2d hx = p.rotation() * Vector2d(o.length / 2, 0), hy = p.rotation() * Vector2d(0, o.width / 2);
       c->polygon({p.translation() - hx - hy, p.translation() + hx - hy, p.translation() + hx + hy, p.translation() - hx + hy},
                  {120, 80, 40}, 0.7);

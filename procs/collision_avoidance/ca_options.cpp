@@ -26,6 +26,8 @@ CaNodeOptions load_ca_options(const config::Config& root)
   c.map.max_range = map.number("max_range_m", c.map.max_range, 0.5, 80.0);
   c.map.cell = map.number("cell_m", c.map.cell, 0.02, 1.0);
   c.map.grid_occupied_min = static_cast<int>(map.integer("grid_occupied_min", c.map.grid_occupied_min, 1, 100));
+  c.map.static_after = map.number("static_after_s", c.map.static_after, 0.0, 30.0);
+  c.map.occupancy_gap = map.number("occupancy_gap_s", c.map.occupancy_gap, 0.01, 5.0);
 
   const auto pl = root.section("planner");
   c.planner.safety_margin = pl.number("safety_margin_m", c.planner.safety_margin, 0.0, 1.0);
@@ -56,8 +58,21 @@ CaNodeOptions load_ca_options(const config::Config& root)
   c.reactive.step_length = re.number("step_length_m", c.reactive.step_length, 0.1, 3.0);
   c.reactive.max_turn = re.number("max_turn_rad", c.reactive.max_turn, 0.1, 3.2);
 
+  const auto gp = root.section("detour");
+  c.grid.cell = gp.number("cell_m", c.grid.cell, 0.02, 0.5);
+  c.grid.margin = gp.number("margin_m", c.grid.margin, 0.5, 10.0);
+  c.grid.max_extent = gp.number("max_extent_m", c.grid.max_extent, 2.0, 50.0);
+  c.grid.comfort = gp.number("comfort_m", c.grid.comfort, 0.0, 3.0);
+  c.grid.comfort_weight = gp.number("comfort_weight", c.grid.comfort_weight, 0.0, 100.0);
+  c.grid.shadow_cost = gp.number("shadow_cost", c.grid.shadow_cost, 1.0, 100.0);
+  c.detour_speed = gp.number("speed_mps", c.detour_speed, 0.05, 2.0);
+  if (c.grid.margin < c.planner.robot_radius + c.planner.safety_margin + c.grid.comfort)
+    gp.fail("margin_m", "must cover the clearance (robot radius + safety margin) plus comfort_m");
+
   const auto be = root.section("behaviour");
   c.fallback_wait = be.number("fallback_wait_s", c.fallback_wait, 0.0, 30.0);
+  c.backoff_length = be.number("backoff_length_m", c.backoff_length, 0.05, 2.0);
+  c.backoff_speed = be.number("backoff_speed_mps", c.backoff_speed, 0.02, 0.5);
   c.reach_radius = be.number("reach_radius_m", c.reach_radius, 0.05, 2.0);
   c.goal_tolerance = be.number("goal_tolerance_m", c.goal_tolerance, 0.01, 1.0);
   c.lookahead_targets = static_cast<int>(be.integer("lookahead_targets", c.lookahead_targets, 1, 10));

@@ -12,22 +12,39 @@ using trajectory::Chain;
 using trajectory::Kind;
 using trajectory::Segment;
 
+namespace {
+
+// The clearance a chain needs at arc length s when it starts at s_from with clearance c0:
+// the full `clearance`, except that a robot already closer than that to something (a box
+// seen late, a person who stepped close) may leave: moving away at a slope of kLeaveSlope
+// metres of clearance per metre driven is allowed, getting closer is not.
+constexpr double kLeaveSlope = 0.5;
+
+double required(double clearance, double c0, double s_from, double s)
+{
+  return std::min(clearance, c0 - 0.01 + kLeaveSlope * std::max(0.0, s - s_from));
+}
+
+}  // namespace
+
 std::optional<double> first_collision(const Chain& chain, const LocalMap& map, double clearance, double step,
                                       double s_from)
 {
+  const double c0 = map.clearance(chain.pose_at(s_from).translation(), clearance);
   for (size_t i = 0; i < chain.size(); ++i) {
     const Segment& seg = chain[i];
     const double a = chain.start_s(i);
     if (a + seg.length() < s_from) continue;
     if (seg.kind() == Kind::kTurn) {
-      if (map.clearance(seg.start().translation(), clearance) < clearance) return a;
+      if (map.clearance(seg.start().translation(), clearance) < required(clearance, c0, s_from, a)) return a;
       continue;
     }
     const int n = std::max(1, static_cast<int>(std::ceil(seg.length() / step)));
     for (int j = 0; j <= n; ++j) {
       const double ls = seg.length() * j / n;
       if (a + ls < s_from) continue;
-      if (map.clearance(seg.pose_at(ls).translation(), clearance) < clearance) return a + ls;
+      if (map.clearance(seg.pose_at(ls).translation(), clearance) < required(clearance, c0, s_from, a + ls))
+        return a + ls;
     }
   }
   return std::nullopt;
@@ -38,9 +55,12 @@ std::optional<double> first_collision_near(const Chain& chain, const LocalMap& m
 {
   const double base = o.robot_radius + o.safety_margin;
   if (auto s = first_collision(chain, map, base, o.check_step, s_from)) return s;
-  // The near part with the extra margin: a shortened copy of the chain is not needed, the
-  // check simply stops at s_from + near_length.
+  // The near part keeps the extra margin from whatever may be moving (people step in from
+  // the side faster than the map ages); static obstacles (door frames) only need the plain
+  // margin, so doors stay passable. The check simply stops at s_from + near_length.
+  if (map.moving_size() == 0) return std::nullopt;
   const double s_to = s_from + o.near_length, near = base + o.near_margin;
+  const double c0 = map.clearance_moving(chain.pose_at(s_from).translation(), near);
   for (size_t i = 0; i < chain.size(); ++i) {
     const Segment& seg = chain[i];
     const double a = chain.start_s(i);
@@ -50,7 +70,7 @@ std::optional<double> first_collision_near(const Chain& chain, const LocalMap& m
     for (int j = 0; j <= n; ++j) {
       const double s = a + seg.length() * j / n;
       if (s < s_from || s > s_to) continue;
-      if (map.clearance(seg.pose_at(s - a).translation(), near) < near) return s;
+      if (map.clearance_moving(seg.pose_at(s - a).translation(), near) < required(near, c0, s_from, s)) return s;
     }
   }
   return std::nullopt;
@@ -147,6 +167,94 @@ std::optional<PlannedChain> ChainPlanner::plan(const Pose2& start, double v_star
     if (g == 0 && goals.size() > 1) v_from = v_max;
   }
   if (total.empty()) return std::nullopt;
+  return finish(std::move(total), v_start, map, lim);
+}
+
+std::optional<PlannedChain> ChainPlanner::plan_along(const Pose2& start, double v_start,
+                                                     const std::vector<Eigen::Vector2d>& corners,
+                                                     std::optional<double> final_heading, const LocalMap& map,
+                                                     double v_max) const
+{
+  if (corners.empty()) return std::nullopt;
+  trajectory::Limits lim = options_.limits;
+  lim.v_max = std::min(lim.v_max, v_max);
+  const bool standing = std::fabs(v_start) < 0.05;
+  auto leg_heading = [&](size_t k) {
+    const Eigen::Vector2d a = k == 0 ? start.translation() : corners[k - 1];
+    const Eigen::Vector2d d = corners[k] - a;
+    return std::atan2(d.y(), d.x());
+  };
+  std::vector<Chain> options;
+  // (a) Smooth: clothoids through the corners, each passed along the bisector of its legs.
+  {
+    Chain c;
+    Pose2 from = start;
+    const double bearing = geometry::normalize_angle(leg_heading(0) - start.theta());
+    bool ok = true;
+    if (std::fabs(bearing) > 0.5) {
+      if (!standing) ok = false;
+      else {
+        c.push_back(Segment::turn(start, bearing));
+        from = c.end();
+      }
+    }
+    for (size_t k = 0; ok && k < corners.size(); ++k) {
+      double heading = leg_heading(k);
+      if (k + 1 < corners.size())
+        heading += 0.5 * geometry::normalize_angle(leg_heading(k + 1) - leg_heading(k));
+      else if (final_heading)
+        heading = *final_heading;
+      const auto seg = trajectory::clothoid_g1(from, Pose2(corners[k], heading));
+      if (!seg) ok = false;
+      else {
+        c.push_back(*seg);
+        from = c.end();
+      }
+    }
+    if (ok) options.push_back(std::move(c));
+  }
+  // (b) Polyline: turn on the spot at every corner, straight legs between (a synchro drive
+  // can always do this, at the cost of stopping at the corners).
+  if (standing) {
+    Chain c;
+    Pose2 from = start;
+    for (size_t k = 0; k < corners.size(); ++k) {
+      const double dth = geometry::normalize_angle(leg_heading(k) - from.theta());
+      if (std::fabs(dth) > 1e-3) {
+        c.push_back(Segment::turn(from, dth));
+        from = c.end();
+      }
+      const double len = (corners[k] - from.translation()).norm();
+      if (len > 1e-3) {
+        c.push_back(Segment::line(from, len));
+        from = c.end();
+      }
+    }
+    if (final_heading) {
+      const double dth = geometry::normalize_angle(*final_heading - from.theta());
+      if (std::fabs(dth) > 1e-3) c.push_back(Segment::turn(from, dth));
+    }
+    if (!c.empty()) options.push_back(std::move(c));
+  }
+  std::optional<Chain> best;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (Chain& c : options) {
+    if (!acceptable(c, std::numeric_limits<double>::infinity())) continue;
+    if (first_collision_near(c, map, options_, 0.0)) continue;
+    const double t = trajectory::VelocityProfile::compute(c, lim, v_start, 0.0, 0.05).total_time();
+    if (t < best_cost) {
+      best_cost = t;
+      best = std::move(c);
+    }
+  }
+  if (!best) return std::nullopt;
+  return finish(std::move(*best), v_start, map, lim);
+}
+
+std::optional<PlannedChain> ChainPlanner::finish(Chain total, double v_start, const LocalMap& map,
+                                                 const trajectory::Limits& lim) const
+{
+  const double clearance = options_.robot_radius + options_.safety_margin;
   // Speed limits from the clearance of each segment.
   {
     std::vector<Segment> limited;

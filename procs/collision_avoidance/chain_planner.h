@@ -2,7 +2,9 @@
 // checks them against the local map with the robot's footprint (a circle) plus a safety
 // margin. Candidates: a G1 clothoid, a G2 line-turn-line, Dubins paths, detours through
 // lateral via-poses, and a turn in place first when the target is behind. The feasible one
-// with the shortest predicted traversal time (its velocity profile) wins.
+// with the shortest predicted traversal time (its velocity profile) wins. The first metre
+// keeps an extra margin from what may be moving (people step in from the side); static
+// obstacles (door frames) need only the plain margin.
 #pragma once
 
 #include <optional>
@@ -36,11 +38,13 @@ struct PlannerOptions
 };
 
 // Where the footprint first touches the map along a chain (arc length), if anywhere, from
-// s_from on; turns in place are checked at their position.
+// s_from on; turns in place are checked at their position. Where the chain starts closer
+// than `clearance` to something, it may move away (clearance growing with the distance
+// driven) but not get closer: otherwise a robot that once got close would stay stuck.
 std::optional<double> first_collision(const trajectory::Chain& chain, const LocalMap& map, double clearance,
                                       double step, double s_from = 0.0);
 
-// first_collision with the extra margin on [s_from, s_from + near_length].
+// first_collision, plus the extra margin from possibly moving points on [s_from, s_from + near_length].
 std::optional<double> first_collision_near(const trajectory::Chain& chain, const LocalMap& map,
                                            const PlannerOptions& options, double s_from);
 
@@ -61,9 +65,18 @@ class ChainPlanner
   std::optional<PlannedChain> plan(const Pose2& start, double v_start, const std::vector<Pose2>& goals,
                                    const LocalMap& map, double v_max) const;
 
+  // A chain along a detour found elsewhere (grid_path): through `corners` (odom frame, the
+  // last is the target), arriving with final_heading if given. Clothoids through the corners
+  // when free, else straight legs with turns on the spot (only from standing).
+  std::optional<PlannedChain> plan_along(const Pose2& start, double v_start, const std::vector<Eigen::Vector2d>& corners,
+                                         std::optional<double> final_heading, const LocalMap& map, double v_max) const;
+
   const PlannerOptions& options() const { return options_; }
 
  private:
+  // Speed limits from clearance, the time prediction and the clearance figure.
+  std::optional<PlannedChain> finish(trajectory::Chain total, double v_start, const LocalMap& map,
+                                     const trajectory::Limits& lim) const;
   std::vector<trajectory::Chain> candidates(const Pose2& from, const Pose2& to, bool standing) const;
   bool acceptable(const trajectory::Chain& c, double direct) const;
 

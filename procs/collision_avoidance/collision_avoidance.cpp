@@ -7,6 +7,10 @@ namespace rgnav::collision_avoidance {
 using trajectory::Chain;
 using trajectory::Segment;
 
+namespace {
+constexpr const char* kTurningAway = "reactive fallback: backing off, turning away";
+}  // namespace
+
 const char* mode_name(Mode m)
 {
   switch (m) {
@@ -54,11 +58,15 @@ void CollisionAvoidance::on_scan(time::Time stamp, const std::vector<PolarReadin
   sp.stamp = stamp;
   sp.odom_from_base = pose_;
   last_readings_.clear();
+  sp.laser_origin = options_.base_from_laser.translation();
+  const double seen_limit = std::min(range_max, map_.max_range());
   for (const auto& r : laser_readings) {
     const bool hit = r.range < range_max;
     const Eigen::Vector2d base = options_.base_from_laser *
                                  Eigen::Vector2d(r.range * std::cos(r.bearing), r.range * std::sin(r.bearing));
     if (hit) sp.points.push_back(base);
+    const double seen = std::min(r.range, seen_limit);
+    sp.outline.push_back(options_.base_from_laser * Eigen::Vector2d(seen * std::cos(r.bearing), seen * std::sin(r.bearing)));
     // Polar around the base centre, for the reactive behaviours (no-return beams vote as far).
     last_readings_.push_back({std::atan2(base.y(), base.x()), hit ? base.norm() : std::min(range_max, 8.0)});
   }
@@ -156,6 +164,26 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
     return std::nullopt;
   }
 
+  // A back-off manoeuvre runs to its end: re-deciding every 100 ms on a clearance that
+  // flickers around the threshold (scan noise) made the robot twitch between turning away
+  // and turning back.
+  if (backoff_id_ && active_ && active_->id == *backoff_id_ && !targets_changed_) {
+    const bool ours = has_feedback_ && feedback_.trajectory_id == *backoff_id_;
+    const bool ended = ours && (feedback_.state == 2 || feedback_.state == 0);
+    // Committed, but never blind: something on what remains of it ends it.
+    const bool blocked = first_collision(active_->chain, map_, options_.planner.robot_radius + options_.planner.safety_margin,
+                                         options_.planner.check_step, ours ? feedback_.progress : 0.0)
+                             .has_value();
+    if (!ended && !blocked && now < backoff_until_) {
+      if (time::to_seconds(now - last_sent_) >= options_.refresh_period) {
+        last_sent_ = now;
+        return active_;  // keep-alive
+      }
+      return std::nullopt;
+    }
+  }
+  backoff_id_.reset();
+
   bool replan = targets_changed_ || !active_ || stopped_ || mode_ == Mode::kReactive || mode_ == Mode::kBlocked;
   targets_changed_ = false;
   if (advance_targets()) replan = true;
@@ -206,13 +234,71 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
     planned = planner_.plan(pose_, v_now, goals(), map_, targets_.max_speed);
     if (!planned) next_ = keep;
   }
+  bool detour = false;
+  if (!planned) {
+    // No candidate of the chain planner is free: look for a way around on the grid.
+    const auto g = goals();
+    if (!g.empty()) {
+      const bool is_goal = final_goal && next_ + 1 == targets_.poses.size();
+      if (auto corners = grid_path(map_, pose_.translation(), g.front().translation(), clearance, options_.grid)) {
+        planned = planner_.plan_along(pose_, v_now, *corners, is_goal ? std::optional<double>(g.front().theta()) : std::nullopt,
+                                      map_, std::min(targets_.max_speed, options_.detour_speed));
+        detour = planned.has_value();
+      }
+    }
+  }
   if (planned) {
     blocked_since_set_ = false;
     ++replans_;
-    status_ = "planned";
+    if (detour) ++detours_;
+    status_ = detour ? "planned: detour" : "planned";
     return send_new(std::move(planned->chain), now, planned->predicted_time, Mode::kPlanned);
   }
   return reactive(now);
+}
+
+std::optional<trajectory::Trajectory> CollisionAvoidance::backing_off(time::Time now)
+{
+  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
+  const Eigen::Vector2d here = pose_.translation();
+  if (map_.clearance(here, clearance) >= clearance) return std::nullopt;
+  Eigen::Vector2d away = Eigen::Vector2d::Zero();
+  for (const auto& p : map_.points()) {
+    const Eigen::Vector2d d = here - p;
+    const double n = d.norm();
+    if (n < clearance + 0.1 && n > 1e-6) away += d / n;
+  }
+  if (away.norm() < 1e-6) return std::nullopt;  // surrounded evenly: nothing better than waiting
+  const double heading = std::atan2(away.y(), away.x());
+  const double dth = geometry::normalize_angle(heading - pose_.theta());
+  const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
+  if (std::fabs(dth) > 0.3) {
+    if (!standing) return stop(now, Mode::kReactive, "reactive fallback: backing off, stopping first");
+    const double t = trajectory::turn_duration(dth, options_.omega_max, 1.0);
+    if (active_ && !stopped_ && mode_ == Mode::kReactive && status_ == kTurningAway &&
+        time::to_seconds(now - last_sent_) < t)
+      return std::nullopt;  // the turn is under way
+    status_ = kTurningAway;
+    return commit_backoff(send_new(Chain({Segment::turn(pose_, dth)}), now, t, Mode::kReactive), now, t);
+  }
+  Segment out = Segment::line(Pose2(here, heading), options_.backoff_length);
+  out.set_v_max(options_.backoff_speed);
+  Chain c({out});
+  if (first_collision(c, map_, clearance, options_.planner.check_step)) return std::nullopt;
+  status_ = "reactive fallback: backing off, driving away";
+  const double t = options_.backoff_length / options_.backoff_speed;
+  return commit_backoff(send_new(std::move(c), now, t, Mode::kReactive), now, t);
+}
+
+std::optional<trajectory::Trajectory> CollisionAvoidance::commit_backoff(std::optional<trajectory::Trajectory> t,
+                                                                         time::Time now, double duration)
+{
+  if (t) {
+    backoff_id_ = t->id;
+    // Its predicted duration plus the acceleration phases and some slack; then decide anew.
+    backoff_until_ = now + time::Duration(static_cast<int64_t>((duration + 2.0) * 1e6));
+  }
+  return t;
 }
 
 std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time now)
@@ -229,6 +315,11 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time no
   // First behaviour: stop and wait a moment (a person crossing clears the way by itself).
   if (time::to_seconds(now - blocked_since_) < options_.fallback_wait)
     return stop(now, Mode::kReactive, "reactive fallback: stopped, waiting for the way to clear");
+  // Too close to something (a person who stepped up to the robot and now waits for it to
+  // move, a box seen late): nothing that keeps the full clearance starts here. Back off:
+  // face away from what is close (a turn on the spot is always safe for the round B21r,
+  // and brings the space there into the laser's view), then drive out along that heading.
+  if (auto away = backing_off(now)) return away;
   // Readings: the newest scan plus the map's other obstacles (3D grid, older scans) near by.
   std::vector<PolarReading> readings = last_readings_;
   const Pose2 base_from_odom = pose_.inverse();

@@ -2,9 +2,12 @@
 // odom frame), the odometry pose and the sensor data, it builds chains of primitives to the
 // next targets, checks them against the local map with the footprint and a margin, hands
 // them to the low-level drive, watches the drive's progress and replans in time when an
-// obstacle appears on the planned chain. When no chain is free it falls back to Holz et al.'s
-// reactive behaviours, expressed as short trajectories too (the drive stays the only one
-// commanding the base). Stale scans: stop. Runs on message time; knows no LCM.
+// obstacle appears on the planned chain. When none of the chain planner's candidates is
+// free it looks for a detour on the grid (grid_path.h) and builds primitives along it; when
+// that fails too it falls back to Holz et al.'s reactive behaviours (wait, back off from what
+// is too close, turn or steer toward free space), expressed as short trajectories too (the
+// drive stays the only one commanding the base). Stale scans: stop. Runs on message time;
+// knows no LCM.
 #pragma once
 
 #include <optional>
@@ -12,6 +15,7 @@
 #include <vector>
 
 #include "collision_avoidance/chain_planner.h"
+#include "collision_avoidance/grid_path.h"
 #include "collision_avoidance/local_map.h"
 #include "collision_avoidance/reactive.h"
 #include "trajectory/trajectory.h"
@@ -23,6 +27,8 @@ struct CaOptions
   LocalMapOptions map;
   PlannerOptions planner;
   ReactiveOptions reactive;
+  GridPathOptions grid;            // detours when no chain candidate is free
+  double detour_speed = 0.35;      // [m/s] along grid detours
   Pose2 base_from_laser{0.12, 0.0, 0.0};
   double reach_radius = 0.35;      // [m] an intermediate target counts as passed this close
   double goal_tolerance = 0.10;    // [m] the final goal
@@ -32,6 +38,8 @@ struct CaOptions
   double refresh_period = 0.5;     // [s] re-send the active trajectory (keep-alive for the lld)
   double replan_cross_track = 0.2; // [m] the drive is this far off the chain: replan
   double fallback_wait = 1.5;      // [s] blocked: stand this long (people pass) before turning away
+  double backoff_length = 0.4;     // [m] too close to something: drive away this far
+  double backoff_speed = 0.15;     // [m/s]
   double a_max = 0.4;              // [m/s^2] sent with every trajectory
   double omega_max = 1.0;          // [rad/s]
 };
@@ -88,11 +96,15 @@ class CollisionAvoidance
   const std::optional<trajectory::Trajectory>& active() const { return active_; }
   int64_t replans() const { return replans_; }
   int64_t fallbacks() const { return fallbacks_; }
+  int64_t detours() const { return detours_; }
 
  private:
   std::optional<trajectory::Trajectory> send_new(trajectory::Chain chain, time::Time now, double predicted, Mode mode);
   std::optional<trajectory::Trajectory> stop(time::Time now, Mode mode, const std::string& why);
   std::optional<trajectory::Trajectory> reactive(time::Time now);
+  std::optional<trajectory::Trajectory> backing_off(time::Time now);
+  std::optional<trajectory::Trajectory> commit_backoff(std::optional<trajectory::Trajectory> t, time::Time now,
+                                                       double duration);
   std::vector<Pose2> goals() const;
   bool advance_targets();
 
@@ -119,6 +131,9 @@ class CollisionAvoidance
   int64_t next_id_ = 1;
   int64_t replans_ = 0;
   int64_t fallbacks_ = 0;
+  int64_t detours_ = 0;
+  std::optional<int64_t> backoff_id_;  // the back-off manoeuvre under way, run to its end
+  time::Time backoff_until_{};
   bool blocked_since_set_ = false;
   time::Time blocked_since_{};
   Mode mode_ = Mode::kIdle;

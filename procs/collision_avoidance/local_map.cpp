@@ -1,5 +1,8 @@
 #include "collision_avoidance/local_map.h"
 
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -7,6 +10,12 @@ namespace rgnav::collision_avoidance {
 
 void LocalMap::add_scan(ScanPoints scan)
 {
+  for (const auto& b : scan.points) {
+    if (b.squaredNorm() > options_.max_range * options_.max_range) continue;
+    CellHits& h = hits_[cell_key(scan.odom_from_base * b)];
+    if (h.last == time::Time{} || time::to_seconds(scan.stamp - h.last) > options_.occupancy_gap) h.first = scan.stamp;
+    h.last = scan.stamp;
+  }
   scans_.push_back(std::move(scan));
   while (static_cast<int>(scans_.size()) > options_.max_scans) scans_.pop_front();
 }
@@ -25,6 +34,20 @@ void LocalMap::rebuild(time::Time now)
   for (const auto& s : scans_)
     for (const auto& p : s.points)
       if (p.squaredNorm() <= options_.max_range * options_.max_range) points_.push_back(s.odom_from_base * p);
+  // Young cells among the scan points (the 3D grid is a map of its own: static).
+  // Young runs of hits may be people walking. This includes what the laser sees for the
+  // first time: a person stepping out from behind a box is in cells no beam ever saw free,
+  // so "free before" alone would call them static (measured: 25 instead of 7 collisions
+  // over the 50 obstacle courses). Door frames turn static after static_after.
+  const double keep = std::max(options_.max_age, 2.0 * options_.occupancy_gap);
+  for (auto it = hits_.begin(); it != hits_.end();)
+    it = time::to_seconds(now - it->second.last) > keep ? hits_.erase(it) : std::next(it);
+  moving_.clear();
+  for (const auto& p : points_) {
+    auto it = hits_.find(cell_key(p));
+    if (it == hits_.end() || time::to_seconds(it->second.last - it->second.first) < options_.static_after)
+      moving_.push_back(p);
+  }
   points_.insert(points_.end(), grid_points_.begin(), grid_points_.end());
   index_.clear();
   for (size_t i = 0; i < points_.size(); ++i) {
@@ -32,10 +55,48 @@ void LocalMap::rebuild(time::Time now)
     const int iy = static_cast<int>(std::floor(points_[i].y() / options_.cell));
     index_[key(ix, iy)].push_back(static_cast<uint32_t>(i));
   }
+  build_field();
+}
+
+void LocalMap::build_field()
+{
+  field_.release();
+  if (points_.empty()) return;
+  Eigen::Vector2d lo = points_.front(), hi = points_.front();
+  for (const auto& p : points_) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  constexpr double kMaxSide = 40.0;
+  lo.array() -= kFieldPad;
+  hi.array() += kFieldPad;
+  if ((hi - lo).maxCoeff() > kMaxSide) return;  // absurd spread (bad data): exact search only
+  const int cols = static_cast<int>(std::ceil((hi.x() - lo.x()) / field_cell_));
+  const int rows = static_cast<int>(std::ceil((hi.y() - lo.y()) / field_cell_));
+  cv::Mat free_img(rows, cols, CV_8UC1, cv::Scalar(255));
+  for (const auto& p : points_) {
+    const int x = std::clamp(static_cast<int>((p.x() - lo.x()) / field_cell_), 0, cols - 1);
+    const int y = std::clamp(static_cast<int>((p.y() - lo.y()) / field_cell_), 0, rows - 1);
+    free_img.at<uint8_t>(y, x) = 0;
+  }
+  cv::distanceTransform(free_img, field_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  field_ *= field_cell_;
+  field_origin_ = lo;
 }
 
 double LocalMap::clearance(const Eigen::Vector2d& p, double radius) const
 {
+  if (!field_.empty()) {
+    const int x = static_cast<int>(std::floor((p.x() - field_origin_.x()) / field_cell_));
+    const int y = static_cast<int>(std::floor((p.y() - field_origin_.y()) / field_cell_));
+    if (x >= 0 && y >= 0 && x < field_.cols && y < field_.rows) {
+      // The field measures between cell centres: the true distance is within one cell
+      // diagonal (p and the point each up to half a diagonal from their centres).
+      if (field_.at<float>(y, x) - 1.42 * field_cell_ > radius) return std::numeric_limits<double>::infinity();
+    } else if (radius < kFieldPad) {
+      return std::numeric_limits<double>::infinity();  // the field extends kFieldPad past every point
+    }
+  }
   double best2 = radius * radius;
   bool found = false;
   const int r = static_cast<int>(std::ceil(radius / options_.cell));
@@ -53,6 +114,25 @@ double LocalMap::clearance(const Eigen::Vector2d& p, double radius) const
         }
       }
     }
+  return found ? std::sqrt(best2) : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace rgnav::collision_avoidance
+
+namespace rgnav::collision_avoidance {
+
+double LocalMap::clearance_moving(const Eigen::Vector2d& p, double radius) const
+{
+  // Few points (people), queried for the first metre of a chain only: a plain scan will do.
+  double best2 = radius * radius;
+  bool found = false;
+  for (const auto& q : moving_) {
+    const double d2 = (q - p).squaredNorm();
+    if (d2 <= best2) {
+      best2 = d2;
+      found = true;
+    }
+  }
   return found ? std::sqrt(best2) : std::numeric_limits<double>::infinity();
 }
 

@@ -2,10 +2,15 @@
 // frame from the last few laser scans (each placed with the odometry pose at its time) and
 // the occupied cells of the newest OBSTACLES_3D grid, in a uniform hash grid for fast
 // "how far is the nearest obstacle from here?" queries. Points older than `max_age` or
-// farther than `max_range` from the robot are dropped.
+// farther than `max_range` from the robot are dropped. A distance field over the points
+// (OpenCV's distance transform, rebuilt with the index) answers the common query "is
+// anything within r?" in constant time where the answer is clearly no; only near obstacles
+// does the exact search over the points run. The planner asks thousands of these per
+// decision, and the process must keep its heartbeat on a loaded machine.
 #pragma once
 
 #include <Eigen/Core>
+#include <opencv2/core/mat.hpp>
 
 #include <deque>
 #include <unordered_map>
@@ -25,6 +30,12 @@ struct LocalMapOptions
   double max_range = 6.0;     // [m] farther readings are ignored
   double cell = 0.10;         // [m] hash grid pitch
   int grid_occupied_min = 50; // [%] obstacle grid cells at least this occupied are obstacles
+  // Static or moving: a cell (of `cell`) hit without a gap longer than occupancy_gap for at
+  // least static_after is static (walls, door frames, furniture, people standing); younger
+  // hits are possibly moving (people walking, or stepping out from behind something), and
+  // the planner keeps more distance to them.
+  double static_after = 1.0;  // [s]
+  double occupancy_gap = 0.3; // [s]
 };
 
 // A scan's obstacle readings in the robot's base frame.
@@ -33,6 +44,10 @@ struct ScanPoints
   time::Time stamp{};
   Pose2 odom_from_base;                 // pose at the scan's time
   std::vector<Eigen::Vector2d> points;  // base frame
+  // What the scan saw as free: the polygon from the laser position through every beam's end
+  // (a hit, or the range limit for no return), base frame; empty if not known.
+  Eigen::Vector2d laser_origin = Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector2d> outline;
 };
 
 class LocalMap
@@ -51,8 +66,19 @@ class LocalMap
   double clearance(const Eigen::Vector2d& p, double radius) const;
   size_t size() const { return points_.size(); }
   const std::vector<Eigen::Vector2d>& points() const { return points_; }
+  // Distance from p to the nearest possibly moving point within `radius` (infinity if none).
+  double clearance_moving(const Eigen::Vector2d& p, double radius) const;
+  size_t moving_size() const { return moving_.size(); }
+  // The scans kept (after the last rebuild's pruning), oldest first.
+  const std::deque<ScanPoints>& scans() const { return scans_; }
+  double max_range() const { return options_.max_range; }
 
  private:
+  void build_field();
+  int64_t cell_key(const Eigen::Vector2d& p) const
+  {
+    return key(static_cast<int>(std::floor(p.x() / options_.cell)), static_cast<int>(std::floor(p.y() / options_.cell)));
+  }
   int64_t key(int ix, int iy) const { return (static_cast<int64_t>(ix) << 32) ^ static_cast<uint32_t>(iy); }
 
   const LocalMapOptions options_;
@@ -61,6 +87,19 @@ class LocalMap
   std::vector<Eigen::Vector2d> grid_points_;
   std::vector<Eigen::Vector2d> points_;  // odom frame, all sources
   std::unordered_map<int64_t, std::vector<uint32_t>> index_;
+  struct CellHits
+  {
+    time::Time first{};  // start of the current unbroken run of hits
+    time::Time last{};
+  };
+  std::unordered_map<int64_t, CellHits> hits_;  // odom-frame cells of `cell`
+  std::vector<Eigen::Vector2d> moving_;         // points in young cells
+  // Distance field: distance from each field cell's centre to the nearest point [m], over
+  // field_origin_ + [0, cols) x [0, rows) cells of field_cell_.
+  cv::Mat field_;
+  Eigen::Vector2d field_origin_ = Eigen::Vector2d::Zero();
+  static constexpr double field_cell_ = 0.05;
+  static constexpr double kFieldPad = 2.5;  // [m] field margin beyond the points (queries up to this radius)
 };
 
 }  // namespace rgnav::collision_avoidance

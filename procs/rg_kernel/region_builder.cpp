@@ -100,6 +100,13 @@ void RegionBuilder::add_scan(StoredScan scan)
   scans_.emplace(scan.scan_id, std::move(scan));
 }
 
+void RegionBuilder::remove_scan(int64_t scan_id)
+{
+  if (scans_.erase(scan_id) == 0) return;
+  circle_observations_.erase(scan_id);
+  stale_ = true;
+}
+
 void RegionBuilder::add_incrementally(const StoredScan& scan) const
 {
   const Vector2d o = scan.region_from_laser.translation();
@@ -107,6 +114,9 @@ void RegionBuilder::add_incrementally(const StoredScan& scan) const
   pts.reserve(scan.laser_points.size());
   for (const auto& lp : scan.laser_points) pts.push_back(scan.region_from_laser * lp);
   segments_ = merge_into(std::move(segments_), extract_segments(pts, options_.extract), options_.merge);
+  auto circles = circles_in_scan({o, pts}, options_.objects);
+  if (circles.empty()) circle_observations_.erase(scan.scan_id);
+  else circle_observations_[scan.scan_id] = std::move(circles);
   lo_ = lo_.cwiseMin(o);
   hi_ = hi_.cwiseMax(o);
   std::vector<bool> usable(pts.size());
@@ -126,6 +136,7 @@ void RegionBuilder::refresh() const
   if (!stale_) return;
   segments_.clear();
   free_cells_.clear();
+  circle_observations_.clear();
   lo_ = Vector2d::Constant(std::numeric_limits<double>::max());
   hi_ = -lo_;
   for (const auto& [id, s] : scans_) add_incrementally(s);
@@ -167,6 +178,7 @@ void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_
     cells.reserve(free_cells_.size());
     for (const uint64_t k : free_cells_) cells.emplace_back(key_x(k), key_y(k));
     fill_region(region, lo_, hi_, cells);
+    fill_objects(region);
     return;
   }
   // Exact: every beam again, with every gateway of the region known now.
@@ -191,6 +203,14 @@ void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_
   std::vector<std::pair<int32_t, int32_t>> cells;
   for (const uint64_t k : cells_set) cells.emplace_back(key_x(k), key_y(k));
   fill_region(region, lo, hi, cells);
+  fill_objects(region);
+}
+
+void RegionBuilder::fill_objects(rgmap::Region* region) const
+{
+  std::vector<CircleObservation> circles;
+  for (const auto& [id, obs] : circle_observations_) circles.insert(circles.end(), obs.begin(), obs.end());
+  region->objects = find_objects(region->id, segments_, circles, region->freespace, options_.objects);
 }
 
 void RegionBuilder::fill_region(rgmap::Region* region, const Vector2d& lo, const Vector2d& hi,

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <unordered_set>
@@ -15,6 +16,8 @@
 
 #include "geometry/pose2.h"
 #include "procs/rg_kernel/line_map.h"
+#include "procs/rg_kernel/object_grouping.h"
+#include "procs/rg_kernel/state_codec.h"
 #include "rgmap/rg_map.h"
 
 namespace rgnav::rg_kernel {
@@ -34,6 +37,7 @@ struct RegionBuildOptions
   MergeOptions merge;
   double freespace_resolution = 0.15;  // [m] (diss.: 15 cm)
   double freespace_max_range = 8.0;    // [m] beams are carved up to this length
+  ObjectOptions objects;               // 2D objects (rectangles, circles), diss. 3.1-3.2
 };
 
 class RegionBuilder
@@ -46,12 +50,15 @@ class RegionBuilder
   // the region for a rebuild from all its scans, done once at the next read — merged
   // segments and carved cells cannot be un-merged, and corrections come in bursts.
   void add_scan(StoredScan scan);
+  // Removes a scan (it turned out to belong to another region); the caches are rebuilt at the
+  // next read, like after a correction. Unknown ids are ignored.
+  void remove_scan(int64_t scan_id);
   const std::vector<rgmap::LineSegment>& segments() const;
   const std::map<int64_t, StoredScan>& scans() const { return scans_; }
   int64_t raw_points() const;
 
   using GatewayLines = std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>;
-  // Fills bbox, freespace, accuracy/completeness and segments of `region`. Exact (at
+  // Fills bbox, freespace, accuracy/completeness, segments and 2D objects of `region`. Exact (at
   // finalisation): recomputed from all beams, leaving out every beam that crosses one of the
   // gateway lines (points in the region frame). Otherwise (the open region, published often):
   // from the cells carved as scans arrived, which skips only the gateways known then.
@@ -62,9 +69,18 @@ class RegionBuilder
   // Robot positions (laser origins) in the region frame, oldest first.
   std::vector<Eigen::Vector2d> laser_origins() const;
 
+  // Snapshot of everything, caches included (so a restored builder merges the next scan into
+  // exactly the same line map). `shared_points(id)`: the scan's points if the caller stores
+  // them already (they are then written once, by the caller), else nullptr.
+  using SharedPoints = std::function<const std::vector<Eigen::Vector2d>*(int64_t scan_id)>;
+  void save(StateWriter& w, const SharedPoints& shared_points) const;
+  // Into a freshly constructed builder; throws SnapshotError on malformed bytes.
+  void load(StateReader& r, const SharedPoints& shared_points);
+
  private:
   void add_incrementally(const StoredScan& scan) const;
   void refresh() const;
+  void fill_objects(rgmap::Region* region) const;
   void fill_region(rgmap::Region* region, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
                    const std::vector<std::pair<int32_t, int32_t>>& cells) const;
 
@@ -75,6 +91,7 @@ class RegionBuilder
   mutable bool stale_ = false;
   mutable std::vector<rgmap::LineSegment> segments_;
   mutable std::unordered_set<uint64_t> free_cells_;   // cell (x, y) of the region frame grid
+  mutable std::map<int64_t, std::vector<CircleObservation>> circle_observations_;   // by scan id
   mutable Eigen::Vector2d lo_{std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
   mutable Eigen::Vector2d hi_{-std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
 };

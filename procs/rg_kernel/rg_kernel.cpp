@@ -2,13 +2,41 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
+
+#include "procs/rg_kernel/known_place.h"
 
 namespace rgnav::rg_kernel {
 
 using Eigen::Vector2d;
 using rgmap::Gateway;
 using rgmap::Region;
+
+namespace {
+
+// True if the robot position p is through the gateway crossed with heading `heading`: beyond
+// one of its lines (consecutive point pairs, map frame) that the crossing goes through, less
+// than `reach` from it and not beside its ends.
+bool past_gateway(const Vector2d& p, const std::vector<Vector2d>& points, double heading, double reach)
+{
+  const Vector2d dir(std::cos(heading), std::sin(heading));
+  for (size_t k = 0; k + 1 < points.size(); k += 2) {
+    Vector2d u = points[k + 1] - points[k];
+    const double len = u.norm();
+    if (len < 1e-6) continue;
+    u /= len;
+    Vector2d n(-u.y(), u.x());
+    if (n.dot(dir) < 0) n = -n;
+    if (n.dot(dir) < 0.5) continue;  // the crossing runs nearly along this line: not through it
+    const Vector2d m = 0.5 * (points[k] + points[k + 1]);
+    const double depth = n.dot(p - m), along = u.dot(p - m);
+    if (depth > 0 && depth < reach && std::fabs(along) < 0.5 * len + 0.5) return true;
+  }
+  return false;
+}
+
+}  // namespace
 
 RgKernel::RgKernel(KernelOptions options) : options_(std::move(options)) {}
 
@@ -88,15 +116,6 @@ Vector2d RgKernel::crossing_in_map(const Gateway& g) const
   return a->map_from_region * c;
 }
 
-int64_t RgKernel::region_containing(const Vector2d& p, int64_t except) const
-{
-  for (const auto& [id, r] : map_.regions()) {
-    if (id == except || r.state != Region::State::kFinalised) continue;
-    if (r.freespace.is_free(r.map_from_region.inverse() * p)) return id;
-  }
-  return 0;
-}
-
 std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t region_id) const
 {
   std::vector<std::pair<Vector2d, Vector2d>> lines;
@@ -111,6 +130,26 @@ std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t regio
       lines.push_back({r_from_a * g.gateway_points[k], r_from_a * g.gateway_points[k + 1]});
   }
   return lines;
+}
+
+std::vector<int64_t> RgKernel::scans_past_gateway(int64_t region_id, const GatewayEventInput& e) const
+{
+  // The detector reports a traversal once the robot is through (0.3-1.6 m in the simulated
+  // worlds), so the region's newest scans were taken beyond the gateway. Left here, their
+  // beams (not crossing the gateway line: they start beyond it) would carve the next room
+  // into this region's freespace. The trailing run of such scans is handed on; the region
+  // keeps at least its oldest scan.
+  std::vector<std::pair<int64_t, int64_t>> by_time;   // (utime, scan id), newest first
+  for (const auto& [id, s] : builders_.at(region_id).scans()) by_time.push_back({s.utime, id});
+  std::sort(by_time.rbegin(), by_time.rend());
+  std::vector<int64_t> late;
+  for (size_t i = 0; i + 1 < by_time.size(); ++i) {
+    const ScanInput& s = scan_inputs_.at(by_time[i].second);
+    const Vector2d p = (s.map_from_base * s.base_from_laser).translation();
+    if (!past_gateway(p, e.gateway_points, e.direction, options_.late_scan_reach)) break;
+    late.push_back(by_time[i].second);
+  }
+  return late;
 }
 
 bool RgKernel::add_gateway_event(const GatewayEventInput& e)
@@ -157,13 +196,18 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
     g = &fresh;
     spdlog::info("gateway {} ({}) found leaving region {}", fresh.id, rgmap::to_string(e.cls), from);
   }
+  const std::vector<int64_t> late = scans_past_gateway(from, e);
+  for (const int64_t id : late) builders_.at(from).remove_scan(id);
   // Finalise the region we leave, now that its gateways (the new one too) filter its beams.
   builders_.at(from).describe(cur, gateway_lines(from), true);
   dirty_.erase(from);
   cur->state = Region::State::kFinalised;
   cur->utime = e.utime;
 
-  if (next == 0) next = region_containing(e.map_from_base.translation(), from);
+  if (next == 0) {
+    next = KnownPlaces(map_, builders_, from, options_.known_place).region_holding(e.map_from_base.translation());
+    if (next) spdlog::info("gateway {} leads from region {} into known region {}", g->id, from, next);
+  }
   if (next == 0) next = open_region(e.map_from_base, e.utime);
   if (g->region_b == 0 && map_.resolve(g->region_a) == from)
     map_.connect(g->id, next, map_.region(from)->map_from_region.inverse() * map_.region(next)->map_from_region);
@@ -177,6 +221,15 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
   }
   ++g->traversals;
   enter(next, e.utime);
+  for (auto id = late.rbegin(); id != late.rend(); ++id) {
+    builders_.at(next).add_scan(to_stored(scan_inputs_.at(*id), next));
+    region_of_scan_[*id] = next;
+  }
+  if (!late.empty()) {
+    scans_since_entering_ = static_cast<int>(late.size());
+    dirty_.insert(next);
+    spdlog::info("{} scan(s) taken past gateway {} moved from region {} to region {}", late.size(), g->id, from, next);
+  }
   ++map_.version;
   return true;
 }
@@ -187,10 +240,10 @@ void RgKernel::maybe_merge_current(int64_t utime)
   const int64_t cur = map_.current_region;
   const auto origins = builders_.at(cur).laser_origins();
   const Region* r = map_.region(cur);
+  const KnownPlaces known(map_, builders_, cur, options_.known_place);
   std::map<int64_t, int> inside;
   for (const auto& o : origins) {
-    const Vector2d p = r->map_from_region * o;
-    if (const int64_t q = region_containing(p, cur)) ++inside[q];
+    if (const int64_t q = known.region_holding(r->map_from_region * o)) ++inside[q];
   }
   for (const auto& [q, n] : inside) {
     if (n < options_.merge_inside_ratio * static_cast<double>(origins.size())) continue;
@@ -207,7 +260,8 @@ void RgKernel::maybe_merge_current(int64_t utime)
     builders_.erase(cur);
     dirty_.erase(cur);
     dirty_.insert(q);
-    spdlog::info("region {} is region {} seen again: merged, {} gateway(s) neutralized", cur, q, neutralized);
+    spdlog::info("region {} is region {} seen again ({} of its {} robot positions seen from region {}'s): merged, {} "
+                 "gateway(s) neutralized", cur, q, n, origins.size(), q, neutralized);
     enter(q, utime);
     return;
   }

@@ -2,7 +2,7 @@
 // current region; a traversed gateway finalises the region (line map, bounding rectangle,
 // freespace from in-region beams) and opens the region beyond, or re-enters a known one; a
 // region that turns out to be a known place (the robot's positions lie in a finalised
-// region's freespace) is merged into it and gateways with one region on both sides are
+// region's own space, seen by that region's robot: known_place.h) is merged into it and gateways with one region on both sides are
 // neutralized (diss. 6.1.1); republished scans (loop-closure corrections) update their region.
 // Inputs are applied in the order given; with the same inputs the map is the same.
 #pragma once
@@ -11,6 +11,7 @@
 #include <set>
 #include <vector>
 
+#include "procs/rg_kernel/known_place.h"
 #include "procs/rg_kernel/region_builder.h"
 #include "rgmap/rg_map.h"
 
@@ -21,7 +22,9 @@ struct KernelOptions
   RegionBuildOptions build;
   double gateway_match_distance = 0.8;   // [m] crossing points closer than this: same gateway
   int merge_min_scans = 8;               // scans in a region before a merge is considered
-  double merge_inside_ratio = 0.7;       // share of its robot positions in a known region's freespace
+  double merge_inside_ratio = 0.7;       // share of its robot positions seen by a known region's robot
+  KnownPlaceOptions known_place;         // what makes a position part of a known region (known_place.h)
+  double late_scan_reach = 3.0;          // [m] scans this far past a crossed gateway belong beyond it
 };
 
 struct ScanInput
@@ -75,13 +78,23 @@ class RgKernel
   rgmap::Region describe_region(int64_t id) const;
   KernelStats stats() const;
 
+  // The kernel's complete state (map, every region's scans and derived caches, bookkeeping):
+  // a kernel restored from it continues exactly as this one would, input for input. Not the
+  // options: the restoring kernel is built with its own (the same config).
+  void save_state(StateWriter& w) const;
+  std::string snapshot() const;
+  // Replaces this kernel's state with the one at r's position, which must run to r's end;
+  // throws SnapshotError (state unchanged) if it is malformed.
+  void restore_state(StateReader& r);
+  void restore(const std::string& snapshot_bytes);
+
  private:
   int64_t open_region(const geometry::Pose2& map_from_region, int64_t utime);
   void enter(int64_t region_id, int64_t utime);
   void maybe_merge_current(int64_t utime);
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> gateway_lines(int64_t region_id) const;
   Eigen::Vector2d crossing_in_map(const rgmap::Gateway& g) const;
-  int64_t region_containing(const Eigen::Vector2d& map_point, int64_t except) const;
+  std::vector<int64_t> scans_past_gateway(int64_t region_id, const GatewayEventInput& e) const;
   StoredScan to_stored(const ScanInput& s, int64_t region_id) const;
 
   const KernelOptions options_;

@@ -3,11 +3,40 @@
 #include <spdlog/spdlog.h>
 
 #include "persist/atomic_file.h"
+#include "procs/rg_kernel/state_codec.h"
 #include "procs/rg_kernel/rg_kernel_conversions.h"
 #include "rgmap/rgmap_conversions.h"
 #include "rgmap/rgmap_json.h"
 
 namespace rgnav::rg_kernel {
+
+ObjectOptions load_object_options(const config::Config& s)
+{
+  ObjectOptions o;
+  constexpr double kDeg = M_PI / 180.0;
+  o.enabled = s.boolean("enabled", o.enabled);
+  o.alpha_min = s.number("alpha_min_deg", o.alpha_min / kDeg, 45.0, 90.0) * kDeg;
+  o.alpha_max = s.number("alpha_max_deg", o.alpha_max / kDeg, 90.0, 135.0) * kDeg;
+  o.dn_max = s.number("dn_max_m", o.dn_max, 0.0, 2.0);
+  o.do_min = s.number("do_min_m", o.do_min, 0.01, 5.0);
+  o.max_side = s.number("max_side_m", o.max_side, o.do_min, 50.0);
+  o.max_side_from_two = s.number("max_side_from_two_sides_m", o.max_side_from_two, o.do_min, 50.0);
+  o.complete_three_sides = s.boolean("complete_three_sides", o.complete_three_sides);
+  o.complete_two_sides = s.boolean("complete_two_sides", o.complete_two_sides);
+  o.max_hypotheses = s.integer("max_hypotheses", o.max_hypotheses, 1, 100000000);
+  o.outside_offset = s.number("outside_offset_m", o.outside_offset, 0.01, 2.0);
+  o.min_outside_free = s.number("min_outside_free", o.min_outside_free, 0.0, 1.0);
+  o.max_inside_free = s.number("max_inside_free", o.max_inside_free, 0.0, 1.0);
+  o.circles = s.boolean("circles", o.circles);
+  o.arc_point_gap = s.number("arc_point_gap_m", o.arc_point_gap, 0.005, 1.0);
+  o.arc_min_points = static_cast<int>(s.integer("arc_min_points", o.arc_min_points, 3, 1000));
+  o.circle_min_radius = s.number("circle_min_radius_m", o.circle_min_radius, 0.005, 5.0);
+  o.circle_max_radius = s.number("circle_max_radius_m", o.circle_max_radius, o.circle_min_radius, 5.0);
+  o.circle_max_rms = s.number("circle_max_rms_m", o.circle_max_rms, 0.0001, 0.5);
+  o.arc_depth_jump = s.number("arc_depth_jump_m", o.arc_depth_jump, 0.0, 5.0);
+  o.circle_min_scans = static_cast<int>(s.integer("circle_min_scans", o.circle_min_scans, 1, 100000));
+  return o;
+}
 
 NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_root)
 {
@@ -16,6 +45,9 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   c.kernel.gateway_match_distance = k.number("gateway_match_distance_m", c.kernel.gateway_match_distance, 0.1, 5.0);
   c.kernel.merge_min_scans = static_cast<int>(k.integer("merge_min_scans", c.kernel.merge_min_scans, 1, 1000));
   c.kernel.merge_inside_ratio = k.number("merge_inside_ratio", c.kernel.merge_inside_ratio, 0.1, 1.0);
+  c.kernel.known_place.max_origin_distance =
+      k.number("merge_max_origin_distance_m", c.kernel.known_place.max_origin_distance, 0.1, 20.0);
+  c.kernel.late_scan_reach = k.number("late_scan_reach_m", c.kernel.late_scan_reach, 0.0, 10.0);
   const auto lines = cfg.section("line_map");
   c.kernel.build.merge.alpha_max = lines.number("merge_alpha_max_deg", 3.0, 0.1, 45.0) * M_PI / 180.0;
   c.kernel.build.merge.dl_max = lines.number("merge_dl_max_m", 0.020, 0.001, 1.0);
@@ -27,13 +59,17 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   const auto fs = cfg.section("freespace");
   c.kernel.build.freespace_resolution = fs.number("resolution_m", c.kernel.build.freespace_resolution, 0.02, 1.0);
   c.kernel.build.freespace_max_range = fs.number("max_range_m", c.kernel.build.freespace_max_range, 1.0, 80.0);
+  c.kernel.build.objects = load_object_options(cfg.section("objects"));
   const auto g = cfg.section("graph");
   c.graph.nominal_speed = g.number("nominal_speed_mps", c.graph.nominal_speed, 0.05, 3.0);
   c.graph.gateway_crossing_time = g.number("gateway_crossing_time_s", c.graph.gateway_crossing_time, 0.0, 600.0);
   const auto p = cfg.section("persistence");
   c.state_dir = p.string("state_dir", "logs/state/rg_kernel");
   if (!c.state_dir.empty() && c.state_dir[0] != '/') c.state_dir = repo_root + "/" + c.state_dir;
-  c.fsync_each_input = p.boolean("fsync_each_input", c.fsync_each_input);
+  c.sync_every_inputs = static_cast<int>(p.integer("sync_every_inputs", c.sync_every_inputs, 1, 100000));
+  c.sync_period_s = p.number("sync_period_s", c.sync_period_s, 0.001, 10.0);
+  c.snapshot_every_inputs = p.integer("snapshot_every_inputs", c.snapshot_every_inputs, 0, 10000000);
+  c.export_period_s = p.number("export_period_s", c.export_period_s, 0.0, 3600.0);
   c.publish_period_s = cfg.section("publish").number("period_s", c.publish_period_s, 0.05, 60.0);
   const auto ch = cfg.section("channels");
   c.aligned_scan = ch.string("aligned_scan", c.aligned_scan);
@@ -47,62 +83,161 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
 RgKernelNode::RgKernelNode(runtime::Node& node, NodeConfig config)
     : node_(node), config_(std::move(config)), kernel_(config_.kernel)
 {
-  if (!config_.state_dir.empty()) {
-    journal_ = std::make_unique<persist::Journal>(config_.state_dir + "/inputs.journal", config_.fsync_each_input);
-    if (!journal_->damage().empty())
-      spdlog::warn("journal {}: {} — the damaged tail was cut off", config_.state_dir, journal_->damage());
-    // Replay what was acknowledged before the last stop: same inputs, same order, same map.
-    // A long journal takes a while: keep heartbeating so the supervisor sees progress.
-    auto last_beat = std::chrono::steady_clock::now();
-    for (const auto& rec : journal_->recovered()) {
-      if (std::chrono::steady_clock::now() - last_beat > std::chrono::milliseconds(200)) {
-        node_.publish_heartbeat();
-        last_beat = std::chrono::steady_clock::now();
-      }
-      std::string why;
-      const auto* data = reinterpret_cast<const uint8_t*>(rec.bytes.data());
-      if (rec.tag == kAlignedScan) {
-        aligned_scan_t m;
-        if (bus::decode(data, rec.bytes.size(), &m, &why)) on_scan(m, false);
-      } else if (rec.tag == kGatewayEvent) {
-        gateway_event_t m;
-        if (bus::decode(data, rec.bytes.size(), &m, &why)) on_event(m, false);
-      }
-      if (!why.empty()) spdlog::warn("journal record skipped: {}", why);
-      ++restored_;
-    }
-    spdlog::info(restored_ > 0 ? "resumed from {}: {} inputs replayed, {} regions"
-                               : "starting a fresh map in {} ({} inputs, {} regions)",
-                 config_.state_dir, restored_, kernel_.stats().regions);
-  }
+  if (!config_.state_dir.empty()) restore();
   node_.subscribe<aligned_scan_t>(config_.aligned_scan, [this](const aligned_scan_t& m) { on_scan(m, true); });
   node_.subscribe<gateway_event_t>(config_.gateway_events, [this](const gateway_event_t& m) { on_event(m, true); });
   node_.every(std::chrono::seconds(1), [this] {
     if (kernel_.map().current_region != 0) publish();
   });
+  if (store_) {
+    node_.every(std::chrono::microseconds(static_cast<int64_t>(config_.sync_period_s * 1e6)), [this] {
+      try {
+        store_->sync_if_due();
+      } catch (const std::exception& e) {
+        spdlog::error("journal sync failed: {}", e.what());
+        node_.set_status(heartbeat_t::STATE_DEGRADED, "journal sync failed");
+      }
+    });
+  }
   if (restored_ > 0) publish();
+}
+
+namespace {
+constexpr uint32_t kSnapshotMagic = 0x534b4752;   // "RGKS"
+}
+
+std::string RgKernelNode::snapshot_payload() const
+{
+  StateWriter w;
+  w.put(kSnapshotMagic);
+  w.put(inputs_);
+  w.put(last_publish_utime_);
+  w.put(static_cast<uint8_t>(unpublished_change_));
+  kernel_.save_state(w);   // last: it runs to the end
+  return w.take();
+}
+
+void RgKernelNode::apply_snapshot(const std::string& payload)
+{
+  StateReader r(payload);
+  if (r.get<uint32_t>() != kSnapshotMagic) throw SnapshotError("not an rg_kernel snapshot");
+  const int64_t inputs = r.get<int64_t>(), last_publish = r.get<int64_t>();
+  const bool unpublished = r.get<uint8_t>() != 0;
+  kernel_.restore_state(r);
+  inputs_ = inputs;
+  last_publish_utime_ = last_publish;
+  unpublished_change_ = unpublished;
+}
+
+void RgKernelNode::restore()
+{
+  StoreOptions so;
+  so.dir = config_.state_dir;
+  so.sync_every_records = config_.sync_every_inputs;
+  so.sync_every = std::chrono::milliseconds(static_cast<int64_t>(config_.sync_period_s * 1000));
+  so.snapshot_every_records = config_.snapshot_every_inputs;
+  store_ = std::make_unique<StateStore>(so);
+  // The newest intact snapshot; a damaged one is reported and set aside, never loaded, and
+  // the one before it (with the longer journal tail kept for exactly this) takes its place.
+  const auto t0 = std::chrono::steady_clock::now();
+  for (const int64_t g : store_->snapshot_generations()) {
+    try {
+      apply_snapshot(store_->read_snapshot(g));
+      loaded_generation_ = g;
+      break;
+    } catch (const std::exception& e) {   // persist::CorruptFile, SnapshotError
+      spdlog::error("snapshot {} is damaged and will not be loaded: {}", store_->snapshot_path(g), e.what());
+      store_->set_aside(g, store_->snapshot_path(g) + ": " + e.what());
+    }
+  }
+  const int64_t from_snapshot = inputs_;
+  const auto t1 = std::chrono::steady_clock::now();
+  // Replay what was journaled after it: same inputs, same order, same map. A long tail (after
+  // a fallback) takes a while: keep heartbeating so the supervisor sees progress.
+  auto last_beat = std::chrono::steady_clock::now();
+  replaying_ = true;
+  for (const auto& rec : store_->open_from(loaded_generation_)) {
+    if (std::chrono::steady_clock::now() - last_beat > std::chrono::milliseconds(200)) {
+      node_.publish_heartbeat();
+      last_beat = std::chrono::steady_clock::now();
+    }
+    std::string why;
+    const auto* data = reinterpret_cast<const uint8_t*>(rec.bytes.data());
+    if (rec.tag == kAlignedScan) {
+      aligned_scan_t m;
+      if (bus::decode(data, rec.bytes.size(), &m, &why)) on_scan(m, false);
+    } else if (rec.tag == kGatewayEvent) {
+      gateway_event_t m;
+      if (bus::decode(data, rec.bytes.size(), &m, &why)) on_event(m, false);
+    }
+    if (!why.empty()) spdlog::warn("journal record skipped: {}", why);
+    ++inputs_;
+    ++replayed_;
+  }
+  replaying_ = false;
+  restored_ = inputs_;
+  if (!store_->tail_damage().empty()) spdlog::warn("journal {}", store_->tail_damage());
+  for (const auto& p : store_->problems()) spdlog::error("state {}: {}", config_.state_dir, p);
+  if (!store_->problems().empty())
+    node_.set_status(heartbeat_t::STATE_DEGRADED, "state damaged, restored from what was intact: " + store_->problems().front());
+  const auto ms = [](auto d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  if (restored_ > 0)
+    spdlog::info("resumed from {}: {} inputs replayed ({} from snapshot generation {} in {:.0f} ms, {} from the journal in {:.0f} ms), "
+                 "{} regions",
+                 config_.state_dir, restored_, from_snapshot, loaded_generation_, ms(t1 - t0), replayed_,
+                 ms(std::chrono::steady_clock::now() - t1), kernel_.stats().regions);
+  else
+    spdlog::info("starting a fresh map in {} (0 inputs, 0 regions)", config_.state_dir);
+}
+
+void RgKernelNode::maybe_snapshot()
+{
+  if (!store_ || !store_->snapshot_due()) return;
+  const std::string error = store_->last_snapshot_error();
+  if (!error.empty()) {
+    // The previous attempt failed; the journal chain since the last good snapshot is intact.
+    spdlog::error("snapshot failed: {}", error);
+    node_.set_status(heartbeat_t::STATE_DEGRADED, "snapshot failed");
+  }
+  try {
+    store_->start_snapshot(snapshot_payload());
+  } catch (const std::exception& e) {
+    spdlog::error("snapshot failed: {}", e.what());
+    node_.set_status(heartbeat_t::STATE_DEGRADED, "snapshot failed");
+  }
+}
+
+void RgKernelNode::snapshot_now()
+{
+  if (!store_) return;
+  store_->wait_snapshot();
+  store_->start_snapshot(snapshot_payload());
+  store_->wait_snapshot();
 }
 
 template <class T>
 void RgKernelNode::journal(Tag tag, const T& m)
 {
-  if (!journal_) return;
+  if (!store_) return;
   std::vector<uint8_t> buf;
   std::string why;
   if (!bus::encode(m, &buf, &why)) return;
-  journal_->append(tag, std::string(buf.begin(), buf.end()));
+  store_->append(tag, std::string(buf.begin(), buf.end()));
+  ++inputs_;
 }
 
 void RgKernelNode::on_scan(const aligned_scan_t& m, bool write_journal)
 {
   if (write_journal) journal(kAlignedScan, m);
   if (kernel_.add_scan(to_input(m))) changed(m.utime);
+  if (write_journal) maybe_snapshot();
 }
 
 void RgKernelNode::on_event(const gateway_event_t& m, bool write_journal)
 {
   if (write_journal) journal(kGatewayEvent, m);
   if (kernel_.add_gateway_event(to_input(m))) changed(m.utime);
+  if (write_journal) maybe_snapshot();
 }
 
 void RgKernelNode::changed(int64_t utime)
@@ -110,7 +245,9 @@ void RgKernelNode::changed(int64_t utime)
   unpublished_change_ = true;
   if (utime - last_publish_utime_ >= static_cast<int64_t>(config_.publish_period_s * 1e6)) {
     last_publish_utime_ = utime;
-    publish();
+    // While replaying, the schedule advances as it did but nothing goes out (old versions of
+    // the map, each with an fsync'ed checkpoint): the restored map is published once at the end.
+    if (!replaying_) publish();
   }
 }
 
@@ -118,19 +255,45 @@ void RgKernelNode::publish()
 {
   const rgmap::RgMap& map = kernel_.refreshed_map();
   if (map.current_region == 0) return;
+  // Publish only what is durable: a map out on the bus is an acknowledgement of its inputs.
+  if (store_) {
+    try {
+      store_->sync();
+    } catch (const std::exception& e) {
+      spdlog::error("journal sync failed, not publishing: {}", e.what());
+      node_.set_status(heartbeat_t::STATE_DEGRADED, "journal sync failed");
+      return;
+    }
+  }
   rg_map_t map_msg = rgmap::to_msg(map);
   node_.publish(config_.rg_region, rgmap::to_msg(*map.region(map.current_region)));
   node_.publish(config_.rg_map, map_msg);
   node_.publish(config_.rg_graph, rgmap::to_msg(rgmap::build_graph(map, config_.graph), map.utime));
-  if (unpublished_change_ && !config_.state_dir.empty()) {
-    try {
-      persist::write_atomically(config_.state_dir + "/rgmap.json", rgmap::to_json(map).dump(1));
-    } catch (const std::exception& e) {
-      spdlog::error("checkpoint failed: {}", e.what());
-      node_.set_status(heartbeat_t::STATE_DEGRADED, "checkpoint failed");
-    }
-  }
+  if (unpublished_change_ && !config_.state_dir.empty()) export_pending_ = true;
   unpublished_change_ = false;
+  // rgmap.json is an export for tools (render, map); restarts use snapshots and the journal.
+  // Under a flood of input it is written at most every export_period (wall time).
+  const auto now = std::chrono::steady_clock::now();
+  if (export_pending_ && now - last_export_ >= std::chrono::duration<double>(config_.export_period_s)) write_export(map);
+}
+
+void RgKernelNode::write_export(const rgmap::RgMap& map)
+{
+  try {
+    persist::write_atomically(config_.state_dir + "/rgmap.json", rgmap::to_json(map).dump(1));
+    export_pending_ = false;
+    last_export_ = std::chrono::steady_clock::now();
+  } catch (const std::exception& e) {
+    spdlog::error("rgmap.json export failed: {}", e.what());
+    node_.set_status(heartbeat_t::STATE_DEGRADED, "rgmap.json export failed");
+  }
+}
+
+RgKernelNode::~RgKernelNode()
+{
+  // A clean stop leaves the newest map in rgmap.json (a kill leaves the one before: the
+  // snapshots and the journal hold the rest).
+  if (export_pending_ && kernel_.map().current_region != 0) write_export(kernel_.refreshed_map());
 }
 
 }  // namespace rgnav::rg_kernel

@@ -93,14 +93,14 @@ CorrelativeResult correlative_match(const Points& scan, const LikelihoodGrid& gr
   std::vector<std::vector<int>> cells(static_cast<size_t>(2 * K + 1));  // interleaved x, y per angle
   std::vector<Candidate> candidates;
   for (int k = -K; k <= K; ++k) {
-    const double th = guess.theta + k * step;
+    const double th = guess.theta() + k * step;
     const double c = std::cos(th), s = std::sin(th);
     auto& cl = cells[static_cast<size_t>(k + K)];
     cl.resize(2 * scan.size());
     for (size_t i = 0; i < scan.size(); ++i) {
       const auto& q = scan[i];
-      cl[2 * i] = static_cast<int>(std::lround(grid.cell_x(guess.x + c * q.x() - s * q.y())));
-      cl[2 * i + 1] = static_cast<int>(std::lround(grid.cell_y(guess.y + s * q.x() + c * q.y())));
+      cl[2 * i] = static_cast<int>(std::lround(grid.cell_x(guess.x() + c * q.x() - s * q.y())));
+      cl[2 * i + 1] = static_cast<int>(std::lround(grid.cell_y(guess.y() + s * q.x() + c * q.y())));
     }
     for (int oy = -W; oy <= W; oy += B)
       for (int ox = -W; ox <= W; ox += B) {
@@ -133,7 +133,7 @@ CorrelativeResult correlative_match(const Points& scan, const LikelihoodGrid& gr
       }
   }
   best.score = std::max(0.0, best_score);
-  best.map_from_scan = Pose2{guess.x + bx * res, guess.y + by * res, normalize_angle(guess.theta + bk * step)};
+  best.map_from_scan = Pose2{guess.x() + bx * res, guess.y() + by * res, normalize_angle(guess.theta() + bk * step)};
   return best;
 }
 

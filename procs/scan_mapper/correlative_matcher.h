@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "scan_mapper/pose2.h"
+#include "scan_mapper/pose_math.h"
 #include "scan_mapper/scan_types.h"
 
 namespace rgnav::scan_mapper {

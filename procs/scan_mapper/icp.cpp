@@ -28,9 +28,9 @@ struct Normal
 Normal linearize(const Points& scan, const PointMap& model, const Pose2& T, double max_dist)
 {
   Normal ne;
-  const double c = std::cos(T.theta), s = std::sin(T.theta);
+  const double c = std::cos(T.theta()), s = std::sin(T.theta());
   for (const auto& q : scan) {
-    const Eigen::Vector2d p(T.x + c * q.x() - s * q.y(), T.y + s * q.x() + c * q.y());
+    const Eigen::Vector2d p(T.x() + c * q.x() - s * q.y(), T.y() + s * q.x() + c * q.y());
     const int j = model.nearest(p, max_dist);
     if (j < 0) continue;
     const Eigen::Vector2d d = p - model.points()[static_cast<size_t>(j)];
@@ -70,7 +70,7 @@ IcpResult icp_point_to_line(const Points& scan, const PointMap& model, const Pos
     H.diagonal() += Eigen::Vector3d(1e-6, 1e-6, 1e-6) * std::max(1.0, H.trace());
     const Eigen::Vector3d delta = -H.ldlt().solve(ne.g);
     if (!delta.allFinite()) break;
-    T = Pose2{T.x + delta.x(), T.y + delta.y(), normalize_angle(T.theta + delta.z())};
+    T = Pose2{T.x() + delta.x(), T.y() + delta.y(), normalize_angle(T.theta() + delta.z())};
     const bool small = std::hypot(delta.x(), delta.y()) < o.converged_translation_m &&
                        std::fabs(delta.z()) < o.converged_rotation_rad;
     const bool at_floor = max_dist <= o.final_max_distance_m;

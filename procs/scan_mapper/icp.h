@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 
 #include "scan_mapper/point_map.h"
-#include "scan_mapper/pose2.h"
+#include "scan_mapper/pose_math.h"
 
 namespace rgnav::scan_mapper {
 

@@ -21,13 +21,13 @@ std::vector<RelativeUncertainty> relative_uncertainty(const PoseGraph& graph, in
   }
   // Variances an edge adds: closures carry their own covariance, sequential edges the drift model.
   auto edge_vars = [&](const PoseGraphEdge& e, double* vr, double* vt) {
-    const double d = e.from_from_to.translation_norm();
+    const double d = translation_norm(e.from_from_to);
     if (e.robust) {
       const Eigen::Matrix3d c = e.information.inverse();
       *vr = std::max(0.0, c(2, 2));
       *vt = std::max(0.0, c(0, 0) + c(1, 1));
     } else {
-      *vr = drift.rot_var_per_m * d + drift.rot_var_per_rad * std::fabs(e.from_from_to.theta);
+      *vr = drift.rot_var_per_m * d + drift.rot_var_per_rad * std::fabs(e.from_from_to.theta());
       *vt = drift.trans_var_per_m * d;
     }
   };
@@ -51,7 +51,7 @@ std::vector<RelativeUncertainty> relative_uncertainty(const PoseGraph& graph, in
       auto& rv = out[static_cast<size_t>(v)];
       const double c = ru.var_rot + vr;
       if (!rv.reached() || c < rv.var_rot) {
-        rv = {c, ru.var_trans + vt, ru.length_m + e.from_from_to.translation_norm()};
+        rv = {c, ru.var_trans + vt, ru.length_m + translation_norm(e.from_from_to)};
         queue.push({c, v});
       }
     }
@@ -68,7 +68,7 @@ bool pairwise_consistent(const PoseGraph& graph, const ClosureHypothesis& a, con
   const Pose2 predicted = between(via_a, via_b);
   const Pose2 chain = between(graph.pose(a.node), graph.pose(b.node));
   const Pose2 d = between(chain, predicted);
-  return d.translation_norm() <= tol.trans_m && std::fabs(d.theta) <= tol.rot_rad;
+  return translation_norm(d) <= tol.trans_m && std::fabs(d.theta()) <= tol.rot_rad;
 }
 
 }  // namespace rgnav::scan_mapper

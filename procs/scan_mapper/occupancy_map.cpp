@@ -32,10 +32,10 @@ OccupancyGrid OccupancyGrid::build(const std::vector<ScanNode>& nodes, const Pos
   g.o_ = o;
   double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
   for_each_endpoint(nodes, base_from_laser, o.max_range_m, [&](const Pose2& origin, const Eigen::Vector2d& p) {
-    x0 = std::min({x0, p.x(), origin.x});
-    y0 = std::min({y0, p.y(), origin.y});
-    x1 = std::max({x1, p.x(), origin.x});
-    y1 = std::max({y1, p.y(), origin.y});
+    x0 = std::min({x0, p.x(), origin.x()});
+    y0 = std::min({y0, p.y(), origin.y()});
+    x1 = std::max({x1, p.x(), origin.x()});
+    y1 = std::max({y1, p.y(), origin.y()});
   });
   if (!(x1 >= x0)) return g;
   g.x0_ = x0 - o.margin_m;
@@ -47,7 +47,7 @@ OccupancyGrid OccupancyGrid::build(const std::vector<ScanNode>& nodes, const Pos
   auto bump = [](uint16_t& v) { v = static_cast<uint16_t>(std::min<int>(v + 1, 65535)); };
   for_each_endpoint(nodes, base_from_laser, o.max_range_m, [&](const Pose2& origin, const Eigen::Vector2d& p) {
     // Bresenham from the laser to the end point: cells before the end were seen through.
-    int x = g.cell_x(origin.x), y = g.cell_y(origin.y);
+    int x = g.cell_x(origin.x()), y = g.cell_y(origin.y());
     const int ex = g.cell_x(p.x()), ey = g.cell_y(p.y());
     const int dx = std::abs(ex - x), dy = -std::abs(ey - y), sx = x < ex ? 1 : -1, sy = y < ey ? 1 : -1;
     int err = dx + dy;

@@ -34,9 +34,9 @@ double robust_rho(double s, const OptimizerOptions& o)
 
 Eigen::Vector3d edge_error(const Pose2& a, const Pose2& b, const Pose2& z)
 {
-  const Eigen::Matrix2d Ra = rot(a.theta), Rz = rot(z.theta);
-  const Eigen::Vector2d t = Rz.transpose() * (Ra.transpose() * Eigen::Vector2d(b.x - a.x, b.y - a.y) - Eigen::Vector2d(z.x, z.y));
-  return {t.x(), t.y(), normalize_angle(b.theta - a.theta - z.theta)};
+  const Eigen::Matrix2d Ra = rot(a.theta()), Rz = rot(z.theta());
+  const Eigen::Vector2d t = Rz.transpose() * (Ra.transpose() * Eigen::Vector2d(b.x() - a.x(), b.y() - a.y()) - Eigen::Vector2d(z.x(), z.y()));
+  return {t.x(), t.y(), normalize_angle(b.theta() - a.theta() - z.theta())};
 }
 
 int PoseGraph::add_node(const Pose2& p)
@@ -86,10 +86,10 @@ OptimizerSummary PoseGraph::optimize(const OptimizerOptions& o)
       const Pose2& c = poses_[static_cast<size_t>(e.to)];
       const Eigen::Vector3d r = edge_error(a, c, e.from_from_to);
       const double w = e.robust ? robust_weight(r.dot(e.information * r), o) : 1.0;
-      const Eigen::Matrix2d Ra = rot(a.theta), Rz = rot(e.from_from_to.theta);
-      const Eigen::Vector2d dt(c.x - a.x, c.y - a.y);
+      const Eigen::Matrix2d Ra = rot(a.theta()), Rz = rot(e.from_from_to.theta());
+      const Eigen::Vector2d dt(c.x() - a.x(), c.y() - a.y());
       Eigen::Matrix2d dRaT;  // d(Ra^T)/dtheta_a
-      dRaT << -std::sin(a.theta), std::cos(a.theta), -std::cos(a.theta), -std::sin(a.theta);
+      dRaT << -std::sin(a.theta()), std::cos(a.theta()), -std::cos(a.theta()), -std::sin(a.theta());
       Eigen::Matrix3d A = Eigen::Matrix3d::Zero(), B = Eigen::Matrix3d::Zero();
       A.block<2, 2>(0, 0) = -Rz.transpose() * Ra.transpose();
       A.block<2, 1>(0, 2) = Rz.transpose() * dRaT * dt;
@@ -137,7 +137,7 @@ OptimizerSummary PoseGraph::optimize(const OptimizerOptions& o)
       std::vector<Pose2> trial = poses_;
       for (int k = 1; k < n; ++k) {
         auto& p = trial[static_cast<size_t>(k)];
-        p = Pose2{p.x + dx(3 * (k - 1)), p.y + dx(3 * (k - 1) + 1), normalize_angle(p.theta + dx(3 * (k - 1) + 2))};
+        p = Pose2{p.x() + dx(3 * (k - 1)), p.y() + dx(3 * (k - 1) + 1), normalize_angle(p.theta() + dx(3 * (k - 1) + 2))};
       }
       const double tc = cost(trial, o);
       if (tc < current) {

@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "scan_mapper/pose2.h"
+#include "scan_mapper/pose_math.h"
 
 namespace rgnav::scan_mapper {
 

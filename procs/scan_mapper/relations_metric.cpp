@@ -16,7 +16,7 @@ std::vector<std::pair<size_t, size_t>> select_relations(const std::vector<TimedP
   for (size_t i = 0; i < ref.size(); ++i)
     for (size_t j = i + 2; j < ref.size(); ++j) {
       if (ref[j].utime - ref[i].utime <= min_dt) continue;
-      const double dx = ref[j].pose.x - ref[i].pose.x, dy = ref[j].pose.y - ref[i].pose.y;
+      const double dx = ref[j].pose.x() - ref[i].pose.x(), dy = ref[j].pose.y() - ref[i].pose.y();
       if (dx * dx + dy * dy < d2) out.emplace_back(i, j);
     }
   return out;
@@ -32,8 +32,8 @@ RelationError relation_error(const std::vector<Pose2>& est, const std::vector<Po
     const Pose2 de = between(est[i], est[j]);
     const Pose2 dr = between(ref[i], ref[j]);
     const Pose2 e = between(dr, de);  // dr^-1 * de
-    const double t = e.translation_norm();
-    const double a = std::fabs(e.theta) * 180.0 / M_PI;
+    const double t = translation_norm(e);
+    const double a = std::fabs(e.theta()) * 180.0 / M_PI;
     st += t, st2 += t * t, sr += a, sr2 += a * a;
     ++r.count;
   }
@@ -53,14 +53,14 @@ double ate_rmse(const std::vector<Pose2>& est, const std::vector<Pose2>& ref)
   const double n = static_cast<double>(est.size());
   Eigen::Vector2d me = Eigen::Vector2d::Zero(), mr = Eigen::Vector2d::Zero();
   for (size_t k = 0; k < est.size(); ++k) {
-    me += Eigen::Vector2d(est[k].x, est[k].y);
-    mr += Eigen::Vector2d(ref[k].x, ref[k].y);
+    me += Eigen::Vector2d(est[k].x(), est[k].y());
+    mr += Eigen::Vector2d(ref[k].x(), ref[k].y());
   }
   me /= n;
   mr /= n;
   Eigen::Matrix2d C = Eigen::Matrix2d::Zero();
   for (size_t k = 0; k < est.size(); ++k)
-    C += (Eigen::Vector2d(ref[k].x, ref[k].y) - mr) * (Eigen::Vector2d(est[k].x, est[k].y) - me).transpose();
+    C += (Eigen::Vector2d(ref[k].x(), ref[k].y()) - mr) * (Eigen::Vector2d(est[k].x(), est[k].y()) - me).transpose();
   Eigen::JacobiSVD<Eigen::Matrix2d> svd(C, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix2d D = Eigen::Matrix2d::Identity();
   if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0) D(1, 1) = -1;
@@ -68,7 +68,7 @@ double ate_rmse(const std::vector<Pose2>& est, const std::vector<Pose2>& ref)
   const Eigen::Vector2d t = mr - R * me;
   double s = 0.0;
   for (size_t k = 0; k < est.size(); ++k)
-    s += (R * Eigen::Vector2d(est[k].x, est[k].y) + t - Eigen::Vector2d(ref[k].x, ref[k].y)).squaredNorm();
+    s += (R * Eigen::Vector2d(est[k].x(), est[k].y()) + t - Eigen::Vector2d(ref[k].x(), ref[k].y())).squaredNorm();
   return std::sqrt(s / n);
 }
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "scan_mapper/pose2.h"
+#include "scan_mapper/pose_math.h"
 
 namespace rgnav::scan_mapper {
 

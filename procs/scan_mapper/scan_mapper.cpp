@@ -1,5 +1,7 @@
 #include "scan_mapper/scan_mapper.h"
 
+#include "scan_mapper/input_checks.h"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -32,7 +34,7 @@ Eigen::Matrix3d information_of(const Eigen::Matrix3d& cov)
 
 Eigen::Vector3d difference(const Pose2& a, const Pose2& b)
 {
-  return {a.x - b.x, a.y - b.y, normalize_angle(a.theta - b.theta)};
+  return {a.x() - b.x(), a.y() - b.y(), normalize_angle(a.theta() - b.theta())};
 }
 
 }  // namespace
@@ -58,7 +60,14 @@ ScanMapper::ScanMapper(ScanMapperOptions options, MapperState state)
 
 MapperState ScanMapper::state() const { return {nodes_, graph_.edges()}; }
 
-void ScanMapper::add_odometry(const OdometrySample& s) { odometry_.add(s); }
+void ScanMapper::add_odometry(const OdometrySample& s)
+{
+  if (!check_odometry(s).empty()) {
+    ++stats_.invalid;
+    return;
+  }
+  odometry_.add(s);
+}
 
 void ScanMapper::reset_odometry()
 {
@@ -81,6 +90,10 @@ std::optional<Pose2> ScanMapper::map_from_odom() const
 MapperUpdate ScanMapper::add_scan(const Scan& scan)
 {
   ++stats_.scans_in;
+  if (!check_scan(scan).empty()) {
+    ++stats_.invalid;
+    return {};
+  }
   const auto odom = odometry_.at(scan.utime, options_.max_odometry_extrapolation_us);
   if (!odom) {
     ++stats_.no_odometry;
@@ -92,9 +105,9 @@ MapperUpdate ScanMapper::add_scan(const Scan& scan)
 Eigen::Matrix3d ScanMapper::odometry_covariance(const Pose2& inc) const
 {
   const auto& n = options_.odometry_noise;
-  const double d = inc.translation_norm();
+  const double d = translation_norm(inc);
   const double st = n.min_trans_m + n.trans_per_m * d;
-  const double sr = n.min_rot_rad + n.rot_per_rad * std::fabs(inc.theta) + n.rot_per_m * d;
+  const double sr = n.min_rot_rad + n.rot_per_rad * std::fabs(inc.theta()) + n.rot_per_m * d;
   return Eigen::Vector3d(st * st, st * st, sr * sr).asDiagonal();
 }
 
@@ -120,7 +133,7 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
   const bool relocalize = relocalize_next_;
   // After a restart the odometry origin is unknown: assume the robot is where it was.
   const Pose2 u = relocalize ? Pose2{} : between(prev.odom_from_base, odom);
-  if (!relocalize && u.translation_norm() < options_.min_travel_m && std::fabs(u.theta) < options_.min_rotation_rad)
+  if (!relocalize && translation_norm(u) < options_.min_travel_m && std::fabs(u.theta()) < options_.min_rotation_rad)
     return up;
   relocalize_next_ = false;
 
@@ -135,7 +148,7 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
   if (const auto icp = register_locally(node.points, guess, relocalize)) {
     // Both increments in the previous node's frame.
     const Pose2 z = between(prev.map_from_base, icp->map_from_scan);
-    const Eigen::Matrix3d R = rot3(-prev.map_from_base.theta) * icp->covariance * rot3(-prev.map_from_base.theta).transpose();
+    const Eigen::Matrix3d R = rot3(-prev.map_from_base.theta()) * icp->covariance * rot3(-prev.map_from_base.theta()).transpose();
     const Eigen::Vector3d innov = difference(z, u);
     const Eigen::Matrix3d S = Q + R;
     const double chi2 = innov.dot(S.ldlt().solve(innov));
@@ -143,7 +156,7 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
       ++stats_.match_rejected;
     } else {
       const Eigen::Matrix3d K = Q * S.inverse();
-      fused = Pose2::from(u.vector() + K * innov);
+      fused = pose_from_vector(to_vector(u) + K * innov);
       P = (Eigen::Matrix3d::Identity() - K) * Q;
       P = 0.5 * (P + P.transpose());
       up.matched = true;
@@ -153,26 +166,26 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
   node.map_from_base = prev.map_from_base * fused;
   node.published = node.map_from_base;
   // First-order propagation of the node covariance.
-  const Eigen::Vector2d dt = Eigen::Vector2d(node.map_from_base.x - prev.map_from_base.x,
-                                             node.map_from_base.y - prev.map_from_base.y);
+  const Eigen::Vector2d dt = Eigen::Vector2d(node.map_from_base.x() - prev.map_from_base.x(),
+                                             node.map_from_base.y() - prev.map_from_base.y());
   Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
   F(0, 2) = -dt.y();
   F(1, 2) = dt.x();
-  const Eigen::Matrix3d G = rot3(prev.map_from_base.theta);
+  const Eigen::Matrix3d G = rot3(prev.map_from_base.theta());
   node.covariance = F * prev.covariance * F.transpose() + G * P * G.transpose();
-  node.path_m = prev.path_m + u.translation_norm();
+  node.path_m = prev.path_m + translation_norm(u);
 
   const int from = static_cast<int>(nodes_.size()) - 1;
   nodes_.push_back(std::move(node));
   const int id = graph_.add_node(nodes_.back().map_from_base);
   // The edge error lives in the frame of the measured increment.
-  const Eigen::Matrix3d Pe = rot3(-fused.theta) * P * rot3(-fused.theta).transpose();
+  const Eigen::Matrix3d Pe = rot3(-fused.theta()) * P * rot3(-fused.theta()).transpose();
   graph_.add_edge({from, id, fused, information_of(Pe), false});
   ++stats_.accepted;
   up.accepted = true;
   up.node = id;
   // While a hypothesis waits for a witness, look every scan.
-  if (options_.loop.enabled && (++since_loop_try_ >= options_.loop.every_n_scans || !pending_.empty())) {
+  if (options_.loop.enabled && !in_flight_ && (++since_loop_try_ >= options_.loop.every_n_scans || !pending_.empty())) {
     since_loop_try_ = 0;
     up.loop_closed = try_loop_closure(id, &up);
   }
@@ -196,7 +209,7 @@ std::optional<IcpResult> ScanMapper::register_locally(const Points& points, cons
     const auto& nk = nodes_[static_cast<size_t>(k)];
     const auto pts = transform_points(nk.map_from_base, nk.points);
     model.insert(model.end(), pts.begin(), pts.end());
-    const double c = std::cos(nk.map_from_base.theta), s = std::sin(nk.map_from_base.theta);
+    const double c = std::cos(nk.map_from_base.theta()), s = std::sin(nk.map_from_base.theta());
     for (const auto& v : nk.normals) normals.emplace_back(c * v.x() - s * v.y(), s * v.x() + c * v.y());
     has_normal.insert(has_normal.end(), nk.has_normal.begin(), nk.has_normal.end());
   }
@@ -260,7 +273,7 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
     const auto& u = unc[static_cast<size_t>(m)];
     if (!u.reached()) continue;
     const double window = std::clamp(l.gate_sigmas * u.sigma_xy(), l.window_base_m, l.window_max_m);
-    const double d = std::hypot(c.map_from_base.x - cur.map_from_base.x, c.map_from_base.y - cur.map_from_base.y);
+    const double d = std::hypot(c.map_from_base.x() - cur.map_from_base.x(), c.map_from_base.y() - cur.map_from_base.y());
     // Beyond the window the true place cannot be this one; prefer the best-known candidates.
     if (d > l.search_radius_m + window) continue;
     const double rank = d / (l.search_radius_m + window);
@@ -292,7 +305,7 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
   h.node = n;
   h.anchor = anchor;
   h.anchor_from_node = icp.map_from_scan;
-  h.covariance = l.covariance_scale * rot3(-h.anchor_from_node.theta) * icp.covariance * rot3(-h.anchor_from_node.theta).transpose();
+  h.covariance = l.covariance_scale * rot3(-h.anchor_from_node.theta()) * icp.covariance * rot3(-h.anchor_from_node.theta()).transpose();
   // Where the graph already knows the relative pose well, a match that agrees with it needs
   // no second witness.
   h.direct = false;
@@ -334,41 +347,80 @@ bool ScanMapper::try_loop_closure(int n, MapperUpdate* up)
                                   }),
                    pending_.end());
   }
-  const std::vector<Pose2> before = graph_.poses();
-  const size_t first_new = graph_.edges().size();
-  for (const auto& c : accept) graph_.add_edge({c.anchor, c.node, c.anchor_from_node, information_of(c.covariance), true});
-  graph_.optimize(options_.optimizer);
+  OptimizationJob job;
+  job.graph = graph_;
+  job.first_closure = graph_.edges().size();
+  for (const auto& c : accept) job.graph.add_edge({c.anchor, c.node, c.anchor_from_node, information_of(c.covariance), true});
+  job.newest = n;
+  job.anchor = accept.back().anchor;
+  job.closure_covariance = accept.back().covariance;
+  job.options = options_.optimizer;
+  if (deferred_) {
+    job_ = std::move(job);
+    in_flight_ = true;
+    up->optimization_ready = true;
+    return false;
+  }
+  job.run();
+  return adopt(job, up, n);
+}
+
+std::optional<OptimizationJob> ScanMapper::take_optimization_job()
+{
+  std::optional<OptimizationJob> j = std::move(job_);
+  job_.reset();
+  return j;
+}
+
+MapperUpdate ScanMapper::apply_optimization(const OptimizationJob& done)
+{
+  in_flight_ = false;
+  MapperUpdate up;
+  up.node = static_cast<int>(nodes_.size()) - 1;
+  up.loop_closed = adopt(done, &up, -1);
+  return up;
+}
+
+bool ScanMapper::adopt(const OptimizationJob& job, MapperUpdate* up, int unpublished)
+{
+  const auto& l = options_.loop;
+  const PoseGraph& g = job.graph;
   // A new closure the rest of the graph still disagrees with is most likely false (a
-  // look-alike place): remove all of this batch and restore the estimate.
-  for (size_t k = first_new; k < graph_.edges().size(); ++k) {
-    const auto& e = graph_.edges()[k];
-    const Eigen::Vector3d r = edge_error(graph_.pose(e.from), graph_.pose(e.to), e.from_from_to);
+  // look-alike place): the whole batch is dropped and the estimate stays as it was.
+  for (size_t k = job.first_closure; k < g.edges().size(); ++k) {
+    const auto& e = g.edges()[k];
+    const Eigen::Vector3d r = edge_error(g.pose(e.from), g.pose(e.to), e.from_from_to);
     if (r.dot(e.information * r) > l.max_residual_chi2) {
-      while (graph_.edges().size() > first_new) graph_.remove_edge(graph_.edges().size() - 1);
-      for (size_t i = 0; i < before.size(); ++i) graph_.set_pose(static_cast<int>(i), before[i]);
       ++stats_.loop_rejected_after_opt;
       return false;
     }
   }
-  stats_.loop_closures += static_cast<int64_t>(accept.size());
-  collect_corrections(up);
-  auto& last = nodes_[static_cast<size_t>(n)];
-  const ScanNode& a = nodes_[static_cast<size_t>(accept.back().anchor)];
-  last.covariance = a.covariance + rot3(a.map_from_base.theta) * accept.back().covariance * rot3(a.map_from_base.theta).transpose();
+  for (size_t k = job.first_closure; k < g.edges().size(); ++k) graph_.add_edge(g.edges()[k]);
+  // Nodes added while the job ran follow the newest node it knew, rigidly.
+  const int known = static_cast<int>(g.size());
+  const Pose2 old_last = graph_.pose(known - 1);
+  const Pose2 correction = g.pose(known - 1) * old_last.inverse();
+  for (int i = 0; i < known; ++i) graph_.set_pose(i, g.pose(i));
+  for (int i = known; i < static_cast<int>(graph_.size()); ++i) graph_.set_pose(i, correction * graph_.pose(i));
+  stats_.loop_closures += static_cast<int64_t>(g.edges().size() - job.first_closure);
+  collect_corrections(up, unpublished);
+  auto& last = nodes_[static_cast<size_t>(job.newest)];
+  const ScanNode& a = nodes_[static_cast<size_t>(job.anchor)];
+  last.covariance = a.covariance + rot3(a.map_from_base.theta()) * job.closure_covariance * rot3(a.map_from_base.theta()).transpose();
   // Relative poses inside cached submaps changed.
   submaps_.clear();
   submap_lru_.clear();
   return true;
 }
 
-void ScanMapper::collect_corrections(MapperUpdate* up)
+void ScanMapper::collect_corrections(MapperUpdate* up, int unpublished)
 {
   const int newest = static_cast<int>(nodes_.size()) - 1;
   for (int i = 0; i <= newest; ++i) {
     auto& node = nodes_[static_cast<size_t>(i)];
     const Pose2& now = graph_.pose(i);
     node.map_from_base = now;
-    if (i == newest) {  // not published yet
+    if (i == unpublished) {
       node.published = now;
       continue;
     }

@@ -16,6 +16,13 @@
 //     consistency). Accepted closures become robust edges of the pose graph, which is
 //     re-optimised; a batch left inconsistent after optimising is removed again.
 // Algorithms run on message time only; the same inputs give the same map.
+//
+// The optimisation is the one step that can take long (hundreds of ms on a large graph). By
+// default it runs inside add_scan (deterministic: offline tools, tests). With
+// set_deferred_optimization(true) add_scan instead leaves an OptimizationJob (a copy of the
+// graph with the new closures) for the caller to run on another thread, and keeps adding
+// scans meanwhile; apply_optimization() then adopts the result: the optimised poses for the
+// nodes the job knew, and the nodes added since moved rigidly with the newest of those.
 #pragma once
 
 #include <Eigen/Core>
@@ -51,6 +58,20 @@ struct ScanNode
   std::vector<char> has_normal;
 };
 
+// A pose graph optimisation after a loop closure, self-contained so that it can run on another
+// thread while the mapper goes on (run() touches nothing but the job).
+struct OptimizationJob
+{
+  PoseGraph graph;             // the mapper's graph plus the closure edges
+  size_t first_closure = 0;    // index of the first closure edge in graph.edges()
+  int newest = 0;              // the node whose scan found the closures
+  int anchor = 0;              // ... and the old node of the last closure
+  Eigen::Matrix3d closure_covariance = Eigen::Matrix3d::Zero();  // of the last closure
+  OptimizerOptions options;
+  OptimizerSummary summary;
+  void run() { summary = graph.optimize(options); }
+};
+
 struct MapperUpdate
 {
   bool accepted = false;
@@ -58,12 +79,13 @@ struct MapperUpdate
   bool matched = false;          // scan matching contributed (not odometry alone)
   bool loop_closed = false;
   std::vector<int> corrected;    // earlier nodes whose estimate changed (revision bumped)
+  bool optimization_ready = false;  // deferred mode: take_optimization_job() has a job
 };
 
 struct MapperStats
 {
   int64_t scans_in = 0, accepted = 0, no_odometry = 0, matched = 0, correlative_retries = 0,
-          match_rejected = 0, loop_attempts = 0, loop_closures = 0, loop_rejected_after_opt = 0;
+          match_rejected = 0, loop_attempts = 0, loop_closures = 0, loop_rejected_after_opt = 0, invalid = 0;
 };
 
 // Everything needed to resume: nodes and graph edges.
@@ -84,7 +106,18 @@ class ScanMapper
   void add_odometry(const OdometrySample& sample);
   // The odometry source restarted (new origin): relocalise the next scan like after a restart.
   void reset_odometry();
+  // Inputs failing input_checks.h are refused (counted in stats().invalid).
   MapperUpdate add_scan(const Scan& scan);
+
+  void set_deferred_optimization(bool deferred) { deferred_ = deferred; }
+  // Deferred mode: the job left by the last add_scan (once). No closure is searched while a
+  // job is out; the caller must hand each job back with apply_optimization or cancel it.
+  std::optional<OptimizationJob> take_optimization_job();
+  bool optimization_in_flight() const { return in_flight_; }
+  // Adopts a finished job (loop_closed and corrected say what changed; all nodes had been
+  // published, so every node that moved enough is in corrected).
+  MapperUpdate apply_optimization(const OptimizationJob& done);
+  void cancel_optimization() { in_flight_ = false; }
 
   const std::vector<ScanNode>& nodes() const { return nodes_; }
   const ScanMapperOptions& options() const { return options_; }
@@ -112,7 +145,10 @@ class ScanMapper
   std::optional<ClosureHypothesis> find_closure(int node);
   bool try_loop_closure(int node, MapperUpdate* update);
   const Submap& submap_around(int anchor);
-  void collect_corrections(MapperUpdate* update);
+  // unpublished: a node not published yet (its estimate is taken as is), or -1.
+  void collect_corrections(MapperUpdate* update, int unpublished);
+  // Checks the closures of an optimised job and, if they hold, adopts its poses.
+  bool adopt(const OptimizationJob& job, MapperUpdate* update, int unpublished);
 
   const ScanMapperOptions options_;
   OdometryBuffer odometry_;
@@ -124,6 +160,9 @@ class ScanMapper
   std::map<int, Submap> submaps_;   // by anchor node; small LRU
   std::list<int> submap_lru_;
   std::vector<ClosureHypothesis> pending_;  // closures waiting for a consistent witness
+  bool deferred_ = false;
+  bool in_flight_ = false;
+  std::optional<OptimizationJob> job_;      // deferred: made, not yet taken
 };
 
 }  // namespace rgnav::scan_mapper

@@ -13,9 +13,9 @@ Pose2 to_pose(const pose2d_t& m) { return {m.x, m.y, normalize_angle(m.theta)}; 
 pose2d_t to_message(const Pose2& p)
 {
   pose2d_t m;
-  m.x = p.x;
-  m.y = p.y;
-  m.theta = normalize_angle(p.theta);
+  m.x = p.x();
+  m.y = p.y();
+  m.theta = normalize_angle(p.theta());
   return m;
 }
 

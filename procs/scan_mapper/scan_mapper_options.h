@@ -6,7 +6,7 @@
 #include "scan_mapper/correlative_matcher.h"
 #include "scan_mapper/icp.h"
 #include "scan_mapper/loop_search.h"
-#include "scan_mapper/pose2.h"
+#include "scan_mapper/pose_math.h"
 #include "scan_mapper/pose_graph.h"
 #include "scan_mapper/scan_points.h"
 

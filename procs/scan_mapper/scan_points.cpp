@@ -34,9 +34,9 @@ Points transform_points(const Pose2& a_from_b, const Points& points_in_b)
 {
   Points out;
   out.reserve(points_in_b.size());
-  const double c = std::cos(a_from_b.theta), s = std::sin(a_from_b.theta);
+  const double c = std::cos(a_from_b.theta()), s = std::sin(a_from_b.theta());
   for (const auto& p : points_in_b)
-    out.emplace_back(a_from_b.x + c * p.x() - s * p.y(), a_from_b.y + s * p.x() + c * p.y());
+    out.emplace_back(a_from_b.x() + c * p.x() - s * p.y(), a_from_b.y() + s * p.x() + c * p.y());
   return out;
 }
 

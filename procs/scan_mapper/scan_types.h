@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scan_mapper/pose2.h"
+#include "scan_mapper/pose_math.h"
 
 namespace rgnav::scan_mapper {
 

@@ -41,6 +41,7 @@ Channels load_channels(const config::Config& c)
   Channels ch;
   ch.odometry = c.string("odometry", ch.odometry);
   ch.laser = c.string("laser", ch.laser);
+  ch.slam_pose = c.string("slam_pose", ch.slam_pose);
   ch.targets = c.string("targets", ch.targets);
   ch.base_cmd = c.string("base_cmd", ch.base_cmd);
   return ch;
@@ -50,13 +51,24 @@ TourRunnerNode::TourRunnerNode(runtime::Node& node, const TourRunnerOptions& opt
     : node_(node), options_(options), channels_(channels)
 {
   const Tour tour = load_tour(options_.tour_file);
-  // Odometry starts at identity where the robot stands, so the odom frame is the start pose.
-  odom_from_world_ = tour.world_from_start.inverse();
+  // Odometry starts at identity where the robot stands, so the odom (and map) frame is the
+  // start pose.
+  map_from_world_ = tour.world_from_start.inverse();
   world_targets_ = densify(tour.world_points, tour.world_from_start.translation(), options_.max_spacing);
   spdlog::info("tour {}: {} waypoints, {} targets", options_.tour_file, tour.world_points.size(), world_targets_.size());
   node_.subscribe<odometry_t>(channels_.odometry, [this](const odometry_t& m) { on_odometry(m); });
   if (options_.output == TourRunnerOptions::Output::kBaseCmd)
     node_.subscribe<laser_scan_t>(channels_.laser, [this](const laser_scan_t& m) { on_scan(m); });
+  if (!channels_.slam_pose.empty())
+    node_.subscribe<slam_pose_t>(channels_.slam_pose, [this](const slam_pose_t& m) { on_slam_pose(m); });
+}
+
+void TourRunnerNode::on_slam_pose(const slam_pose_t& m)
+{
+  const geometry::Pose2 odom_from_map = msg::to_pose2(m.map_from_odom).inverse();
+  const double jump = (odom_from_map.translation() - odom_from_map_.translation()).norm();
+  if (jump > 0.5) spdlog::info("SLAM correction moved the targets by {:.2f} m (loop closure)", jump);
+  odom_from_map_ = odom_from_map;
 }
 
 void TourRunnerNode::on_scan(const laser_scan_t& m)
@@ -76,11 +88,11 @@ void TourRunnerNode::on_odometry(const odometry_t& m)
   if (finished_) return;
   const geometry::Pose2 odom_from_base = msg::to_pose2(m.odom_from_base);
   if (!sequencer_) {
-    std::vector<Eigen::Vector2d> odom_targets;
-    for (const auto& w : world_targets_) odom_targets.push_back(odom_from_world_ * w);
-    sequencer_.emplace(options_.sequencer, std::move(odom_targets));
+    std::vector<Eigen::Vector2d> map_targets;
+    for (const auto& w : world_targets_) map_targets.push_back(map_from_world_ * w);
+    sequencer_.emplace(options_.sequencer, std::move(map_targets));
   }
-  const bool advanced = sequencer_->update(odom_from_base);
+  const bool advanced = sequencer_->update(odom_from_map_.inverse() * odom_from_base);
   if (advanced) spdlog::info("target {}/{} reached", sequencer_->reached(), sequencer_->size());
 
   if (sequencer_->done()) {
@@ -118,7 +130,7 @@ void TourRunnerNode::on_odometry(const odometry_t& m)
     }
     escape_.reset();
   }
-  const Command c = pursue(options_.follower, odom_from_base, sequencer_->upcoming().front(), obstacles_);
+  const Command c = pursue(options_.follower, odom_from_base, odom_from_map_ * sequencer_->upcoming().front(), obstacles_);
   if (c.blocked && std::isfinite(c.escape_heading))
     escape_ = Escape{odom_from_base, odom_from_base.theta() + c.escape_heading, m.utime};
   if (c.blocked != blocked_) {
@@ -136,7 +148,8 @@ void TourRunnerNode::publish_targets(int64_t utime)
   target_list_t t;
   t.utime = utime;
   t.goal_id = 0;
-  for (const auto& p : sequencer_->upcoming()) t.odom_from_target.push_back(msg::to_msg(geometry::Pose2(p, 0.0)));
+  for (const auto& p : sequencer_->upcoming())
+    t.odom_from_target.push_back(msg::to_msg(geometry::Pose2(odom_from_map_ * p, 0.0)));
   t.ntargets = static_cast<int32_t>(t.odom_from_target.size());
   t.max_speed = static_cast<float>(options_.max_speed);
   t.final_is_goal = sequencer_->reached() + t.odom_from_target.size() >= sequencer_->size();

@@ -10,6 +10,7 @@
 #include "procs/tour_runner/tour_sequencer.h"
 #include "rgnav/laser_scan_t.hpp"
 #include "rgnav/odometry_t.hpp"
+#include "rgnav/slam_pose_t.hpp"
 #include "runtime/node.h"
 
 namespace rgnav::tour_runner {
@@ -32,6 +33,7 @@ struct Channels
 {
   std::string odometry = "ODOMETRY";
   std::string laser = "LASER_FRONT";
+  std::string slam_pose = "SLAM_POSE";  // "" = steer on odometry alone (it drifts)
   std::string targets = "TARGETS";
   std::string base_cmd = "BASE_CMD";
 };
@@ -48,14 +50,20 @@ class TourRunnerNode
  private:
   void on_odometry(const odometry_t& m);
   void on_scan(const laser_scan_t& m);
+  void on_slam_pose(const slam_pose_t& m);
   void publish_targets(int64_t utime);
   void publish_cmd(int64_t utime, double v, double omega);
 
   runtime::Node& node_;
   const TourRunnerOptions options_;
   const Channels channels_;
-  geometry::Pose2 odom_from_world_;
-  std::optional<TourSequencer> sequencer_;  // built at the first odometry (needs the start point)
+  // Frames: the tour is in the world frame; the map frame of the scan mapper is the odometry
+  // frame at its first scan, i.e. the start pose. Odometry drifts (percent of the distance,
+  // and heading bias per metre), so after a few rooms odometry-frame targets miss the doors;
+  // the scan mapper's correction map_from_odom keeps the targets where the doors are.
+  geometry::Pose2 map_from_world_;
+  geometry::Pose2 odom_from_map_;           // identity until the first SLAM_POSE
+  std::optional<TourSequencer> sequencer_;  // targets in the map frame
   std::vector<Eigen::Vector2d> world_targets_;
   std::vector<Eigen::Vector2d> obstacles_;
   int64_t last_scan_utime_ = 0;

@@ -3,6 +3,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -35,6 +36,46 @@ Scan to_scan(const importers::ScanRecord& r, int64_t id)
   return s;
 }
 
+// The pose of a scan that was not accepted, between nodes[k] and nodes[k + 1] (see below).
+Pose2 register_between(const std::vector<ScanNode>& nodes, size_t k, const ScanEstimate& s, const Scan& scan,
+                       const ScanMapperOptions& options)
+{
+  const Pose2 by_odometry = s.map_from_base;
+  if (k + 1 >= nodes.size()) return by_odometry;
+  const ScanNode& a = nodes[k];
+  const ScanNode& b = nodes[k + 1];
+  const double span = static_cast<double>(b.scan.utime - a.scan.utime);
+  const double f = span > 0 ? std::clamp(static_cast<double>(s.utime - a.scan.utime) / span, 0.0, 1.0) : 0.0;
+  const Pose2 by_time = interpolate(a.map_from_base, b.map_from_base, f);
+  Points model, normals;
+  std::vector<char> has_normal;
+  const size_t lo = k >= 2 ? k - 2 : 0, hi = std::min(nodes.size() - 1, k + 3);
+  for (size_t i = lo; i <= hi; ++i) {
+    const auto& ni = nodes[i];
+    const auto pts = transform_points(ni.map_from_base, ni.points);
+    model.insert(model.end(), pts.begin(), pts.end());
+    for (const auto& v : transform_points(Pose2(0, 0, ni.map_from_base.theta()), ni.normals)) normals.push_back(v);
+    has_normal.insert(has_normal.end(), ni.has_normal.begin(), ni.has_normal.end());
+  }
+  const Points points = scan_to_points(scan, options.base_from_laser, options.points);
+  if (model.size() < 10 || points.size() < 10) return by_odometry;
+  const PointMap map(std::move(model), std::move(normals), std::move(has_normal));
+  IcpResult best;
+  for (const Pose2& guess : {by_odometry, by_time}) {
+    const IcpResult r = icp_point_to_line(points, map, guess, options.icp);
+    if (r.ok && (!best.ok || r.inlier_ratio > best.inlier_ratio)) best = r;
+  }
+  if (!best.ok || best.inlier_ratio < options.min_inlier_ratio) {
+    // Far off (a fast turn): the same correlative search as the mapper's retry, then ICP.
+    const LikelihoodGrid grid(map.points(), options.correlative);
+    const auto cor = correlative_match(thin_points(points, options.loop.point_spacing_m), grid, by_time,
+                                       options.local_window, options.correlative);
+    const IcpResult r = icp_point_to_line(points, map, cor.map_from_scan, options.icp);
+    if (r.ok && (!best.ok || r.inlier_ratio > best.inlier_ratio)) best = r;
+  }
+  return best.ok && best.inlier_ratio >= options.loop.min_inlier_ratio ? best.map_from_scan : by_odometry;
+}
+
 }  // namespace
 
 OfflineResult run_offline(const importers::ImportedLog& log, const ScanMapperOptions& options)
@@ -43,6 +84,7 @@ OfflineResult run_offline(const importers::ImportedLog& log, const ScanMapperOpt
   ScanMapper mapper(options);
   OdometryBuffer odom;
   std::vector<ScanEstimate> raw;  // scan, odometry (map pose filled in after the run)
+  std::vector<Scan> scans;        // ... and the scan itself
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = thread_cpu_seconds();
   int64_t next_id = 0;
@@ -55,24 +97,31 @@ OfflineResult run_offline(const importers::ImportedLog& log, const ScanMapperOpt
     } else if (e.kind == importers::LogEvent::Kind::kScan) {
       const Scan scan = to_scan(log.scans[e.index], ++next_id);
       mapper.add_scan(scan);
-      if (const auto o = odom.at(scan.utime, options.max_odometry_extrapolation_us))
+      if (const auto o = odom.at(scan.utime, options.max_odometry_extrapolation_us)) {
         raw.push_back({scan.scan_id, scan.utime, *o, {}});
+        scans.push_back(scan);
+      }
     }
   }
-  res.cpu_seconds = thread_cpu_seconds() - cpu0;
-  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   res.nodes = mapper.nodes();
   res.stats = mapper.stats();
   if (!log.scans.empty()) res.log_seconds = 1e-6 * static_cast<double>(log.scans.back().utime - log.scans.front().utime);
-  // Scans between accepted ones: the last accepted scan's final estimate plus odometry.
+  // Scans between accepted ones: registered against their accepted neighbours' final
+  // estimates, from two guesses: the previous accepted scan carried forward by odometry, and
+  // the pose interpolated in time between the accepted scans around it (better where
+  // odometry and scans are out of step, e.g. turning in place), and if neither fits well, a
+  // correlative search around the latter. Nothing fitting: odometry.
   size_t k = 0;
   for (auto& s : raw) {
     while (k + 1 < res.nodes.size() && res.nodes[k + 1].scan.scan_id <= s.scan_id) ++k;
     if (res.nodes.empty() || res.nodes[k].scan.scan_id > s.scan_id) continue;
     const auto& n = res.nodes[k];
     s.map_from_base = n.map_from_base * between(n.odom_from_base, s.odom_from_base);
+    if (n.scan.scan_id != s.scan_id) s.map_from_base = register_between(res.nodes, k, s, scans[&s - raw.data()], options);
     res.scans.push_back(s);
   }
+  res.cpu_seconds = thread_cpu_seconds() - cpu0;
+  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return res;
 }
 
@@ -84,9 +133,9 @@ double write_outputs(const OfflineResult& r, const ScanMapperOptions& options, c
     t << "# scan_id utime_us x_m y_m theta_rad odom_x_m odom_y_m odom_theta_rad (accepted scans, final estimate)\n";
     t.precision(9);
     for (const auto& n : r.nodes)
-      t << n.scan.scan_id << ' ' << n.scan.utime << ' ' << n.map_from_base.x << ' ' << n.map_from_base.y << ' '
-        << n.map_from_base.theta << ' ' << n.odom_from_base.x << ' ' << n.odom_from_base.y << ' '
-        << n.odom_from_base.theta << '\n';
+      t << n.scan.scan_id << ' ' << n.scan.utime << ' ' << n.map_from_base.x() << ' ' << n.map_from_base.y() << ' '
+        << n.map_from_base.theta() << ' ' << n.odom_from_base.x() << ' ' << n.odom_from_base.y() << ' '
+        << n.odom_from_base.theta() << '\n';
     if (!t) throw std::runtime_error("cannot write " + dir + "/trajectory.txt");
   }
   {

@@ -15,7 +15,7 @@ struct ScanEstimate
 {
   int64_t scan_id = 0, utime = 0;
   Pose2 odom_from_base;
-  Pose2 map_from_base;  // of the last accepted scan, carried forward by odometry
+  Pose2 map_from_base;  // accepted: final estimate; others: registered between them (run_offline)
 };
 
 struct OfflineResult

@@ -126,6 +126,7 @@ SimMappingResult run_sim_mapping(const std::string& world_path, const sim::Simul
     timed.push_back({res.nodes[k].scan.utime, truth_at_node[k]});
   }
   res.relations = relation_error(est, truth_at_node, select_relations(timed));
+  res.truth = truth_at_node;
   res.ate_rmse_m = ate_rmse(est, truth_at_node);
   res.odometry_ate_rmse_m = ate_rmse(odom_at_node, truth_at_node);
   return res;

@@ -36,6 +36,7 @@ struct SimMappingResult
   double ate_rmse_m = 0.0;
   double odometry_ate_rmse_m = 0.0;  // raw odometry at the same scans, for comparison
   std::vector<ScanNode> nodes;
+  std::vector<Pose2> truth;          // true pose at each node's scan
 };
 
 SimMappingResult run_sim_mapping(const std::string& world_path, const sim::SimulatorOptions& sim_options,

@@ -87,15 +87,23 @@ nlohmann::json evaluate_real(const RealLog& spec, sm::ScanMapperOptions options,
     for (const auto& s : r.scans) by_id[s.scan_id] = &s;
     std::vector<sm::TimedPose> ref;
     std::vector<sm::Pose2> ref_poses, est;
+    std::vector<int64_t> ref_ids;
     for (const auto& p : log.reference) {
       auto it = by_id.find(p.seq);
       if (it == by_id.end()) continue;
+      ref_ids.push_back(p.seq);
       ref.push_back({p.utime, sm::Pose2{p.x, p.y, sm::normalize_angle(p.theta)}});
       ref_poses.push_back(ref.back().pose);
       est.push_back(it->second->map_from_base);
     }
     const auto rel = sm::select_relations(ref);
     const auto err = sm::relation_error(est, ref_poses, rel);
+    // The pairs behind the figures, for looking into where the disagreement is.
+    std::ofstream pairs(maps_dir + "/" + spec.name + "/reference_pairs.txt");
+    pairs << "# scan_id utime_us ref_x ref_y ref_theta est_x est_y est_theta\n";
+    for (size_t k = 0; k < ref.size(); ++k)
+      pairs << ref_ids[k] << ' ' << ref[k].utime << ' ' << ref_poses[k].x() << ' '
+            << ref_poses[k].y() << ' ' << ref_poses[k].theta() << ' ' << est[k].x() << ' ' << est[k].y() << ' ' << est[k].theta() << '\n';
     j["ref_poses"] = ref.size();
     j["ref_relations"] = err.count;
     j["ref_trans_mean_m"] = err.trans_mean_m;
@@ -123,6 +131,17 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   nlohmann::json j;
   j["world"] = spec.substr(eq + 1);
   j["consistency"] = sm::write_outputs(off, written, maps_dir + "/sim_" + *name);
+  {
+    // Estimate next to truth at every accepted scan, for looking into where errors arise.
+    std::ofstream pairs(maps_dir + "/sim_" + *name + "/truth_pairs.txt");
+    pairs << "# scan_id utime_us true_x true_y true_theta est_x est_y est_theta\n";
+    for (size_t k = 0; k < r.nodes.size() && k < r.truth.size(); ++k) {
+      const auto& n = r.nodes[k];
+      pairs << n.scan.scan_id << ' ' << n.scan.utime << ' ' << r.truth[k].x() << ' ' << r.truth[k].y() << ' '
+            << r.truth[k].theta() << ' ' << n.map_from_base.x() << ' ' << n.map_from_base.y() << ' '
+            << n.map_from_base.theta() << '\n';
+    }
+  }
   j["trans_mean_m"] = r.relations.trans_mean_m;
   j["trans_std_m"] = r.relations.trans_std_m;
   j["rot_mean_deg"] = r.relations.rot_mean_deg;

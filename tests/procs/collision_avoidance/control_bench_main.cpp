@@ -202,7 +202,8 @@ Course make_course(std::mt19937& rng)
   return c;
 }
 
-nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaOptions& co, int n, uint64_t seed)
+nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaOptions& co, int n, uint64_t seed,
+                       int only)
 {
   std::mt19937 rng(static_cast<uint32_t>(seed));
   int64_t collisions = 0;
@@ -212,6 +213,13 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
   nlohmann::json failures = nlohmann::json::array();
   for (int k = 0; k < n; ++k) {
     Course course = make_course(rng);
+    if (only >= 0 && k != only) continue;  // debugging one course: the others are drawn, not run
+    if (getenv("CB_DEBUG")) {
+      for (const auto& b : course.world.boxes)
+        std::cerr << "box " << b.center.x() << "," << b.center.y() << " size " << b.size.x() << "x" << b.size.y() << " yaw " << b.yaw << "\n";
+      for (const auto& p : course.world.people)
+        std::cerr << "person from " << p.path[0].x() << "," << p.path[0].y() << " speed " << p.speed << " delay " << p.start_delay << "\n";
+    }
     sim::Simulator sim(course.world, sim_options(seed + 100 + k, true));
     sim::TimedCommandSource cmd;
     sim.set_command_source(&cmd);
@@ -262,7 +270,9 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
                   << " next=" << ca.next_target() << " mode=" << collision_avoidance::mode_name(ca.mode()) << " '" << ca.status()
                   << "' v=" << st.command.v << " w=" << st.command.omega << " lld=" << static_cast<int>(st.state)
                   << " id=" << st.trajectory_id << " len=" << (ca.active() ? ca.active()->chain.length() : -1)
-                  << " nseg=" << (ca.active() ? ca.active()->chain.size() : 0) << " map=" << ca.map().size() << "\n";
+                  << " nseg=" << (ca.active() ? ca.active()->chain.size() : 0) << " map=" << ca.map().size()
+                  << " clr=" << ca.map().clearance(odi.pose.translation(), 3.0) << " odom=" << odi.pose.x() << ","
+                  << odi.pose.y() << "\n";
       if (ca.mode() == collision_avoidance::Mode::kArrived) {
         arrived = true;
         t_end = sim.time_s();
@@ -296,12 +306,13 @@ int main(int argc, char** argv)
 {
   CLI::App app("control_bench");
   std::string config_dir = "config", out_path;
-  int chains = 6, ncourses = 50;
+  int chains = 6, ncourses = 50, only = -1;
   uint64_t seed = 1;
   app.add_option("--config-dir", config_dir);
   app.add_option("--out", out_path)->required();
   app.add_option("--chains", chains);
   app.add_option("--courses", ncourses);
+  app.add_option("--only", only, "run only this course (debugging; set CB_DEBUG=1 for a trace)");
   app.add_option("--seed", seed);
   CLI11_PARSE(app, argc, argv);
 
@@ -321,7 +332,7 @@ int main(int argc, char** argv)
   j["xtrack_rms_m"] = all_06.rms();
   j["xtrack_max_m"] = all_06.max;
   j["time_pred_err_pct"] = terr_max;
-  const auto cj = courses(lo, co.ca, ncourses, seed);
+  const auto cj = courses(lo, co.ca, ncourses, seed, only);
   j["obstacle_courses"] = cj;
   j["courses"] = cj["courses"];
   j["collisions"] = cj["collisions"];

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 namespace rgnav::collision_avoidance {
 namespace {
@@ -21,6 +22,32 @@ TEST(LocalMap, ClearanceFromScansInOdomFrame)
   // Old scans fall out.
   map.rebuild(time::from_utime(3'000'000));
   EXPECT_EQ(map.size(), 0u);
+}
+
+TEST(LocalMap, DistanceFieldShortcutAgreesWithExactSearch)
+{
+  // The field only answers "nothing within r"; wherever something is within r the exact
+  // distance must come back. Brute force over random points and queries.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-4.0, 4.0), ur(0.05, 2.4);
+  LocalMap map(LocalMapOptions{});
+  ScanPoints s;
+  s.stamp = time::from_utime(1'000'000);
+  for (int i = 0; i < 300; ++i) s.points.emplace_back(u(rng), u(rng));
+  map.add_scan(s);
+  map.rebuild(s.stamp);
+  for (int q = 0; q < 5000; ++q) {
+    const Eigen::Vector2d p(1.5 * u(rng), 1.5 * u(rng));
+    const double r = ur(rng);
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& pt : s.points) best = std::min(best, (pt - p).norm());
+    const double got = map.clearance(p, r);
+    if (best <= r) {
+      ASSERT_NEAR(got, best, 1e-9) << "query " << p.transpose() << " r " << r;
+    } else {
+      ASSERT_TRUE(std::isinf(got)) << "query " << p.transpose() << " r " << r;
+    }
+  }
 }
 
 TEST(LocalMap, GridPointsAndScanCount)

@@ -9,6 +9,7 @@
 #include "bus/fake_bus.h"
 #include "persist/atomic_file.h"
 #include "persist/journal.h"
+#include "procs/rg_kernel/rg_kernel_conversions.h"
 #include "procs/rg_kernel/rg_kernel_node.h"
 #include "rgmap/rgmap_json.h"
 #include "synthetic_world.h"
@@ -29,7 +30,7 @@ std::string fresh_dir(const std::string& name)
 
 struct KernelProcess
 {
-  explicit KernelProcess(const std::string& dir)
+  explicit KernelProcess(const std::string& dir, int64_t snapshot_every = 0)
   {
     auto b = std::make_unique<bus::FakeBus>();
     bus = b.get();
@@ -38,7 +39,9 @@ struct KernelProcess
     node = std::make_unique<runtime::Node>(o, std::move(b));
     NodeConfig c;
     c.state_dir = dir;
-    c.fsync_each_input = false;  // the test cuts the file itself; fsync only slows it down
+    c.sync_every_inputs = 100000;  // the test cuts the files itself; fsync only slows it down
+    c.sync_period_s = 10.0;
+    c.snapshot_every_inputs = snapshot_every;
     kernel = std::make_unique<RgKernelNode>(*node, c);
   }
   std::string map_json() { return rgmap::to_json(const_cast<RgKernel&>(kernel->kernel()).refreshed_map()).dump(); }
@@ -116,10 +119,11 @@ TEST(RgKernelPersistence, KillAtAnyByteRestartsToTheAcknowledgedMap)
     for (const auto& [ch, bytes] : in) {
       ref.bus->publish(ch, bytes.data(), bytes.size());
       map_after.push_back(ref.map_json());
-      journal_size.push_back(fs::file_size(dir + "/inputs.journal"));
+      journal_size.push_back(fs::file_size(ref.kernel->store()->journal_path(0)));
     }
   }
-  std::ifstream jin(dir + "/inputs.journal", std::ios::binary);
+  // Without snapshots everything is in generation 0.
+  std::ifstream jin(dir + "/inputs.0000000000.journal", std::ios::binary);
   const std::string journal((std::istreambuf_iterator<char>(jin)), std::istreambuf_iterator<char>());
   ASSERT_EQ(journal.size(), journal_size.back());
 
@@ -140,26 +144,256 @@ TEST(RgKernelPersistence, KillAtAnyByteRestartsToTheAcknowledgedMap)
   }
 }
 
-TEST(RgKernelPersistence, RestartContinuesAsIfUninterrupted)
+class RestartContinues : public ::testing::TestWithParam<int64_t>
 {
+};
+
+TEST_P(RestartContinues, AsIfUninterrupted)
+{
+  const int64_t snapshot_every = GetParam();
   const auto in = inputs();
   const std::string whole = fresh_dir("whole"), split = fresh_dir("split");
   std::string expected;
   {
-    KernelProcess p(whole);
+    KernelProcess p(whole, snapshot_every);
     for (const auto& [ch, b] : in) p.bus->publish(ch, b.data(), b.size());
     expected = p.map_json();
   }
   {
-    KernelProcess first(split);
+    KernelProcess first(split, snapshot_every);
     for (size_t k = 0; k < in.size() / 2; ++k) first.bus->publish(in[k].first, in[k].second.data(), in[k].second.size());
   }
-  KernelProcess second(split);
+  KernelProcess second(split, snapshot_every);
+  if (snapshot_every > 0) {
+    EXPECT_GT(second.kernel->snapshot_generation(), 0);
+  }
   for (size_t k = in.size() / 2; k < in.size(); ++k) second.bus->publish(in[k].first, in[k].second.data(), in[k].second.size());
   EXPECT_EQ(second.map_json(), expected);
   // And it published what it restored, with a checkpoint on disk that loads.
   EXPECT_FALSE(second.bus->published_on("RG_MAP").empty());
   second.kernel->publish();
+  // A clean stop leaves the final map in rgmap.json, the export tools read.
+  second.kernel.reset();
+  const auto text = persist::read_checked(split + "/rgmap.json");
+  ASSERT_TRUE(text);
+  EXPECT_EQ(rgmap::to_json(rgmap::from_json(nlohmann::json::parse(*text))).dump(), expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(RgKernelPersistence, RestartContinues, ::testing::Values(0, 3));
+
+std::vector<std::string> files_in(const std::string& dir)
+{
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(RgKernelPersistence, SnapshotRestoresTheKernelExactly)
+{
+  std::vector<ScanInput> scans;
+  std::vector<GatewayEventInput> events;
+  std::vector<bool> is_scan;
+  for (const auto& [ch, b] : inputs()) {
+    if (ch == "ALIGNED_SCAN") {
+      aligned_scan_t m;
+      std::string why;
+      ASSERT_TRUE(bus::decode(b.data(), b.size(), &m, &why));
+      scans.push_back(to_input(m));
+    } else {
+      gateway_event_t m;
+      std::string why;
+      ASSERT_TRUE(bus::decode(b.data(), b.size(), &m, &why));
+      events.push_back(to_input(m));
+    }
+    is_scan.push_back(ch == "ALIGNED_SCAN");
+  }
+  RgKernel a{KernelOptions{}}, b{KernelOptions{}};
+  size_t si = 0, ei = 0;
+  auto feed = [&](RgKernel& k, size_t i, size_t& s, size_t& e) {
+    if (is_scan[i]) k.add_scan(scans[s++]);
+    else k.add_gateway_event(events[e++]);
+  };
+  const size_t half = is_scan.size() / 2 + 1;   // past the door: two regions, one finalised
+  for (size_t i = 0; i < half; ++i) feed(a, i, si, ei);
+  const std::string snap = a.snapshot();
+  b.restore(snap);
+  EXPECT_EQ(b.snapshot(), snap);
+  size_t sb = si, eb = ei;
+  for (size_t i = half; i < is_scan.size(); ++i) {
+    feed(a, i, si, ei);
+    feed(b, i, sb, eb);
+  }
+  EXPECT_EQ(b.snapshot(), a.snapshot());
+  EXPECT_EQ(rgmap::to_json(b.described_map()).dump(), rgmap::to_json(a.described_map()).dump());
+  // Damaged bytes are refused and leave the kernel as it was.
+  RgKernel c{KernelOptions{}};
+  EXPECT_THROW(c.restore(snap.substr(0, snap.size() / 2)), SnapshotError);
+  EXPECT_THROW(c.restore(snap + "x"), SnapshotError);
+  EXPECT_THROW(c.restore("garbage"), SnapshotError);
+  EXPECT_EQ(c.map().regions().size(), 0u);
+}
+
+// A SIGKILL can stop the kernel between any two records, with snapshots being taken: the
+// state folder as it is then (including a half-written snapshot temp file, or a record torn
+// half-way) restarts to the map of every input journaled.
+TEST(RgKernelPersistence, KillAtEveryRecordWithSnapshots)
+{
+  const auto in = inputs();
+  const std::string dir = fresh_dir("snapref");
+  std::vector<std::string> map_after = {""};
+  std::vector<std::string> copies = {""};
+  {
+    KernelProcess ref(dir, 4);
+    map_after[0] = ref.map_json();
+    for (size_t k = 0; k < in.size(); ++k) {
+      ref.bus->publish(in[k].first, in[k].second.data(), in[k].second.size());
+      ref.kernel->store()->wait_snapshot();
+      map_after.push_back(ref.map_json());
+      const std::string copy = fresh_dir("kill" + std::to_string(k + 1));
+      fs::copy(dir, copy, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+      copies.push_back(copy);
+    }
+    EXPECT_GE(ref.kernel->store()->generation(), 4);
+  }
+  for (size_t k = 1; k < copies.size(); ++k) {
+    // A snapshot writer killed before its rename leaves a temp file: ignored.
+    std::ofstream(copies[k] + "/kernel.0000000099.snapshot.tmp") << "rgnav-checked-file v1 length=100";
+    {
+      KernelProcess restarted(copies[k], 4);
+      EXPECT_EQ(restarted.map_json(), map_after[k]) << "killed after input " << k;
+      EXPECT_EQ(restarted.kernel->restored_inputs(), static_cast<int64_t>(k));
+      EXPECT_LE(restarted.kernel->replayed_from_journal(), 4 + 1) << "the journal tail is bounded";
+      EXPECT_TRUE(restarted.kernel->store()->problems().empty());
+    }
+    // Torn last record of the newest journal: the map of the inputs before it.
+    const auto journals = files_in(copies[k]);
+    std::string newest;
+    for (const auto& f : journals)
+      if (f.rfind("inputs.", 0) == 0 && f.size() > 8 && f.substr(f.size() - 8) == ".journal") newest = f;
+    ASSERT_FALSE(newest.empty());
+    const auto size = fs::file_size(copies[k] + "/" + newest);
+    if (size == 0) continue;   // just rotated: the last input is in a snapshot already
+    fs::resize_file(copies[k] + "/" + newest, size - 5);
+    KernelProcess torn(copies[k], 4);
+    EXPECT_EQ(torn.map_json(), map_after[k - 1]) << "torn record after input " << k;
+    EXPECT_EQ(torn.kernel->restored_inputs(), static_cast<int64_t>(k - 1));
+    EXPECT_FALSE(torn.kernel->store()->tail_damage().empty());   // the cut tail is reported
+    EXPECT_TRUE(torn.kernel->store()->problems().empty());       // ... as the trace of a kill, not a loss
+  }
+  for (size_t k = 1; k < copies.size(); ++k) fs::remove_all(copies[k]);
+}
+
+TEST(RgKernelPersistence, DamagedSnapshotIsReportedNeverLoadedAndThePreviousOneUsed)
+{
+  const auto in = inputs();
+  const std::string dir = fresh_dir("corrupt");
+  std::string expected;
+  {
+    KernelProcess p(dir, 5);
+    // Each snapshot written before the next input: a snapshot falls due only while none is being
+    // written, so on a loaded machine a slow writer would otherwise leave a single generation.
+    for (const auto& [ch, b] : in) {
+      p.bus->publish(ch, b.data(), b.size());
+      p.kernel->store()->wait_snapshot();
+    }
+    expected = p.map_json();
+  }
+  std::vector<int64_t> gens;
+  {
+    StateStore s({dir});
+    gens = s.snapshot_generations();
+  }
+  ASSERT_GE(gens.size(), 2u);
+  ASSERT_LE(gens.size(), 2u) << "older snapshots are removed once a newer one is durable";
+  const std::string pristine = fresh_dir("pristine");
+  fs::copy(dir, pristine, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+
+  auto newest_path = [&](const std::string& d) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/kernel.%010lld.snapshot", static_cast<long long>(gens[0]));
+    return d + name;
+  };
+  // 1. A flipped byte (CRC), 2. a truncated file, 3. a payload that passes the CRC but is not
+  // a kernel state: each is reported, renamed *.corrupt, and the previous snapshot plus its
+  // longer journal tail give the same map.
+  for (int kind = 0; kind < 3; ++kind) {
+    const std::string d = fresh_dir("damaged" + std::to_string(kind));
+    fs::copy(pristine, d, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+    const std::string path = newest_path(d);
+    if (kind == 0) {
+      std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+      f.seekp(static_cast<std::streamoff>(fs::file_size(path) / 2));
+      f.put('\x5a');
+    } else if (kind == 1) {
+      fs::resize_file(path, fs::file_size(path) - 100);
+    } else {
+      persist::write_atomically(path, "not a kernel state");
+    }
+    KernelProcess restarted(d, 5);
+    EXPECT_EQ(restarted.map_json(), expected) << "damage kind " << kind;
+    EXPECT_EQ(restarted.kernel->snapshot_generation(), gens[1]);
+    EXPECT_EQ(restarted.kernel->restored_inputs(), static_cast<int64_t>(in.size()));
+    ASSERT_FALSE(restarted.kernel->store()->problems().empty());
+    EXPECT_NE(restarted.kernel->store()->problems()[0].find("snapshot"), std::string::npos);
+    EXPECT_TRUE(fs::exists(path + ".corrupt"));
+    EXPECT_FALSE(fs::exists(path));
+  }
+  // Both snapshots damaged and the journals before them gone: refuse, never a different map.
+  const std::string d = fresh_dir("hopeless");
+  fs::copy(pristine, d, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  for (const auto& f : files_in(d))
+    if (f.size() > 9 && f.substr(f.size() - 9) == ".snapshot") persist::write_atomically(d + "/" + f, "x");
+  ASSERT_FALSE(fs::exists(d + "/inputs.0000000000.journal"));
+  EXPECT_THROW(KernelProcess hopeless(d, 5), std::runtime_error);
+}
+
+TEST(RgKernelPersistence, DamagedOlderJournalEndsTheReplayThereAndIsReported)
+{
+  const auto in = inputs();
+  const std::string dir = fresh_dir("olderjournal");
+  std::vector<std::string> map_after;
+  {
+    KernelProcess p(dir, 4);
+    map_after.push_back(p.map_json());
+    for (size_t k = 0; k < 6; ++k) {
+      p.bus->publish(in[k].first, in[k].second.data(), in[k].second.size());
+      p.kernel->store()->wait_snapshot();
+      map_after.push_back(p.map_json());
+    }
+  }
+  // One snapshot (generation 1, after 4 inputs); journal 0 holds inputs 1-4, journal 1 inputs 5-6.
+  ASSERT_TRUE(fs::exists(dir + "/kernel.0000000001.snapshot"));
+  fs::remove(dir + "/kernel.0000000001.snapshot");   // lost: generation 0 is the way back
+  {
+    // Flip a byte inside the third record of journal 0.
+    const std::string j0 = dir + "/inputs.0000000000.journal";
+    persist::Journal probe(j0, false);
+    ASSERT_EQ(probe.recovered().size(), 4u);
+    const size_t at = 2 * (16 + probe.recovered()[0].bytes.size()) + 16 + 10;   // scans encode to the same size
+    ASSERT_EQ(probe.recovered()[0].bytes.size(), probe.recovered()[1].bytes.size());
+    std::fstream f(j0, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekp(static_cast<std::streamoff>(at));
+    f.put('\x77');
+  }
+  KernelProcess restarted(dir, 4);
+  EXPECT_EQ(restarted.map_json(), map_after[2]);   // inputs after the damage cannot be applied
+  EXPECT_EQ(restarted.kernel->restored_inputs(), 2);
+  ASSERT_EQ(restarted.kernel->store()->problems().size(), 2u);
+  EXPECT_NE(restarted.kernel->store()->problems()[0].find("CRC"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir + "/inputs.0000000001.journal.orphaned"));
+}
+
+TEST(RgKernelPersistence, GroupCommitSyncsBeforePublishing)
+{
+  const auto in = inputs();
+  const std::string dir = fresh_dir("group");
+  KernelProcess p(dir, 0);
+  p.bus->publish(in[0].first, in[0].second.data(), in[0].second.size());
+  p.bus->publish(in[1].first, in[1].second.data(), in[1].second.size());   // 0.2 s later: not yet published
+  EXPECT_TRUE(p.kernel->store()->unsynced());
+  p.kernel->publish();
+  EXPECT_FALSE(p.kernel->store()->unsynced());
 }
 
 TEST(AtomicFile, DetectsTruncationAndCorruption)

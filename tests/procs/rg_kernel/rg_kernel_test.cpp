@@ -111,6 +111,69 @@ TEST(RgKernel, KnownPlaceWithoutGatewayIsMergedAndGatewayNeutralized)
   EXPECT_EQ(d.kernel.stats().regions, 1);
 }
 
+TEST(RgKernel, LateTraversalEventNeitherCarvesTheNextRoomNorMergesIt)
+{
+  // The detector reports a traversal once the robot is through the door: the scans taken
+  // between the door and the event saw room B from inside it. Kept in room A they carved B
+  // into A's freespace, and B's first robot positions then "recognised" A: every room entered
+  // was merged into the hallway it came from (issue 8, office world: 26 regions merged away).
+  Drive d;
+  for (double x = 1.0; x < 3.9; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
+  for (double x = 4.1; x < 4.6; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));   // through already
+  d.traverse_door(4.6, 0);
+  for (double x = 4.8; x < 7.5; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
+
+  const auto& m = d.kernel.map();
+  ASSERT_EQ(m.regions().size(), 2u);
+  EXPECT_EQ(m.region(2)->state, rgmap::Region::State::kOpen);
+  EXPECT_EQ(m.current_region, 2);
+  EXPECT_FALSE(m.gateways().begin()->second.neutralized);
+  const auto r1 = d.kernel.describe_region(1);
+  EXPECT_FALSE(r1.freespace.is_free(Vector2d(4.0, 0.0)));   // (5, 1.5): room B
+  EXPECT_TRUE(r1.freespace.is_free(Vector2d(2.0, 0.0)));    // (3, 1.5): room A
+  EXPECT_EQ(r1.nscans, 15);                                 // x = 1.0 .. 3.8
+  EXPECT_EQ(d.kernel.describe_region(2).nscans, 3 + 14);    // the late ones are B's
+  EXPECT_EQ(d.kernel.stats().regions, 2);
+}
+
+TEST(KnownPlaces, NeedsTheRegionsOwnRobotToHaveSeenThePlaceInRegion)
+{
+  // Room A's robot looked through the open door (not a gateway then): A's freespace holds a
+  // wedge of room B. Being in that wedge is no evidence of being in A.
+  rgmap::RgMap map;
+  rgmap::Region& a = map.add_region(geometry::Pose2(1.0, 1.5, 0), 1);
+  std::map<int64_t, RegionBuilder> builders;
+  RegionBuilder& b = builders.emplace(a.id, RegionBuilder(RegionBuildOptions{})).first->second;
+  int64_t id = 1;
+  for (double x = 1.0; x < 3.9; x += 0.2) {
+    StoredScan s;
+    s.scan_id = id;
+    s.utime = id++;
+    s.region_from_laser = geometry::Pose2(x - 1.0, 0, 0);
+    s.laser_points = testing::cast(testing::two_rooms(), geometry::Pose2(x, 1.5, 0));
+    b.add_scan(s);
+  }
+  b.describe(&a, {}, true);
+  a.state = rgmap::Region::State::kFinalised;
+  ASSERT_TRUE(a.freespace.is_free(Vector2d(4.5, 0.0)));    // (5.5, 1.5) in B, seen through the door
+
+  const KnownPlaceOptions o;   // 1.5 m
+  {
+    const KnownPlaces known(map, builders, 0, o);
+    EXPECT_EQ(known.region_holding(Vector2d(2.0, 1.2)), a.id);   // where A's robot was
+    EXPECT_EQ(known.region_holding(Vector2d(4.6, 1.5)), a.id);   // door unknown: indistinguishable
+    EXPECT_EQ(known.region_holding(Vector2d(6.0, 1.5)), 0);      // in A's bitmap, but 2.2 m from its robot
+    EXPECT_EQ(known.region_holding(Vector2d(6.0, 0.5)), 0);      // not even in A's bitmap
+    EXPECT_EQ(KnownPlaces(map, builders, a.id, o).region_holding(Vector2d(2.0, 1.2)), 0);   // excluded
+  }
+  // The door becomes a gateway (crossed later, from B's side): A's robot saw B only through it.
+  rgmap::Gateway& g = map.add_gateway(rgmap::GatewayClass::kDoor, a.id, 2);
+  g.gateway_points = {Vector2d(3.0, -0.5), Vector2d(3.0, 0.5)};   // x = 4, y in [1, 2] in the map
+  const KnownPlaces known(map, builders, 0, o);
+  EXPECT_EQ(known.region_holding(Vector2d(4.6, 1.5)), 0);
+  EXPECT_EQ(known.region_holding(Vector2d(3.5, 1.5)), a.id);
+}
+
 TEST(RgKernel, CorrectedScanIsReplacedNotDuplicated)
 {
   Drive d;

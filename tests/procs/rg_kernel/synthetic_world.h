@@ -24,8 +24,23 @@ inline std::vector<Wall> two_rooms()
           {V(4, 0), V(4, 1)}, {V(4, 2), V(4, 3)}};
 }
 
+// A round pillar.
+struct Pillar
+{
+  Eigen::Vector2d c;
+  double r;
+};
+
+// The four walls of an axis-aligned box [x0,x1]x[y0,y1] (furniture, seen from outside).
+inline std::vector<Wall> box(double x0, double y0, double x1, double y1)
+{
+  using V = Eigen::Vector2d;
+  return {{V(x0, y0), V(x1, y0)}, {V(x1, y0), V(x1, y1)}, {V(x1, y1), V(x0, y1)}, {V(x0, y1), V(x0, y0)}};
+}
+
 // 181 beams over 180 degrees, end points in the laser frame (= base frame here).
-inline std::vector<Eigen::Vector2d> cast(const std::vector<Wall>& walls, const geometry::Pose2& pose, double max_range = 8.0)
+inline std::vector<Eigen::Vector2d> cast(const std::vector<Wall>& walls, const geometry::Pose2& pose, double max_range = 8.0,
+                                         const std::vector<Pillar>& pillars = {})
 {
   std::vector<Eigen::Vector2d> pts;
   for (int i = 0; i < 181; ++i) {
@@ -41,6 +56,14 @@ inline std::vector<Eigen::Vector2d> cast(const std::vector<Wall>& walls, const g
       const double t = (f.x() * e.y() - f.y() * e.x()) / den;
       const double u = (f.x() * d.y() - f.y() * d.x()) / den;
       if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
+    }
+    for (const auto& p : pillars) {
+      // |o + t d - c| = r, nearest t > 0.
+      const Eigen::Vector2d f = o - p.c;
+      const double b = f.dot(d), disc = b * b - (f.squaredNorm() - p.r * p.r);
+      if (disc < 0) continue;
+      const double t = -b - std::sqrt(disc);
+      if (t > 0) best = std::min(best, t);
     }
     if (best < max_range) pts.emplace_back(best * std::cos(a), best * std::sin(a));
   }

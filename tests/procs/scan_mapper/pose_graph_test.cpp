@@ -41,7 +41,7 @@ Built build(bool with_closure, bool with_false_closure)
     b.graph.add_edge({static_cast<int>(i) - 1, static_cast<int>(i), z, info(0.02, 0.01), false});
   }
   const int last = static_cast<int>(b.truth.size()) - 1;
-  b.initial_end_error = std::hypot(b.graph.pose(last).x - b.truth[last].x, b.graph.pose(last).y - b.truth[last].y);
+  b.initial_end_error = std::hypot(b.graph.pose(last).x() - b.truth[last].x(), b.graph.pose(last).y() - b.truth[last].y());
   if (with_closure) b.graph.add_edge({0, last, sm::between(b.truth[0], b.truth[last]), info(0.01, 0.005), true});
   if (with_false_closure)  // claims node 15 sits on node 35 (they are 5 m apart)
     b.graph.add_edge({15, 35, sm::Pose2{0.1, 0.0, 0.0}, info(0.01, 0.005), true});
@@ -52,7 +52,7 @@ double max_error(const sm::PoseGraph& g, const std::vector<sm::Pose2>& truth)
 {
   double e = 0;
   for (size_t i = 0; i < truth.size(); ++i)
-    e = std::max(e, std::hypot(g.pose(static_cast<int>(i)).x - truth[i].x, g.pose(static_cast<int>(i)).y - truth[i].y));
+    e = std::max(e, std::hypot(g.pose(static_cast<int>(i)).x() - truth[i].x(), g.pose(static_cast<int>(i)).y() - truth[i].y()));
   return e;
 }
 
@@ -73,8 +73,8 @@ TEST(PoseGraph, LoopClosureRemovesAccumulatedDrift)
   // The bias cannot be undone exactly from one closure; the error must shrink a lot.
   EXPECT_LT(max_error(b.graph, b.truth), 0.3 * b.initial_end_error);
   const int last = static_cast<int>(b.truth.size()) - 1;
-  EXPECT_LT(std::hypot(b.graph.pose(last).x, b.graph.pose(last).y), 0.03);
-  EXPECT_EQ(b.graph.pose(0).x, 0.0);  // the origin is fixed
+  EXPECT_LT(std::hypot(b.graph.pose(last).x(), b.graph.pose(last).y()), 0.03);
+  EXPECT_EQ(b.graph.pose(0).x(), 0.0);  // the origin is fixed
 }
 
 TEST(PoseGraph, RobustKernelLimitsAFalseClosure)

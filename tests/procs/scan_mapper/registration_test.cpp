@@ -27,8 +27,8 @@ sm::Points points_of(const sm::Scan& s)
   return sm::scan_to_points(s, sm::Pose2{}, o);
 }
 
-double trans_err(const sm::Pose2& a, const sm::Pose2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
-double rot_err(const sm::Pose2& a, const sm::Pose2& b) { return std::fabs(sm::normalize_angle(a.theta - b.theta)); }
+double trans_err(const sm::Pose2& a, const sm::Pose2& b) { return std::hypot(a.x() - b.x(), a.y() - b.y()); }
+double rot_err(const sm::Pose2& a, const sm::Pose2& b) { return std::fabs(sm::normalize_angle(a.theta() - b.theta())); }
 
 }  // namespace
 
@@ -52,7 +52,7 @@ TEST(Icp, RecoversSmallMotionWithNoiseAndOutliers)
     // Guess: identity (odometry said nothing moved) - the motion must be recovered entirely.
     const auto r = sm::icp_point_to_line(points_of(cur), model, sm::Pose2{}, {});
     ASSERT_TRUE(r.ok);
-    EXPECT_LT(trans_err(r.map_from_scan, c.motion), 0.02) << c.reference_pose.x << "," << c.reference_pose.y;
+    EXPECT_LT(trans_err(r.map_from_scan, c.motion), 0.02) << c.reference_pose.x() << "," << c.reference_pose.y();
     EXPECT_LT(rot_err(r.map_from_scan, c.motion), 0.005);
     EXPECT_GT(r.inlier_ratio, 0.7);
     // The covariance is positive definite and small where the geometry constrains.
@@ -128,8 +128,8 @@ TEST(Correlative, BranchAndBoundEqualsExhaustiveSearch)
   const auto a = sm::correlative_match(scan_pts, sm::LikelihoodGrid(model_pts, bnb), {}, {0.5, 0.3}, bnb);
   const auto b = sm::correlative_match(scan_pts, sm::LikelihoodGrid(model_pts, flat), {}, {0.5, 0.3}, flat);
   EXPECT_NEAR(a.score, b.score, 1e-9);
-  EXPECT_NEAR(a.map_from_scan.x, b.map_from_scan.x, 1e-9);
-  EXPECT_NEAR(a.map_from_scan.theta, b.map_from_scan.theta, 1e-9);
+  EXPECT_NEAR(a.map_from_scan.x(), b.map_from_scan.x(), 1e-9);
+  EXPECT_NEAR(a.map_from_scan.theta(), b.map_from_scan.theta(), 1e-9);
 }
 
 TEST(Icp, EmptyOrTinyInputsFailCleanly)

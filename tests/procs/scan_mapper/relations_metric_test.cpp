@@ -46,7 +46,7 @@ TEST(RelationsMetric, AteOfAShiftedPoint)
   // Two of four points agree after alignment except one displaced by 0.4 m.
   const std::vector<sm::Pose2> ref = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   std::vector<sm::Pose2> est = ref;
-  est[2].x += 0.4;
+  est[2] = sm::Pose2(est[2].x() + 0.4, est[2].y(), est[2].theta());
   const double ate = sm::ate_rmse(est, ref);
   EXPECT_GT(ate, 0.1);
   EXPECT_LT(ate, 0.2);  // alignment spreads the error: below 0.4 / sqrt(4) = 0.2

@@ -10,7 +10,7 @@
 #include "bus/typed.h"
 #include "scan_mapper/scan_mapper_conversions.h"
 #include "scan_mapper/scan_mapper_node.h"
-#include "synthetic_world.h"
+#include "node_harness.h"
 
 namespace sm = rgnav::scan_mapper;
 namespace fs = std::filesystem;
@@ -19,60 +19,8 @@ using rgnav::laser_scan_t;
 using rgnav::odometry_t;
 using rgnav::slam_pose_t;
 
-namespace {
-
-struct Harness
-{
-  explicit Harness(const sm::PersistenceOptions& p)
-  {
-    auto bus = std::make_unique<rgnav::bus::FakeBus>();
-    fake = bus.get();
-    rgnav::runtime::NodeOptions no;
-    no.name = "scan_mapper_test";
-    node = std::make_unique<rgnav::runtime::Node>(no, std::move(bus));
-    sm::ScanMapperOptions o;
-    o.base_from_laser = sm::Pose2{};
-    adapter = std::make_unique<sm::ScanMapperNode>(*node, o, sm::ScanMapperChannels{}, p);
-  }
-  template <class T>
-  std::vector<T> published(const std::string& channel) const
-  {
-    std::vector<T> out;
-    for (const auto& m : fake->published_on(channel)) {
-      T msg;
-      std::string why;
-      EXPECT_TRUE(rgnav::bus::decode(m.data.data(), m.data.size(), &msg, &why)) << why;
-      out.push_back(msg);
-    }
-    return out;
-  }
-  rgnav::bus::FakeBus* fake = nullptr;
-  std::unique_ptr<rgnav::runtime::Node> node;
-  std::unique_ptr<sm::ScanMapperNode> adapter;
-};
-
-// Out along the corridor and back: 0.05 m steps, scans every step.
-void drive(Harness& h, int from, int to, int64_t seq0 = 0)
-{
-  const auto world = sm::testing::office_world();
-  std::mt19937 rng(2);
-  sm::testing::LaserModel m;
-  m.noise_m = 0.01;
-  for (int i = from; i < to; ++i) {
-    const int leg = i % 300;
-    const double s = leg < 150 ? leg * 0.05 : (300 - leg) * 0.05;
-    const sm::Pose2 truth = leg < 150 ? sm::Pose2{1 + s, 0.5, 0} : sm::Pose2{1 + s, 0.5, M_PI};
-    odometry_t o{};
-    o.utime = 1'000'000 + i * 100'000;
-    o.seq = seq0 + i + 1;
-    o.odom_from_base = sm::to_message(sm::Pose2{truth.x * 1.01, truth.y, truth.theta});
-    rgnav::bus::publish(h.node->bus(), "ODOMETRY", o);
-    const auto scan = sm::testing::cast_scan(world, truth, m, &rng, i + 1, o.utime);
-    rgnav::bus::publish(h.node->bus(), "LASER_FRONT", sm::to_message(scan, "laser_front"));
-  }
-}
-
-}  // namespace
+using Harness = sm::testing::NodeHarness;
+using sm::testing::drive;
 
 TEST(ScanMapperNode, PublishesAlignedScansAndPoses)
 {
@@ -115,7 +63,7 @@ TEST(ScanMapperNode, ResumesFromPersistedStateAfterRestart)
   const auto dir = fs::temp_directory_path() / ("rgnav_sm_node_" + std::to_string(::getpid()));
   sm::PersistenceOptions p;
   p.state_file = (dir / "state.bin").string();
-  p.save_every_scans = 5;
+  p.snapshot_every_records = 5;
   size_t before = 0;
   {
     Harness h(p);

@@ -41,15 +41,15 @@ SyntheticRun make_run()
     for (size_t w = 1; w < waypoints.size(); ++w) {
       const Eigen::Vector2d goal = waypoints[w];
       for (int guard = 0; guard < 500; ++guard) {
-        const Eigen::Vector2d d = goal - Eigen::Vector2d(truth.x, truth.y);
+        const Eigen::Vector2d d = goal - Eigen::Vector2d(truth.x(), truth.y());
         if (d.norm() < 0.05) break;
         const double heading = std::atan2(d.y(), d.x());
-        const double turn = sm::normalize_angle(heading - truth.theta);
+        const double turn = sm::normalize_angle(heading - truth.theta());
         const sm::Pose2 step = std::fabs(turn) > 0.05 ? sm::Pose2{0, 0, std::clamp(turn, -0.1, 0.1)}
                                                       : sm::Pose2{std::min(0.05, d.norm()), 0, turn};
         truth = truth * step;
         // Odometry: scale and heading bias.
-        odom = odom * sm::Pose2{step.x * 1.02, 0, step.theta * 1.01 + step.x * (M_PI / 180)};
+        odom = odom * sm::Pose2{step.x() * 1.02, 0, step.theta() * 1.01 + step.x() * (M_PI / 180)};
         t += 50'000;
         r.truth.push_back(truth);
         r.odom.push_back(odom);
@@ -76,9 +76,9 @@ TEST(OdometryBuffer, InterpolatesAndHoldsBriefly)
   b.add({2000, {1.1, 0, 0.2}});  // same time: the later one wins
   b.add({1500, {9, 9, 9}});      // older than the newest: ignored
   EXPECT_FALSE(b.at(999, 0).has_value());
-  EXPECT_NEAR(b.at(1500, 0)->x, 0.55, 1e-12);
-  EXPECT_NEAR(b.at(1500, 0)->theta, 0.1, 1e-12);
-  EXPECT_NEAR(b.at(2000, 0)->x, 1.1, 1e-12);
+  EXPECT_NEAR(b.at(1500, 0)->x(), 0.55, 1e-12);
+  EXPECT_NEAR(b.at(1500, 0)->theta(), 0.1, 1e-12);
+  EXPECT_NEAR(b.at(2000, 0)->x(), 1.1, 1e-12);
   EXPECT_TRUE(b.at(2050, 100).has_value());
   EXPECT_FALSE(b.at(2200, 100).has_value());
 }
@@ -128,7 +128,7 @@ TEST(ScanMapper, GatesCorrectsDriftAndClosesTheLoop)
   EXPECT_LT(err.rot_mean_deg, 0.4);
   EXPECT_LT(sm::ate_rmse(est, ref), 0.05);
   // Raw odometry is far off by the end: the mapper did real work.
-  EXPECT_GT(std::hypot(run.odom.back().x - run.truth.back().x, run.odom.back().y - run.truth.back().y), 0.5);
+  EXPECT_GT(std::hypot(run.odom.back().x() - run.truth.back().x(), run.odom.back().y() - run.truth.back().y()), 0.5);
 }
 
 TEST(ScanMapper, IsDeterministic)
@@ -145,8 +145,8 @@ TEST(ScanMapper, IsDeterministic)
   const auto a = once(), b = once();
   ASSERT_EQ(a.size(), b.size());
   for (size_t k = 0; k < a.size(); ++k) {
-    EXPECT_EQ(a[k].map_from_base.x, b[k].map_from_base.x);
-    EXPECT_EQ(a[k].map_from_base.theta, b[k].map_from_base.theta);
+    EXPECT_EQ(a[k].map_from_base.x(), b[k].map_from_base.x());
+    EXPECT_EQ(a[k].map_from_base.theta(), b[k].map_from_base.theta());
   }
 }
 
@@ -176,7 +176,7 @@ TEST(MapperState, SaveLoadRoundTripAndResume)
   ASSERT_EQ(loaded->nodes.size(), first.nodes().size());
   ASSERT_EQ(loaded->edges.size(), first.graph().edges().size());
   EXPECT_EQ(loaded->nodes.back().scan.ranges, first.nodes().back().scan.ranges);
-  EXPECT_EQ(loaded->nodes.back().map_from_base.x, first.nodes().back().map_from_base.x);
+  EXPECT_EQ(loaded->nodes.back().map_from_base.x(), first.nodes().back().map_from_base.x());
 
   // Resume with an odometry origin that moved (driver restarted): the first scan relocalises.
   sm::ScanMapper resumed(test_options(), *loaded);
@@ -191,7 +191,7 @@ TEST(MapperState, SaveLoadRoundTripAndResume)
   for (size_t k = loaded->nodes.size(); k < resumed.nodes().size(); ++k) {
     const auto& n = resumed.nodes()[k];
     while (run.scans[j].scan_id != n.scan.scan_id) ++j;
-    EXPECT_LT(std::hypot(n.map_from_base.x - run.truth[j].x, n.map_from_base.y - run.truth[j].y), 0.15) << k;
+    EXPECT_LT(std::hypot(n.map_from_base.x() - run.truth[j].x(), n.map_from_base.y() - run.truth[j].y()), 0.15) << k;
   }
   fs::remove_all(dir);
 }

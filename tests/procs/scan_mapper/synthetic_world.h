@@ -60,8 +60,8 @@ inline Scan cast_scan(const std::vector<Segment>& world, const Pose2& map_from_l
   std::normal_distribution<double> noise(0.0, m.noise_m);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   for (int i = 0; i < m.beams; ++i) {
-    const double a = map_from_laser.theta + s.angle_min + i * static_cast<double>(s.angle_increment);
-    const Eigen::Vector2d o(map_from_laser.x, map_from_laser.y), d(std::cos(a), std::sin(a));
+    const double a = map_from_laser.theta() + s.angle_min + i * static_cast<double>(s.angle_increment);
+    const Eigen::Vector2d o(map_from_laser.x(), map_from_laser.y()), d(std::cos(a), std::sin(a));
     double best = m.max_range;
     for (const auto& seg : world) {
       const Eigen::Vector2d e = seg.b - seg.a;

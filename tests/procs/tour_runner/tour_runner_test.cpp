@@ -8,6 +8,7 @@
 #include "procs/tour_runner/tour.h"
 #include "procs/tour_runner/tour_runner_node.h"
 #include "procs/tour_runner/tour_sequencer.h"
+#include "rgnav/slam_pose_t.hpp"
 #include "rgnav/target_list_t.hpp"
 #include "rgnav/velocity_cmd_t.hpp"
 
@@ -177,6 +178,31 @@ TEST(TourRunnerNode, TargetsAreInTheOdomFrameAndRunEnds)
   EXPECT_TRUE(targets.back().final_is_goal);
   h.odometry(2'000'000, 1.0, 0, 0, 1);
   h.odometry(3'000'000, 2.0, 0, 0, 2);
+  EXPECT_TRUE(h.node->stop_requested());
+}
+
+TEST(TourRunnerNode, SlamCorrectionMovesTargetsIntoTheDriftedOdomFrame)
+{
+  NodeHarness h(TourRunnerOptions::Output::kTargets);
+  // Odometry has drifted: the map (start) frame point p is at odom point p + (0, 0.5), i.e.
+  // map_from_odom translates by (0, -0.5).
+  slam_pose_t s{};
+  s.utime = 1'000'000;
+  s.scan_id = 1;
+  s.map_from_odom.y = -0.5;
+  s.covariance[0] = s.covariance[4] = s.covariance[8] = 1e-4;
+  bus::publish(*h.bus, "SLAM_POSE", s);
+  // The robot at odom (0, 0.5) is at the start in the map: the first target is 1 m ahead.
+  h.odometry(1'000'000, 0, 0.5, 0, 0);
+  auto targets = h.received<target_list_t>("TARGETS");
+  ASSERT_FALSE(targets.empty());
+  EXPECT_NEAR(targets.back().odom_from_target[0].x, 1.0, 1e-9);
+  EXPECT_NEAR(targets.back().odom_from_target[0].y, 0.5, 1e-9);
+  // Reaching is judged in the map frame: odom (2, 0) is map (2, -0.5), not the goal.
+  h.odometry(2'000'000, 1.0, 0.5, 0, 1);
+  h.odometry(3'000'000, 2.0, 0.0, 0, 2);
+  EXPECT_FALSE(h.node->stop_requested());
+  h.odometry(4'000'000, 2.0, 0.5, 0, 3);
   EXPECT_TRUE(h.node->stop_requested());
 }
 

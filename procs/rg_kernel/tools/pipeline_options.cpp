@@ -1,0 +1,45 @@
+#include "pipeline_options.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "gateway_detector/gateway_models.h"
+#include "gateway_detector/options.h"
+#include "procs/rg_kernel/rg_kernel_node.h"
+
+namespace rgnav::rgmap_pipeline {
+
+LoadedPipeline load_pipeline(const PipelineConfigPaths& paths)
+{
+  LoadedPipeline out;
+  auto& o = out.options;
+  o.mapper = scan_mapper::load_scan_mapper_options(config::Config::load(paths.scan_mapper).section("scan_mapper"));
+
+  const auto gw = config::Config::load(paths.gateway_detector);
+  o.detector = gateway_detector::load_detector_options(gw);
+  const auto cls = gateway_detector::load_classifier_config(gw.section("classifier"), paths.gateway_detector);
+  if (!cls.models_path.empty() && std::filesystem::exists(cls.models_path)) {
+    auto models = gateway_detector::load_gateway_models(cls.models_path);
+    // Same checks as the gateway_detector process: features made with other weights than the
+    // models were trained with would be classified wrongly without any error.
+    if (std::fabs(models.f_vlm - o.detector.measures.f_vlm) > 1e-9 || std::fabs(models.f_gw - o.detector.measures.f_gw) > 1e-9)
+      gw.section("crossings").fail("f_vlm", "differs from the weights the models in " + cls.models_path + " were trained with");
+    if (std::fabs(models.hallway_width - o.detector.measures.hallway_width) > 1e-6)
+      gw.section("crossings").fail("hallway_width_m", "differs from the width the models in " + cls.models_path + " were trained for");
+    out.classifier = std::move(models.classifier);
+    out.classifier_note = cls.models_path + " (" + models.description + ")";
+  } else if (cls.require_models) {
+    gw.section("classifier").fail("models", "file not found: " + cls.models_path);
+  } else {
+    out.classifier_note = "none (" + (cls.models_path.empty() ? std::string("not configured") : cls.models_path + " missing") +
+                          "): crossings classified by their observation weights";
+  }
+
+  // The kernel's loader also reads persistence/publish/channels, which offline runs ignore.
+  const auto node = rg_kernel::load_node_config(config::Config::load(paths.rg_kernel), "");
+  o.kernel = node.kernel;
+  o.graph = node.graph;
+  return out;
+}
+
+}  // namespace rgnav::rgmap_pipeline

@@ -1,0 +1,115 @@
+// rgnav_rgmap_bench: evaluation of RG maps (./rgnav bench rgmap; key meanings in
+// deploy/bench/rgmap.sh). Simulated tours with exact ground truth (--sim) and recorded logs
+// with corrected poses (--real, counts only: no ground truth).
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "importers/lcm_log_io.h"
+#include "offline_run.h"
+#include "runtime/process_main.h"
+#include "sim/sim_options.h"
+#include "sim/world_yaml.h"
+#include "sim_rgmap.h"
+
+namespace rp = rgnav::rgmap_pipeline;
+
+namespace {
+
+std::pair<std::string, std::string> split_spec(const std::string& spec)
+{
+  const auto eq = spec.find('=');
+  if (eq == std::string::npos || eq == 0) throw std::runtime_error("expected NAME=PATH, got '" + spec + "'");
+  return {spec.substr(0, eq), spec.substr(eq + 1)};
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  CLI::App app{"Evaluate RG maps: simulated tours against ground truth, real logs by counts"};
+  const std::string cfg_dir = rgnav::runtime::default_config_dir();
+  rp::PipelineConfigPaths paths{cfg_dir + "/scan_mapper.yaml", cfg_dir + "/gateway_detector_aligned.yaml", cfg_dir + "/rg_kernel.yaml"};
+  std::string sim_config = cfg_dir + "/sim.yaml", json_path, out_dir;
+  std::vector<std::string> sims, reals;
+  rp::SimTourOptions tour;
+  double match_m = 1.0;
+  app.add_option("--config", paths.scan_mapper, "scan mapper config")->check(CLI::ExistingFile);
+  app.add_option("--gateway-config", paths.gateway_detector, "gateway detector config")->check(CLI::ExistingFile);
+  app.add_option("--rg-config", paths.rg_kernel, "RG kernel config")->check(CLI::ExistingFile);
+  app.add_option("--sim-config", sim_config, "simulator config (robot, odometry error, laser)")->check(CLI::ExistingFile);
+  app.add_option("--sim", sims, "NAME=WORLD (world file or IPA map image), repeatable");
+  app.add_option("--real", reals, "NAME=LOG.lcmlog with corrected poses as odometry (taken as given), repeatable");
+  app.add_option("--laps", tour.laps, "tour laps per world")->check(CLI::Range(1, 10));
+  app.add_option("--max-sim-s", tour.max_sim_s, "cap on simulated seconds per world")->check(CLI::Range(10.0, 36000.0));
+  app.add_flag("--people", tour.people, "keep the worlds' walking people (the tour follower does not avoid them)");
+  app.add_option("--gateway-match-m", match_m, "gateway positions closer than this match ground truth [m]")->check(CLI::Range(0.1, 5.0));
+  app.add_option("--json", json_path, "output JSON")->required();
+  app.add_option("--out", out_dir, "folder for the maps and pictures of every run")->required();
+  bool verbose = false;
+  app.add_flag("--verbose", verbose, "log the libraries' progress messages (regions opened, merged, ...)");
+  CLI11_PARSE(app, argc, argv);
+  spdlog::set_level(verbose ? spdlog::level::info : spdlog::level::warn);
+  try {
+    const rp::LoadedPipeline loaded = rp::load_pipeline(paths);
+    nlohmann::json j;
+    j["configs"] = {{"scan_mapper", paths.scan_mapper}, {"gateway_detector", paths.gateway_detector},
+                    {"rg_kernel", paths.rg_kernel}, {"sim", sim_config}};
+    j["gateway_classifier"] = loaded.classifier_note;
+    j["gateway_match_m"] = match_m;
+    j["laps"] = tour.laps;
+    j["people"] = tour.people;
+    j["worlds"] = nlohmann::json::object();
+    j["logs"] = nlohmann::json::object();
+    if (!sims.empty()) {
+      const auto sim_options = rgnav::sim::load_simulator_options(rgnav::config::Config::load(sim_config));
+      for (const auto& spec : sims) {
+        const auto [name, path] = split_spec(spec);
+        try {
+          const auto world = rgnav::sim::load_world(path);
+          const auto truth = rp::ground_truth_of(world);
+          const auto run = rp::run_sim_rgmap(world, sim_options, loaded, tour);
+          const auto score = rp::score_world(run, truth, match_m);
+          auto w = rp::to_json(run, score);
+          w["world"] = path;
+          const std::string dir = out_dir + "/" + name;
+          rp::write_run_outputs(run.run, loaded.options, dir);
+          w["pictures"] = {dir + "/rgmap.svg", dir + "/rgmap.png"};
+          j["worlds"][name] = w;
+          std::cerr << name << ": precision " << w["seg_precision"] << " recall " << w["seg_recall"] << " gateways "
+                    << w["gateways_matched"] << "/" << w["gateways_truth"] << " isomorphic " << w["graph_isomorphic"] << "\n";
+        } catch (const std::exception& e) {
+          // One world that cannot be run (no tour through it, unreadable) does not sink the rest.
+          j["worlds"][name] = {{"world", path}, {"error", e.what()}};
+          std::cerr << name << ": " << e.what() << "\n";
+        }
+      }
+    }
+    for (const auto& spec : reals) {
+      const auto [name, path] = split_spec(spec);
+      auto given = loaded;
+      given.options.poses_as_given = true;
+      given.options.mapper.base_from_laser = rgnav::geometry::Pose2();   // the corrected logs' scans are in the robot frame
+      const auto log = rgnav::importers::read_lcm_log(path);
+      const auto run = rp::run_pipeline(log, given);
+      const std::string dir = out_dir + "/" + name;
+      auto s = rp::write_run_outputs(run, given.options, dir);
+      s["false_positives"] = nullptr;   // no ground truth for these logs
+      s["log"] = path;
+      s["pictures"] = {dir + "/rgmap.svg", dir + "/rgmap.png"};
+      j["logs"][name] = s;
+      std::cerr << name << ": " << s["regions"] << " regions, " << s["gateways"] << " gateways, compression " << s["compression"] << "\n";
+    }
+    std::filesystem::create_directories(std::filesystem::path(json_path).parent_path());
+    std::ofstream f(json_path);
+    f << j.dump(1) << "\n";
+    if (!f) throw std::runtime_error("cannot write " + json_path);
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "rgnav_rgmap_bench: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,379 @@
+#include "rgmap_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace rgnav::rgmap_pipeline {
+
+using Eigen::Vector2d;
+
+SegmentationScore score_segmentation(const LabelGrid& truth, const RegionCells& found, double split_share)
+{
+  SegmentationScore s;
+  s.regions = static_cast<int>(found.size());
+  std::map<int32_t, int64_t> room_cells, room_explored;
+  for (int32_t l : truth.labels)
+    if (l > 0) ++room_cells[l];
+  s.rooms = static_cast<int>(room_cells.size());
+  std::vector<char> covered(truth.labels.size(), 0);
+  std::map<int64_t, std::map<int32_t, int64_t>> overlap;   // region -> room -> cells
+  std::map<int64_t, int64_t> region_in_rooms;              // region -> its cells inside rooms
+  for (const auto& [rid, cells] : found) {
+    auto& ov = overlap[rid];
+    for (int64_t c : cells) {
+      if (c < 0 || c >= static_cast<int64_t>(truth.labels.size())) continue;
+      const int32_t l = truth.labels[static_cast<size_t>(c)];
+      if (l <= 0) continue;
+      ++ov[l];
+      ++region_in_rooms[rid];
+      covered[static_cast<size_t>(c)] = 1;
+    }
+  }
+  int64_t labelled = 0, covered_labelled = 0;
+  for (size_t i = 0; i < truth.labels.size(); ++i) {
+    if (truth.labels[i] <= 0) continue;
+    ++labelled;
+    if (covered[i]) {
+      ++covered_labelled;
+      ++room_explored[truth.labels[i]];
+    }
+  }
+  s.coverage = labelled > 0 ? static_cast<double>(covered_labelled) / static_cast<double>(labelled) : 0.0;
+
+  // Precision, best room and under-segmentation per region.
+  double psum = 0;
+  int pn = 0;
+  for (const auto& [rid, ov] : overlap) {
+    const int64_t total = region_in_rooms[rid];
+    if (total == 0) {
+      ++s.regions_outside;
+      continue;
+    }
+    int32_t best = 0;
+    int64_t best_n = -1;
+    int big = 0;
+    for (const auto& [room, n] : ov) {
+      if (n > best_n) best = room, best_n = n;   // map order: ties go to the lower label
+      if (static_cast<double>(n) >= split_share * static_cast<double>(total)) ++big;
+    }
+    s.region_to_room[rid] = best;
+    psum += static_cast<double>(best_n) / static_cast<double>(total);
+    ++pn;
+    if (big >= 2) ++s.under_segmented;
+  }
+  s.precision = pn > 0 ? psum / pn : 0.0;
+
+  // Recall, Jaccard and over-segmentation per room.
+  double rsum = 0, rfull = 0, jsum = 0;
+  for (const auto& [room, all] : room_cells) {
+    const auto ex = room_explored.find(room);
+    const int64_t explored = ex == room_explored.end() ? 0 : ex->second;
+    int64_t best_n = 0;
+    double best_iou = 0;
+    int big = 0;
+    for (const auto& [rid, ov] : overlap) {
+      const auto it = ov.find(room);
+      if (it == ov.end()) continue;
+      const int64_t n = it->second;
+      best_n = std::max(best_n, n);
+      const double uni = static_cast<double>(region_in_rooms[rid] + explored - n);
+      if (uni > 0) best_iou = std::max(best_iou, static_cast<double>(n) / uni);
+      if (static_cast<double>(n) >= split_share * static_cast<double>(explored)) ++big;
+    }
+    rfull += static_cast<double>(best_n) / static_cast<double>(all);
+    if (explored == 0) continue;
+    ++s.rooms_explored;
+    rsum += static_cast<double>(best_n) / static_cast<double>(explored);
+    jsum += best_iou;
+    if (big >= 2) ++s.over_segmented;
+  }
+  s.recall = s.rooms_explored > 0 ? rsum / s.rooms_explored : 0.0;
+  s.jaccard = s.rooms_explored > 0 ? jsum / s.rooms_explored : 0.0;
+  s.recall_full = s.rooms > 0 ? rfull / s.rooms : 0.0;
+  return s;
+}
+
+GatewayMatch match_gateways(const std::vector<Vector2d>& truth, const std::vector<Vector2d>& found, double max_distance)
+{
+  GatewayMatch m;
+  m.truth = static_cast<int>(truth.size());
+  m.found = static_cast<int>(found.size());
+  struct Pair
+  {
+    double d;
+    int t, f;
+  };
+  std::vector<Pair> pairs;
+  for (size_t t = 0; t < truth.size(); ++t)
+    for (size_t f = 0; f < found.size(); ++f) {
+      const double d = (truth[t] - found[f]).norm();
+      if (d <= max_distance) pairs.push_back({d, static_cast<int>(t), static_cast<int>(f)});
+    }
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+    return a.d != b.d ? a.d < b.d : (a.t != b.t ? a.t < b.t : a.f < b.f);
+  });
+  std::vector<char> tu(truth.size(), 0), fu(found.size(), 0);
+  double err = 0;
+  for (const auto& p : pairs) {
+    if (tu[static_cast<size_t>(p.t)] || fu[static_cast<size_t>(p.f)]) continue;
+    tu[static_cast<size_t>(p.t)] = fu[static_cast<size_t>(p.f)] = 1;
+    m.pairs.push_back({p.t, p.f});
+    err += p.d;
+  }
+  std::sort(m.pairs.begin(), m.pairs.end());
+  m.matched = static_cast<int>(m.pairs.size());
+  m.missed = m.truth - m.matched;
+  m.false_positives = m.found - m.matched;
+  m.mean_error_m = m.matched > 0 ? err / m.matched : 0.0;
+  return m;
+}
+
+void Graph::add_edge(int64_t a, int64_t b)
+{
+  nodes.insert(a);
+  nodes.insert(b);
+  if (a != b) edges.insert({std::min(a, b), std::max(a, b)});
+}
+
+namespace {
+
+struct Dense
+{
+  int n = 0;
+  std::vector<std::vector<char>> adj;
+  std::vector<std::vector<int>> nbr;
+};
+
+Dense dense_of(const Graph& g)
+{
+  Dense d;
+  std::map<int64_t, int> index;
+  for (int64_t v : g.nodes) index[v] = d.n++;
+  d.adj.assign(static_cast<size_t>(d.n), std::vector<char>(static_cast<size_t>(d.n), 0));
+  d.nbr.resize(static_cast<size_t>(d.n));
+  for (const auto& [a, b] : g.edges) {
+    const int i = index.at(a), j = index.at(b);
+    d.adj[i][j] = d.adj[j][i] = 1;
+    d.nbr[i].push_back(j);
+    d.nbr[j].push_back(i);
+  }
+  return d;
+}
+
+// Colour refinement (1-dimensional Weisfeiler-Leman) on both graphs together, so colours are
+// comparable: isomorphic graphs end with the same colour histogram, and an isomorphism maps
+// every node to a node of its own colour.
+void refine(const Dense& a, const Dense& b, std::vector<int>* ca, std::vector<int>* cb)
+{
+  ca->assign(static_cast<size_t>(a.n), 0);
+  cb->assign(static_cast<size_t>(b.n), 0);
+  for (int round = 0; round < a.n + b.n + 1; ++round) {
+    std::map<std::pair<int, std::vector<int>>, int> palette;
+    auto signature = [](const Dense& g, const std::vector<int>& c, int v) {
+      std::vector<int> s;
+      for (int u : g.nbr[static_cast<size_t>(v)]) s.push_back(c[static_cast<size_t>(u)]);
+      std::sort(s.begin(), s.end());
+      return std::make_pair(c[static_cast<size_t>(v)], s);
+    };
+    std::vector<std::pair<int, std::vector<int>>> sa, sb;
+    for (int v = 0; v < a.n; ++v) sa.push_back(signature(a, *ca, v));
+    for (int v = 0; v < b.n; ++v) sb.push_back(signature(b, *cb, v));
+    for (const auto& s : sa) palette.emplace(s, 0);
+    for (const auto& s : sb) palette.emplace(s, 0);
+    int next = 0;
+    for (auto& [k, c] : palette) c = next++;
+    std::vector<int> na, nb;
+    for (const auto& s : sa) na.push_back(palette.at(s));
+    for (const auto& s : sb) nb.push_back(palette.at(s));
+    const bool stable = std::set<int>(na.begin(), na.end()).size() + std::set<int>(nb.begin(), nb.end()).size() ==
+                        std::set<int>(ca->begin(), ca->end()).size() + std::set<int>(cb->begin(), cb->end()).size();
+    *ca = std::move(na);
+    *cb = std::move(nb);
+    if (stable && round > 0) break;
+  }
+}
+
+}  // namespace
+
+bool isomorphic(const Graph& ga, const Graph& gb)
+{
+  if (ga.nodes.size() != gb.nodes.size() || ga.edges.size() != gb.edges.size()) return false;
+  const Dense a = dense_of(ga), b = dense_of(gb);
+  std::vector<int> ca, cb;
+  refine(a, b, &ca, &cb);
+  std::vector<int> ha = ca, hb = cb;
+  std::sort(ha.begin(), ha.end());
+  std::sort(hb.begin(), hb.end());
+  if (ha != hb) return false;
+  // Backtracking: nodes of a in order of rarest colour first; candidates of the same colour
+  // whose adjacency to every node mapped so far agrees.
+  std::map<int, int> freq;
+  for (int c : ca) ++freq[c];
+  std::vector<int> order(static_cast<size_t>(a.n));
+  for (int v = 0; v < a.n; ++v) order[static_cast<size_t>(v)] = v;
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return freq[ca[x]] < freq[ca[y]]; });
+  std::vector<int> to(static_cast<size_t>(a.n), -1);
+  std::vector<char> used(static_cast<size_t>(b.n), 0);
+  std::function<bool(size_t)> extend = [&](size_t k) -> bool {
+    if (k == order.size()) return true;
+    const int v = order[k];
+    for (int w = 0; w < b.n; ++w) {
+      if (used[static_cast<size_t>(w)] || cb[static_cast<size_t>(w)] != ca[static_cast<size_t>(v)]) continue;
+      bool ok = true;
+      for (size_t j = 0; j < k && ok; ++j) {
+        const int u = order[j];
+        ok = a.adj[v][u] == b.adj[w][to[static_cast<size_t>(u)]];
+      }
+      if (!ok) continue;
+      to[static_cast<size_t>(v)] = w;
+      used[static_cast<size_t>(w)] = 1;
+      if (extend(k + 1)) return true;
+      used[static_cast<size_t>(w)] = 0;
+    }
+    to[static_cast<size_t>(v)] = -1;
+    return false;
+  };
+  return extend(0);
+}
+
+GraphComparison compare_graphs(const Graph& truth, const Graph& map, const std::map<int64_t, int64_t>& map_to_truth)
+{
+  GraphComparison c;
+  c.isomorphic = isomorphic(truth, map);
+  c.truth_nodes = static_cast<int>(truth.nodes.size());
+  c.map_nodes = static_cast<int>(map.nodes.size());
+  c.truth_edges = static_cast<int>(truth.edges.size());
+  c.map_edges = static_cast<int>(map.edges.size());
+  std::set<std::pair<int64_t, int64_t>> hit;
+  for (const auto& [u, v] : map.edges) {
+    const auto mu = map_to_truth.find(u), mv = map_to_truth.find(v);
+    if (mu == map_to_truth.end() || mv == map_to_truth.end()) {
+      ++c.edges_extra;
+      continue;
+    }
+    if (mu->second == mv->second) {
+      ++c.edges_internal;
+      continue;
+    }
+    const std::pair<int64_t, int64_t> e{std::min(mu->second, mv->second), std::max(mu->second, mv->second)};
+    if (truth.edges.count(e)) hit.insert(e);
+    else ++c.edges_extra;
+  }
+  c.edges_matched = static_cast<int>(hit.size());
+  c.edges_missing = c.truth_edges - c.edges_matched;
+  std::set<int64_t> reached;
+  for (const auto& [r, t] : map_to_truth) reached.insert(t);
+  for (int64_t t : truth.nodes)
+    if (!reached.count(t)) ++c.rooms_unmatched;
+  return c;
+}
+
+Graph region_graph(const rgmap::RgMap& map)
+{
+  Graph g;
+  for (const auto& [id, r] : map.regions())
+    if (r.state != rgmap::Region::State::kMerged) g.nodes.insert(id);
+  for (const auto& [id, gw] : map.gateways()) {
+    if (gw.neutralized || gw.region_a == 0 || gw.region_b == 0) continue;
+    const int64_t a = map.resolve(gw.region_a), b = map.resolve(gw.region_b);
+    if (g.nodes.count(a) && g.nodes.count(b)) g.add_edge(a, b);
+  }
+  return g;
+}
+
+MapCounts count_map(const rgmap::RgMap& map, int64_t scan_points)
+{
+  MapCounts c;
+  double bytes = 0, area = 0;
+  for (const auto& [id, r] : map.regions()) {
+    if (r.state == rgmap::Region::State::kMerged) {
+      ++c.merged;
+      continue;
+    }
+    ++c.regions;
+    c.segments += static_cast<int>(r.segments.size());
+    bytes += static_cast<double>(r.freespace.bytes().size() + r.segments.size() * 4 * sizeof(float));
+    area += r.freespace.features().area;
+  }
+  for (const auto& [id, g] : map.gateways()) {
+    if (g.neutralized) {
+      ++c.neutralized;
+      continue;
+    }
+    ++c.gateways;
+    if (g.cls == rgmap::GatewayClass::kDoor || g.cls == rgmap::GatewayClass::kNarrowPassage) ++c.doors;
+    if (g.region_b == 0) ++c.not_traversed;
+  }
+  c.scan_points = scan_points;
+  c.compression = c.segments > 0 ? static_cast<double>(scan_points) / (2.0 * c.segments) : 0.0;
+  c.mean_region_bytes = c.regions > 0 ? bytes / c.regions : 0.0;
+  c.mean_region_area_m2 = c.regions > 0 ? area / c.regions : 0.0;
+  c.consistency_problems = static_cast<int>(map.consistency_problems().size());
+  return c;
+}
+
+RegionCells region_cells(const rgmap::RgMap& map, const geometry::Pose2& world_from_map, const LabelGrid& grid)
+{
+  RegionCells out;
+  for (const auto& [id, r] : map.regions()) {
+    if (r.state == rgmap::Region::State::kMerged) continue;
+    auto& cells = out[id];
+    const auto& fs = r.freespace;
+    if (fs.width() == 0 || fs.height() == 0) continue;
+    const geometry::Pose2 world_from_region = world_from_map * r.map_from_region;
+    const geometry::Pose2 world_from_grid = world_from_region * fs.region_from_grid();
+    Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for (const Vector2d& k : {Vector2d(0, 0), Vector2d(fs.width(), 0), Vector2d(0, fs.height()), Vector2d(fs.width(), fs.height())}) {
+      const Vector2d p = world_from_grid * (k * fs.resolution());
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const geometry::Pose2 region_from_world = world_from_region.inverse();
+    const int x0 = std::max(0, static_cast<int>(std::floor((lo.x() - grid.origin.x()) / grid.resolution)));
+    const int y0 = std::max(0, static_cast<int>(std::floor((lo.y() - grid.origin.y()) / grid.resolution)));
+    const int x1 = std::min(grid.width - 1, static_cast<int>(std::floor((hi.x() - grid.origin.x()) / grid.resolution)));
+    const int y1 = std::min(grid.height - 1, static_cast<int>(std::floor((hi.y() - grid.origin.y()) / grid.resolution)));
+    for (int cy = y0; cy <= y1; ++cy)
+      for (int cx = x0; cx <= x1; ++cx)
+        if (fs.is_free(region_from_world * grid.center(cx, cy))) cells.push_back(static_cast<int64_t>(cy) * grid.width + cx);
+  }
+  return out;
+}
+
+geometry::Pose2 fit_rigid(const std::vector<Vector2d>& a, const std::vector<Vector2d>& b)
+{
+  const size_t n = std::min(a.size(), b.size());
+  if (n == 0) return {};
+  Vector2d ma = Vector2d::Zero(), mb = Vector2d::Zero();
+  for (size_t i = 0; i < n; ++i) ma += a[i], mb += b[i];
+  ma /= static_cast<double>(n);
+  mb /= static_cast<double>(n);
+  double sxx = 0, sxy = 0;   // sum of dot and cross products of the centred points
+  for (size_t i = 0; i < n; ++i) {
+    const Vector2d p = a[i] - ma, q = b[i] - mb;
+    sxx += p.dot(q);
+    sxy += p.x() * q.y() - p.y() * q.x();
+  }
+  const double theta = (sxx == 0 && sxy == 0) ? 0.0 : std::atan2(sxy, sxx);
+  const geometry::Pose2 rot(0, 0, theta);
+  const Vector2d t = mb - rot * ma;
+  return geometry::Pose2(t, theta);
+}
+
+std::vector<Vector2d> gateway_positions(const rgmap::RgMap& map)
+{
+  std::vector<Vector2d> out;
+  for (const auto& [id, g] : map.gateways()) {
+    if (g.neutralized) continue;
+    const auto& pts = g.gateway_points.empty() ? g.crossing_points : g.gateway_points;
+    const rgmap::Region* a = map.region(map.resolve(g.region_a));
+    if (pts.empty() || !a) continue;
+    Vector2d c = Vector2d::Zero();
+    for (const auto& p : pts) c += p;
+    out.push_back(a->map_from_region * (c / static_cast<double>(pts.size())));
+  }
+  return out;
+}
+
+}  // namespace rgnav::rgmap_pipeline

@@ -1,0 +1,31 @@
+// The scan mapper's planar poses are common/geometry/pose2.h; these are the few operations
+// on them the mapper needs beyond the class (increments as vectors for the Kalman filter,
+// interpolation of odometry).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cmath>
+
+#include "geometry/pose2.h"
+
+namespace rgnav::scan_mapper {
+
+using geometry::normalize_angle;
+using geometry::Pose2;
+
+// a_from_b given map_from_a and map_from_b.
+inline Pose2 between(const Pose2& map_from_a, const Pose2& map_from_b) { return map_from_a.between(map_from_b); }
+
+inline double translation_norm(const Pose2& p) { return p.translation().norm(); }
+
+inline Eigen::Vector3d to_vector(const Pose2& p) { return {p.x(), p.y(), p.theta()}; }
+inline Pose2 pose_from_vector(const Eigen::Vector3d& v) { return Pose2(v.x(), v.y(), v.z()); }
+
+// Linear interpolation of poses (shortest way round in theta), s in [0, 1].
+inline Pose2 interpolate(const Pose2& a, const Pose2& b, double s)
+{
+  return Pose2(a.x() + s * (b.x() - a.x()), a.y() + s * (b.y() - a.y()), a.theta() + s * normalize_angle(b.theta() - a.theta()));
+}
+
+}  // namespace rgnav::scan_mapper

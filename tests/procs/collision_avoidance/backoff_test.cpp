@@ -1,0 +1,68 @@
+// Collision avoidance when the robot is already closer to something than its clearance (a
+// person who stepped up to it and now waits for it to move): it must turn away and drive
+// out, not stand forever.
+#include <gtest/gtest.h>
+
+#include "collision_avoidance/collision_avoidance.h"
+
+namespace rgnav::collision_avoidance {
+namespace {
+
+// A person-sized arc of readings 0.25 m from the laser, to the front left.
+std::vector<PolarReading> person_front_left()
+{
+  std::vector<PolarReading> r;
+  for (int i = -90; i <= 90; ++i) {
+    const double b = i * M_PI / 180.0;
+    r.push_back({b, (i >= 20 && i <= 50) ? 0.25 : 8.0});
+  }
+  return r;
+}
+
+TEST(BackOff, TurnsAwayThenDrivesOut)
+{
+  CaOptions o;
+  CollisionAvoidance ca(o);
+  Targets t;
+  t.poses = {Pose2(3.0, 0.0, 0.0)};
+  ca.set_targets(t);
+  int64_t us = 1'000'000;
+  auto feed = [&](const Pose2& pose) {
+    ca.on_odometry(time::from_utime(us), pose, 0.0);
+    ca.on_scan(time::from_utime(us), person_front_left(), 8.0);
+    ca.on_drive_feedback({0, 0, 0.0, 0.0, 0.0});
+  };
+  // First it stops and waits (the person may walk on).
+  feed(Pose2());
+  auto first = ca.update(time::from_utime(us));
+  ASSERT_TRUE(first);
+  EXPECT_TRUE(first->chain.empty());
+  EXPECT_EQ(ca.mode(), Mode::kReactive);
+  // After the wait: a turn on the spot, away from the person (to the right, i.e. negative).
+  std::optional<trajectory::Trajectory> turn;
+  for (int i = 0; i < 40 && !(turn && !turn->chain.empty()); ++i) {
+    us += 100'000;
+    feed(Pose2());
+    turn = ca.update(time::from_utime(us));
+  }
+  ASSERT_TRUE(turn && !turn->chain.empty()) << ca.status();
+  ASSERT_EQ(turn->chain[0].kind(), trajectory::Kind::kTurn);
+  EXPECT_LT(turn->chain[0].turn_angle(), -1.5);
+  EXPECT_NE(ca.status().find("backing off"), std::string::npos) << ca.status();
+  // Once facing away (the person now behind, out of the laser's view but still in the
+  // local map), it drives a straight line out.
+  const double away = turn->chain[0].turn_angle();
+  std::optional<trajectory::Trajectory> out;
+  for (int i = 0; i < 5 && !(out && !out->chain.empty() && out->chain[0].kind() == trajectory::Kind::kLine); ++i) {
+    us += 100'000;
+    ca.on_odometry(time::from_utime(us), Pose2(0, 0, away), 0.0);
+    ca.on_drive_feedback({turn->id, 2, 0.0, 0.0, 0.0});
+    out = ca.update(time::from_utime(us));
+  }
+  ASSERT_TRUE(out && !out->chain.empty()) << ca.status();
+  EXPECT_EQ(out->chain[0].kind(), trajectory::Kind::kLine);
+  EXPECT_NEAR(out->chain[0].start().theta(), away, 0.3);
+}
+
+}  // namespace
+}  // namespace rgnav::collision_avoidance

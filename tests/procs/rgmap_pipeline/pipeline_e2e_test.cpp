@@ -1,0 +1,118 @@
+// End to end: a short simulated drive through the office world (lobby, hallway, through a door
+// into an office) is written as an LCM log (LASER_FRONT + ODOMETRY, a few hundred scans), and
+// rgnav_rgmap_offline maps it twice: rgmap.json must exist, parse, hold a region, and be
+// byte-identical between the runs (deterministic on message time).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "importers/lcm_log_io.h"
+#include "persist/atomic_file.h"
+#include "rgmap/rgmap_json.h"
+#include "sim/simulator.h"
+#include "sim/waypoint_follower.h"
+#include "sim/world_yaml.h"
+
+namespace rgnav {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kEveryNthScan = 8;   // ~9 Hz: a few hundred scans for ~45 s of driving
+
+importers::ImportedLog simulated_log()
+{
+  sim::World world = sim::load_world(std::string(RGNAV_CONFIG_DIR) + "/worlds/office.yaml");
+  world.people.clear();   // a walker in the way would stop this fixed route
+  sim::SimulatorOptions options;   // seed 1: deterministic
+  sim::Simulator simulator(world, options);
+  sim::WaypointFollower follower({{20, 2}, {20, 13}, {13, 13}, {13, 10}}, [&simulator] { return simulator.truth(); });
+  simulator.set_command_source(&follower);
+  importers::ImportedLog log;
+  log.format = "lcm";
+  int64_t n = 0;
+  while (!follower.done() && simulator.time_s() < 90.0) {
+    const auto out = simulator.step(std::chrono::microseconds(13333));
+    size_t oi = 0;
+    auto odometry_until = [&](int64_t utime) {
+      for (; oi < out.odometry.size() && out.odometry[oi].utime <= utime; ++oi) {
+        const auto& o = out.odometry[oi];
+        log.add_odometry({o.utime, o.seq, o.odom_from_base.x, o.odom_from_base.y, o.odom_from_base.theta});
+      }
+    };
+    for (const auto& s : out.scans) {
+      odometry_until(s.utime);
+      if (n++ % kEveryNthScan != 0) continue;
+      importers::ScanRecord r;
+      r.utime = s.utime;
+      r.angle_min = static_cast<float>(s.angle_min);
+      r.angle_increment = static_cast<float>(s.angle_increment);
+      r.range_min = static_cast<float>(s.range_min);
+      r.range_max = static_cast<float>(s.range_max);
+      r.ranges = s.ranges;
+      log.add_scan(std::move(r));
+    }
+    odometry_until(INT64_MAX);
+  }
+  EXPECT_TRUE(follower.done()) << "the drive did not finish in 90 s of simulated time; at " << simulator.truth().x << ", "
+                               << simulator.truth().y << " heading for waypoint " << follower.next_index()
+                               << ", collisions " << simulator.collisions();
+  return log;
+}
+
+std::string slurp(const fs::path& p)
+{
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+TEST(RgMapOffline, ShortSimulatedLogGivesTheSameRgMapTwice)
+{
+  const fs::path dir = fs::temp_directory_path() / ("rgmap_e2e_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto log = simulated_log();
+  ASSERT_GE(log.scans.size(), 200u);
+  ASSERT_LE(log.scans.size(), 1000u);
+  importers::write_lcm_log(log, (dir / "drive.lcmlog").string());
+
+  for (const char* run : {"a", "b"}) {
+    const std::string cmd = std::string(RGMAP_OFFLINE_BIN) + " " + (dir / "drive.lcmlog").string() + " --out " +
+                            (dir / run).string() + " --config " RGNAV_CONFIG_DIR "/scan_mapper.yaml > " +
+                            (dir / run).string() + ".out 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir / (std::string(run) + ".out"));
+  }
+  const fs::path a = dir / "a" / "rgmap.json";
+  ASSERT_TRUE(fs::exists(a));
+  const auto text = persist::read_checked(a.string());
+  ASSERT_TRUE(text.has_value());
+  const rgmap::RgMap map = rgmap::from_json(nlohmann::json::parse(*text));
+  int live = 0;
+  for (const auto& [id, r] : map.regions()) live += r.state != rgmap::Region::State::kMerged;
+  EXPECT_GE(live, 1);
+  EXPECT_GT(map.last_scan_id, 0);
+  EXPECT_TRUE(map.consistency_problems().empty());
+  for (const char* f : {"trajectory.txt", "aligned_scans.lcmlog", "map.png", "rgmap.svg", "rgmap.png",
+                        "rgmap_global.pgm", "rgmap_global.yaml", "summary.json"})
+    EXPECT_TRUE(fs::exists(dir / "a" / f)) << f;
+  EXPECT_EQ(slurp(a), slurp(dir / "b" / "rgmap.json"));
+  EXPECT_EQ(slurp(dir / "a" / "trajectory.txt"), slurp(dir / "b" / "trajectory.txt"));
+
+  // The same log with its odometry taken as given poses (the corrected-log mode of the benchmark).
+  const std::string cmd = std::string(RGMAP_OFFLINE_BIN) + " " + (dir / "drive.lcmlog").string() + " --poses-as-given --no-pictures --out " +
+                          (dir / "given").string() + " > " + (dir / "given.out").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir / "given.out");
+  const auto given = persist::read_checked((dir / "given" / "rgmap.json").string());
+  ASSERT_TRUE(given.has_value());
+  EXPECT_GE(rgmap::from_json(nlohmann::json::parse(*given)).regions().size(), 1u);
+  EXPECT_FALSE(fs::exists(dir / "given" / "rgmap.svg"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace rgnav
