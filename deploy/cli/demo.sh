@@ -41,8 +41,11 @@ run="$ROOT/logs/demo-$(date +%Y%m%d-%H%M%S)"
 mkdir -p "$run"
 export RGNAV_RUN="$run" RGNAV_TOUR="$run/tour.yaml"
 echo "demo: planning a tour through '$world'" >&2
+# Waypoints keep 0.15 m beyond the robot radius: collision avoidance keeps 0.10 m (more from
+# what may be moving), and a tour hugging corners and door leaves at the planner's default
+# 0.08 m puts targets where collision avoidance must refuse them.
 "$BUILD/bin/sim_tour" "$world" --worlds-dir "$ROOT/config/worlds" --sim-config "$ROOT/config/sim.yaml" \
-  --out "$RGNAV_TOUR" >&2
+  --margin 0.15 --out "$RGNAV_TOUR" >&2
 
 ctl() { "$BUILD/bin/rgnav_ctl" "$@"; }
 "$BUILD/bin/supervisor" --launch "$ROOT/deploy/launch/demo.pmd" --host demo --state-dir "$run/supervisor" \
