@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "rgnav/heartbeat_t.hpp"
+#include "runtime/realtime.h"
 #include "sim/sim_conversions.h"
 #include "time/message_time.h"
 
@@ -36,6 +37,15 @@ SimNode::SimNode(runtime::Node& node, std::unique_ptr<Simulator> sim, const Proc
     node_.subscribe<velocity_cmd_t>(channels_.command, [this](const velocity_cmd_t& m) { on_command(m); });
   }
   if (manual) return;
+  if (options_.clock == ClockMode::kRealtime && options_.realtime_priority > 0) {
+    // Never in fast mode: its loop never sleeps and would starve the machine.
+    bool granted = false;
+    const std::string what = runtime::request_realtime(options_.realtime_priority, false, &granted);
+    if (granted)
+      spdlog::info("rgnav_sim stepping thread: {}", what);
+    else
+      spdlog::warn("rgnav_sim stepping thread: {}", what);
+  }
   if (options_.clock == ClockMode::kRealtime)
     node_.every(std::chrono::duration_cast<std::chrono::microseconds>(options_.tick), [this] { on_tick(); });
   else

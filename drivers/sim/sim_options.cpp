@@ -59,6 +59,7 @@ ProcessOptions load_process_options(const config::Config& sim)
   p.time_scale = sim.number("time_scale", p.time_scale, 0.01, 100.0);
   p.fast_chunk = std::chrono::microseconds(sim.integer("fast_chunk_us", p.fast_chunk.count(), 100, 1'000'000));
   p.tick = std::chrono::milliseconds(sim.integer("tick_ms", p.tick.count(), 1, 100));
+  p.realtime_priority = static_cast<int>(sim.integer("realtime_priority", p.realtime_priority, 0, 99));
   return p;
 }
 

@@ -28,6 +28,22 @@ CaNodeOptions load_ca_options(const config::Config& root)
   c.map.grid_occupied_min = static_cast<int>(map.integer("grid_occupied_min", c.map.grid_occupied_min, 1, 100));
   c.map.static_after = map.number("static_after_s", c.map.static_after, 0.0, 30.0);
   c.map.occupancy_gap = map.number("occupancy_gap_s", c.map.occupancy_gap, 0.01, 5.0);
+  c.map.memory = map.number("memory_s", c.map.memory, 0.0, 120.0);
+  c.map.memory_cell = map.number("memory_cell_m", c.map.memory_cell, 0.01, 0.5);
+  c.map.clear_margin = map.number("clear_margin_m", c.map.clear_margin, 0.0, 1.0);
+  c.map.view_interval = map.number("view_interval_s", c.map.view_interval, 0.01, 10.0);
+
+  const auto ppl = root.section("people");
+  auto& po = c.map.people;
+  po.cluster_distance = ppl.number("cluster_distance_m", po.cluster_distance, 0.05, 2.0);
+  po.min_points = static_cast<int>(ppl.integer("min_points", po.min_points, 1, 100));
+  po.gate = ppl.number("gate_m", po.gate, 0.05, 5.0);
+  po.history = ppl.number("history_s", po.history, 0.1, 5.0);
+  po.lost_after = ppl.number("lost_after_s", po.lost_after, 0.05, 5.0);
+  po.min_speed = ppl.number("min_speed_mps", po.min_speed, 0.0, 5.0);
+  po.max_speed = ppl.number("max_speed_mps", po.max_speed, 0.1, 10.0);
+  po.horizon = ppl.number("horizon_s", po.horizon, 0.0, 10.0);
+  po.step = ppl.number("step_s", po.step, 0.05, 2.0);
 
   const auto pl = root.section("planner");
   c.planner.safety_margin = pl.number("safety_margin_m", c.planner.safety_margin, 0.0, 1.0);

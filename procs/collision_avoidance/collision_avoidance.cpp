@@ -312,8 +312,11 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time no
     blocked_since_set_ = true;
     blocked_since_ = now;
   }
-  // First behaviour: stop and wait a moment (a person crossing clears the way by itself).
-  if (time::to_seconds(now - blocked_since_) < options_.fallback_wait)
+  // First behaviour: stop and wait a moment (a person crossing clears the way by itself),
+  // but not where a person is about to walk: they would walk into the robot.
+  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
+  const bool in_the_way = map_.clearance_predicted(pose_.translation(), clearance) < clearance;
+  if (!in_the_way && time::to_seconds(now - blocked_since_) < options_.fallback_wait)
     return stop(now, Mode::kReactive, "reactive fallback: stopped, waiting for the way to clear");
   // Too close to something (a person who stepped up to the robot and now waits for it to
   // move, a box seen late): nothing that keeps the full clearance starts here. Back off:
@@ -328,13 +331,24 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time no
     if (b.norm() < 3.0) readings.push_back({std::atan2(b.y(), b.x()), b.norm()});
   }
   const ReactiveDecision dec = decide(readings, bearing, standing, options_.reactive);
-  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
   if (dec.action == ReactiveDecision::Action::kTurn) {
     Chain c({Segment::turn(pose_, dec.heading)});
     status_ = "reactive fallback: turning toward free space";
     const double t = trajectory::turn_duration(dec.heading, options_.omega_max, 1.0);
     if (active_ && !stopped_ && mode_ == Mode::kReactive && time::to_seconds(now - last_sent_) < t) return std::nullopt;
     return send_new(std::move(c), now, t, Mode::kReactive);
+  }
+  // Free space leads away from the target (back down the corridor the robot came along):
+  // driving there only loses ground. Face the target's side and plan again from there.
+  if (dec.action == ReactiveDecision::Action::kDrive &&
+      std::fabs(geometry::normalize_angle(dec.heading - bearing)) > M_PI_2) {
+    if (!standing) return stop(now, Mode::kReactive, "reactive fallback: free space leads away, stopping");
+    const double turn = std::clamp(bearing, -options_.reactive.max_turn, options_.reactive.max_turn);
+    const double t = trajectory::turn_duration(turn, options_.omega_max, 1.0);
+    if (active_ && !stopped_ && mode_ == Mode::kReactive && time::to_seconds(now - last_sent_) < t) return std::nullopt;
+    status_ = "reactive fallback: turning toward the target";
+    blocked_since_ = now;
+    return send_new(Chain({Segment::turn(pose_, turn)}), now, t, Mode::kReactive);
   }
   if (dec.action == ReactiveDecision::Action::kDrive) {
     const double L = options_.reactive.step_length;
@@ -347,7 +361,6 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time no
       return send_new(std::move(c), now, L / std::max(0.05, dec.speed), Mode::kReactive);
     }
   }
-  (void)clearance;
   blocked_since_ = now;  // nothing to do but stand: wait again before the next try
   return stop(now, Mode::kReactive, "reactive fallback: stopped, obstacle ahead");
 }

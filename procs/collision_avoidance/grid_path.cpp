@@ -60,7 +60,11 @@ std::optional<std::vector<Eigen::Vector2d>> grid_path(const LocalMap& map, const
   // every field of view (behind the robot) nothing is known, and "unknown = free" there would
   // send the robot around the building: not passable, except right around the robot.
   cv::Mat seen(h, w, CV_8UC1, cv::Scalar(0)), cone(h, w, CV_8UC1, cv::Scalar(0));
-  for (const auto& sc : map.scans()) {
+  std::vector<const ScanPoints*> views;
+  for (const auto& sc : map.views()) views.push_back(&sc);
+  for (const auto& sc : map.scans()) views.push_back(&sc);
+  for (const ScanPoints* view : views) {
+    const ScanPoints& sc = *view;
     if (sc.outline.empty()) continue;
     auto px = [&](const Eigen::Vector2d& base) {
       const Eigen::Vector2d p = sc.odom_from_base * base;

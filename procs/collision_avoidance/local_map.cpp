@@ -16,8 +16,69 @@ void LocalMap::add_scan(ScanPoints scan)
     if (h.last == time::Time{} || time::to_seconds(scan.stamp - h.last) > options_.occupancy_gap) h.first = scan.stamp;
     h.last = scan.stamp;
   }
+  std::vector<Eigen::Vector2d> young;
+  for (const auto& b : scan.points) {
+    if (b.squaredNorm() > options_.max_range * options_.max_range) continue;
+    const Eigen::Vector2d p = scan.odom_from_base * b;
+    const CellHits& h = hits_[cell_key(p)];
+    if (time::to_seconds(h.last - h.first) < options_.static_after) young.push_back(p);
+  }
+  tracker_.update(scan.stamp, young);
+  if (options_.memory > 0.0) {
+    forget_seen_through(scan);
+    remember(scan);
+  }
   scans_.push_back(std::move(scan));
   while (static_cast<int>(scans_.size()) > options_.max_scans) scans_.pop_front();
+}
+
+void LocalMap::remember(const ScanPoints& scan)
+{
+  for (const auto& b : scan.points) {
+    if (b.squaredNorm() > options_.max_range * options_.max_range) continue;
+    const Eigen::Vector2d p = scan.odom_from_base * b;
+    // Only what stood still (static cells): a person walking leaves no trail of obstacles
+    // behind in places no beam looks at again.
+    auto h = hits_.find(cell_key(p));
+    if (h == hits_.end() || time::to_seconds(h->second.last - h->second.first) < options_.static_after) continue;
+    remembered_[memory_key(p)] = {p, scan.stamp};
+  }
+  if (scan.outline.empty()) return;
+  if (views_.empty() || time::to_seconds(scan.stamp - views_.back().stamp) >= options_.view_interval) {
+    ScanPoints view;
+    view.stamp = scan.stamp;
+    view.odom_from_base = scan.odom_from_base;
+    view.laser_origin = scan.laser_origin;
+    view.outline = scan.outline;
+    views_.push_back(std::move(view));
+  }
+}
+
+void LocalMap::forget_seen_through(const ScanPoints& scan)
+{
+  if (scan.outline.size() < 2 || remembered_.empty()) return;
+  // The scan as (bearing, free range) around the laser, in bearing order.
+  std::vector<std::pair<double, double>> beams;
+  beams.reserve(scan.outline.size());
+  for (const auto& e : scan.outline) {
+    const Eigen::Vector2d d = e - scan.laser_origin;
+    beams.emplace_back(std::atan2(d.y(), d.x()), d.norm());
+  }
+  std::sort(beams.begin(), beams.end());
+  const Pose2 base_from_odom = scan.odom_from_base.inverse();
+  for (auto it = remembered_.begin(); it != remembered_.end();) {
+    const Eigen::Vector2d q = base_from_odom * it->second.point - scan.laser_origin;
+    const double bearing = std::atan2(q.y(), q.x());
+    auto hi = std::lower_bound(beams.begin(), beams.end(), std::make_pair(bearing, -1.0));
+    bool seen_through = false;
+    if (hi != beams.begin() && hi != beams.end()) {
+      // Both beams around the point reach past it: the space there is free now. (One beam
+      // only would clear the corners of a box a neighbouring beam grazes.)
+      const double reach = std::min(hi->second, std::prev(hi)->second);
+      seen_through = reach > q.norm() + options_.clear_margin;
+    }
+    it = seen_through ? remembered_.erase(it) : std::next(it);
+  }
 }
 
 void LocalMap::set_grid_points(time::Time stamp, std::vector<Eigen::Vector2d> odom_points)
@@ -30,6 +91,7 @@ void LocalMap::rebuild(time::Time now)
 {
   while (!scans_.empty() && time::to_seconds(now - scans_.front().stamp) > options_.max_age) scans_.pop_front();
   if (!grid_points_.empty() && time::to_seconds(now - grid_stamp_) > options_.max_age) grid_points_.clear();
+  while (!views_.empty() && time::to_seconds(now - views_.front().stamp) > options_.memory) views_.pop_front();
   points_.clear();
   for (const auto& s : scans_)
     for (const auto& p : s.points)
@@ -48,6 +110,25 @@ void LocalMap::rebuild(time::Time now)
     if (it == hits_.end() || time::to_seconds(it->second.last - it->second.first) < options_.static_after)
       moving_.push_back(p);
   }
+  // Remembered points from before the kept scans (the kept ones are in already); static:
+  // what stays out of view stays where it was as far as the robot can tell.
+  if (!scans_.empty()) {
+    const time::Time oldest = scans_.front().stamp;
+    const Eigen::Vector2d here = scans_.back().odom_from_base.translation();
+    for (auto it = remembered_.begin(); it != remembered_.end();) {
+      const Remembered& r = it->second;
+      if (time::to_seconds(now - r.stamp) > options_.memory ||
+          (r.point - here).squaredNorm() > options_.max_range * options_.max_range) {
+        it = remembered_.erase(it);
+        continue;
+      }
+      if (r.stamp < oldest) points_.push_back(r.point);
+      ++it;
+    }
+  }
+  predicted_ = tracker_.predicted(now);
+  points_.insert(points_.end(), predicted_.begin(), predicted_.end());
+  moving_.insert(moving_.end(), predicted_.begin(), predicted_.end());
   points_.insert(points_.end(), grid_points_.begin(), grid_points_.end());
   index_.clear();
   for (size_t i = 0; i < points_.size(); ++i) {
@@ -120,6 +201,20 @@ double LocalMap::clearance(const Eigen::Vector2d& p, double radius) const
 }  // namespace rgnav::collision_avoidance
 
 namespace rgnav::collision_avoidance {
+
+double LocalMap::clearance_predicted(const Eigen::Vector2d& p, double radius) const
+{
+  double best2 = radius * radius;
+  bool found = false;
+  for (const auto& q : predicted_) {
+    const double d2 = (q - p).squaredNorm();
+    if (d2 <= best2) {
+      best2 = d2;
+      found = true;
+    }
+  }
+  return found ? std::sqrt(best2) : std::numeric_limits<double>::infinity();
+}
 
 double LocalMap::clearance_moving(const Eigen::Vector2d& p, double radius) const
 {

@@ -36,10 +36,32 @@ int asc(const ObservationSequence& s, double min_distance)
   return soc(avg);
 }
 
-Eigen::VectorXd feature_vector(const Observation& o)
+int feature_dimension(HmmFeatures f) { return f == HmmFeatures::kWeights ? kNumCrossingClasses : 11; }
+
+const char* hmm_features_name(HmmFeatures f) { return f == HmmFeatures::kWeights ? "weights" : "measures"; }
+
+std::optional<HmmFeatures> hmm_features_from_name(const std::string& name)
 {
-  Eigen::VectorXd v(kNumCrossingClasses);
-  for (int c = 0; c < kNumCrossingClasses; ++c) v[c] = o.weights[c];
+  if (name == "weights") return HmmFeatures::kWeights;
+  if (name == "measures") return HmmFeatures::kMeasures;
+  return std::nullopt;
+}
+
+Eigen::VectorXd feature_vector(const Observation& o, HmmFeatures f)
+{
+  Eigen::VectorXd v(feature_dimension(f));
+  if (f == HmmFeatures::kWeights) {
+    for (int c = 0; c < kNumCrossingClasses; ++c) v[c] = o.weights[c];
+    return v;
+  }
+  const auto& m = o.measures;
+  for (int s = 0; s < 3; ++s) {
+    v[3 * s] = m.on_line[static_cast<size_t>(s)];
+    v[3 * s + 1] = m.over_line[static_cast<size_t>(s)];
+    v[3 * s + 2] = m.occluded[static_cast<size_t>(s)];
+  }
+  v[9] = m.w_d;
+  v[10] = m.w_r;
   return v;
 }
 
@@ -51,7 +73,7 @@ bool HmmClassifier::empty() const
 ClassLogLikelihoods HmmClassifier::log_likelihoods(const ObservationSequence& s) const
 {
   Sequence seq;
-  for (const auto& o : s) seq.push_back(feature_vector(o));
+  for (const auto& o : s) seq.push_back(feature_vector(o, features_));
   ClassLogLikelihoods ll;
   for (int c = 0; c < kNumSequenceClasses; ++c)
     ll[c] = models_[c] ? models_[c]->log_likelihood(seq) : -std::numeric_limits<double>::infinity();

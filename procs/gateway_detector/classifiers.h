@@ -7,6 +7,7 @@
 
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "gateway_detector/hmm.h"
@@ -17,6 +18,7 @@ namespace rgnav::gateway_detector {
 struct Observation
 {
   ObservationVector weights{};
+  Measures measures;      // what the weights were made of
   double distance = 0.0;  // [m] robot to crossing point
 };
 using ObservationSequence = std::vector<Observation>;
@@ -30,13 +32,25 @@ int asc(const ObservationSequence& s, double min_distance = 0.5);
 using ClassLogLikelihoods = std::array<double, kNumSequenceClasses>;
 using ClassProbabilities = std::array<double, kNumSequenceClasses>;
 
-Eigen::VectorXd feature_vector(const Observation& o);
+// What the HMMs observe. kWeights: the dissertation's observation vector W(GW, VLM). Every
+// weight is the same general term plus, per sector, either its On Line or its Over Line FSM,
+// so the eight weights span only a 4-dimensional affine subspace: they keep on - over per
+// sector but lose whether a sector is a wall (on high), an opening (over high) or hidden by
+// clutter (both low). kMeasures: the measures themselves, per sector On Line, Over Line and
+// the occluded fraction, then W_d and W_r (11 numbers).
+enum class HmmFeatures { kWeights, kMeasures };
+int feature_dimension(HmmFeatures f);
+const char* hmm_features_name(HmmFeatures f);
+std::optional<HmmFeatures> hmm_features_from_name(const std::string& name);
+Eigen::VectorXd feature_vector(const Observation& o, HmmFeatures f = HmmFeatures::kWeights);
 
 // One HMM per sequence class; a class without a model never wins.
 class HmmClassifier
 {
  public:
   HmmClassifier() = default;
+  explicit HmmClassifier(HmmFeatures features) : features_(features) {}
+  HmmFeatures features() const { return features_; }
   std::array<std::optional<Hmm>, kNumSequenceClasses>& models() { return models_; }
   const std::array<std::optional<Hmm>, kNumSequenceClasses>& models() const { return models_; }
   bool empty() const;
@@ -44,6 +58,7 @@ class HmmClassifier
   int classify(const ObservationSequence& s) const;
 
  private:
+  HmmFeatures features_ = HmmFeatures::kWeights;
   std::array<std::optional<Hmm>, kNumSequenceClasses> models_;
 };
 

@@ -36,7 +36,8 @@ std::vector<std::pair<Vlm, Observation>> GatewayDetector::observe_crossings(cons
   std::vector<std::pair<Vlm, Observation>> out;
   for (const Vlm& v : group_vlms(f, options_.vlm)) {
     Observation o;
-    o.weights = class_weights(measure(scan, v, options_.measures), options_.measures);
+    o.measures = measure(scan, v, options_.measures);
+    o.weights = class_weights(o.measures, options_.measures);
     o.distance = v.crossing_point().norm();
     out.push_back({v, o});
   }

@@ -22,11 +22,8 @@ int main(int argc, char** argv)
     HmmClassifier classifier;
     if (!classifier_cfg.models_path.empty() && std::filesystem::exists(classifier_cfg.models_path)) {
       auto models = load_gateway_models(classifier_cfg.models_path);
-      if (std::fabs(models.f_vlm - options.measures.f_vlm) > 1e-9 || std::fabs(models.f_gw - options.measures.f_gw) > 1e-9)
-        cfg.section("crossings").fail("f_vlm", "differs from the weights the models in " + classifier_cfg.models_path + " were trained with");
-      if (std::fabs(models.hallway_width - options.measures.hallway_width) > 1e-6)
-        cfg.section("crossings").fail("hallway_width_m", "differs from the " + std::to_string(models.hallway_width) +
-                                                             " m the models in " + classifier_cfg.models_path + " were trained for");
+      if (const auto bad = models_mismatch(models, options.measures))
+        cfg.section("crossings").fail(bad->key, bad->reason + " (" + classifier_cfg.models_path + ")");
       classifier = std::move(models.classifier);
       spdlog::info("gateway HMMs from {} ({})", classifier_cfg.models_path, models.description);
     } else if (classifier_cfg.require_models) {

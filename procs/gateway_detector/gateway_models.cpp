@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -38,7 +39,15 @@ GatewayModels load_gateway_models(const std::string& path)
   m.hallway_width = cfg.required_number("hallway_width_m", 0.5, 10.0);
   m.f_vlm = cfg.required_number("f_vlm", 0.0, 100.0);
   m.f_gw = cfg.required_number("f_gw", 0.0, 100.0);
-  const auto dim = static_cast<Eigen::Index>(cfg.integer("dimension", kNumCrossingClasses, kNumCrossingClasses, kNumCrossingClasses));
+  m.exclude_occluded = cfg.boolean("exclude_occluded", false);
+  // Files from before the setback was recorded were trained with 0.25 m.
+  m.over_line_setback = cfg.number("over_line_setback_m", 0.25, 0.0, 5.0);
+  const std::string features_name = cfg.string("features", hmm_features_name(HmmFeatures::kWeights));
+  const auto features = hmm_features_from_name(features_name);
+  if (!features) cfg.fail("features", "must be weights or measures");
+  m.classifier = HmmClassifier(*features);
+  const int fdim = feature_dimension(*features);
+  const auto dim = static_cast<Eigen::Index>(cfg.integer("dimension", fdim, fdim, fdim));
   const auto models = cfg.section("models");
   for (const auto& name : models.keys()) {
     const int cls = crossing_class_from_name(name);
@@ -79,6 +88,21 @@ GatewayModels load_gateway_models(const std::string& path)
   return m;
 }
 
+std::optional<ModelsMismatch> models_mismatch(const GatewayModels& m, const MeasureOptions& o)
+{
+  if (std::fabs(m.f_vlm - o.f_vlm) > 1e-9 || std::fabs(m.f_gw - o.f_gw) > 1e-9)
+    return ModelsMismatch{"f_vlm", "differs from the weights the models were trained with"};
+  if (std::fabs(m.hallway_width - o.hallway_width) > 1e-6)
+    return ModelsMismatch{"hallway_width_m", "differs from the " + std::to_string(m.hallway_width) + " m the models were trained for"};
+  if (std::fabs(m.over_line_setback - o.over_line_setback) > 1e-9)
+    return ModelsMismatch{"over_line_setback_m", "differs from the " + std::to_string(m.over_line_setback) +
+                                                     " m the models were trained with"};
+  if (m.exclude_occluded != o.exclude_occluded)
+    return ModelsMismatch{"exclude_occluded", std::string("the models were trained with exclude_occluded: ") +
+                                                  (m.exclude_occluded ? "true" : "false")};
+  return std::nullopt;
+}
+
 void save_gateway_models(const GatewayModels& m, const std::string& path)
 {
   YAML::Emitter e;
@@ -89,7 +113,10 @@ void save_gateway_models(const GatewayModels& m, const std::string& path)
   e << YAML::Key << "hallway_width_m" << YAML::Value << m.hallway_width;
   e << YAML::Key << "f_vlm" << YAML::Value << m.f_vlm;
   e << YAML::Key << "f_gw" << YAML::Value << m.f_gw;
-  e << YAML::Key << "dimension" << YAML::Value << kNumCrossingClasses;
+  e << YAML::Key << "exclude_occluded" << YAML::Value << m.exclude_occluded;
+  e << YAML::Key << "over_line_setback_m" << YAML::Value << m.over_line_setback;
+  e << YAML::Key << "features" << YAML::Value << hmm_features_name(m.classifier.features());
+  e << YAML::Key << "dimension" << YAML::Value << feature_dimension(m.classifier.features());
   e << YAML::Key << "models" << YAML::Value << YAML::BeginMap;
   for (int c = 0; c < kNumSequenceClasses; ++c) {
     const auto& h = m.classifier.models()[static_cast<size_t>(c)];

@@ -71,39 +71,47 @@ double rectangularity_measure(const Vlm& v)
   return std::max(0.0, 1.0 - dev / (2.0 * M_PI));
 }
 
-double on_line_fsm(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o, int* beams)
+SectorMeasures sector_measures(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o)
 {
+  SectorMeasures r;
   size_t first, last;
-  if (beams) *beams = 0;
-  if (!sector_beams(scan, a, b, &first, &last)) return 0.0;
-  int n = 0, count = 0;
+  if (!sector_beams(scan, a, b, &first, &last)) return r;
+  const Line par = shifted_away(line, o.over_line_setback);
+  int n = 0, on = 0, over = 0, occluded = 0;
   for (size_t i = first; i <= last; ++i) {
     if (scan.invalid(i)) continue;
     ++n;
-    if (scan.no_return(i)) continue;
-    const double dvl = ray_range(line, scan.bearing(i));
-    if (!(dvl > 0) || !std::isfinite(dvl)) continue;
-    const double diff = scan.ranges[i] - dvl;
-    if (diff >= o.on_line_low && diff <= o.on_line_high) ++count;
+    const double bearing = scan.bearing(i);
+    const double dvl = ray_range(line, bearing);
+    const double dpar = ray_range(par, bearing);
+    const bool far = scan.no_return(i);
+    if (!far && dvl > 0 && std::isfinite(dvl)) {
+      const double diff = scan.ranges[i] - dvl;
+      if (diff >= o.on_line_low && diff <= o.on_line_high) ++on;
+      if (diff < o.on_line_low) ++occluded;
+    }
+    if (dpar > 0 && std::isfinite(dpar) && (far || scan.ranges[i] > dpar)) ++over;
   }
-  if (beams) *beams = n;
-  return n > 0 ? static_cast<double>(count) / n : 0.0;
+  r.beams = n;
+  if (n == 0) return r;
+  r.occluded = static_cast<double>(occluded) / n;
+  const int visible = o.exclude_occluded ? n - occluded : n;
+  if (visible < std::max(1, o.exclude_occluded ? o.min_visible_beams : 1)) return r;
+  r.on_line = static_cast<double>(on) / visible;
+  r.over_line = static_cast<double>(over) / visible;
+  return r;
+}
+
+double on_line_fsm(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o, int* beams)
+{
+  const SectorMeasures m = sector_measures(scan, line, a, b, o);
+  if (beams) *beams = m.beams;
+  return m.on_line;
 }
 
 double over_line_fsm(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o)
 {
-  size_t first, last;
-  if (!sector_beams(scan, a, b, &first, &last)) return 0.0;
-  const Line par = shifted_away(line, o.over_line_setback);
-  int n = 0, count = 0;
-  for (size_t i = first; i <= last; ++i) {
-    if (scan.invalid(i)) continue;
-    ++n;
-    const double dpar = ray_range(par, scan.bearing(i));
-    if (!(dpar > 0) || !std::isfinite(dpar)) continue;
-    if (scan.no_return(i) || scan.ranges[i] > dpar) ++count;
-  }
-  return n > 0 ? static_cast<double>(count) / n : 0.0;
+  return sector_measures(scan, line, a, b, o).over_line;
 }
 
 Measures measure(const Scan& scan, const Vlm& v, const MeasureOptions& o)
@@ -116,8 +124,11 @@ Measures measure(const Scan& scan, const Vlm& v, const MeasureOptions& o)
   for (int s = 0; s < 3; ++s) {
     const Vec2& a = v.points[ends[s][0]];
     const Vec2& b = v.points[ends[s][1]];
-    m.on_line[s] = on_line_fsm(scan, *lines[s], a, b, o, &m.beams[s]);
-    m.over_line[s] = over_line_fsm(scan, *lines[s], a, b, o);
+    const SectorMeasures sm = sector_measures(scan, *lines[s], a, b, o);
+    m.on_line[s] = sm.on_line;
+    m.over_line[s] = sm.over_line;
+    m.occluded[s] = sm.occluded;
+    m.beams[s] = sm.beams;
   }
   return m;
 }

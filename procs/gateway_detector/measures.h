@@ -33,6 +33,12 @@ struct MeasureOptions
   double over_line_setback = 0.25; // [m] l_par lies this far behind the sector's line
   double f_vlm = 0.5;           // weight of the general model measures
   double f_gw = 1.0;            // weight of the class-specific free-space measures
+  // Clutter in front of a sector's line (a box before a wall, a person in an opening) hides
+  // what the sector is: its beams end more than -on_line_low before the line. The dissertation
+  // counts them against both FSMs (so clutter looks like neither wall nor opening); with this
+  // set they are left out of N_Si, and both FSMs speak only for the beams that reach the line.
+  bool exclude_occluded = false;
+  int min_visible_beams = 3;    // fewer visible beams: both FSMs of the sector are 0
 };
 
 struct Measures
@@ -41,8 +47,19 @@ struct Measures
   double w_r = 0.0;
   std::array<double, 3> on_line{};    // per sector
   std::array<double, 3> over_line{};
+  std::array<double, 3> occluded{};   // fraction of the sector's beams ending before its line
   std::array<int, 3> beams{};         // N_Si
 };
+
+// Both free-space measures of one sector in one pass over its beams.
+struct SectorMeasures
+{
+  double on_line = 0.0;
+  double over_line = 0.0;
+  double occluded = 0.0;
+  int beams = 0;  // valid beams between the gateway points
+};
+SectorMeasures sector_measures(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o);
 
 double distance_measure(const Vlm& vlm, double hallway_width);  // W_d
 double rectangularity_measure(const Vlm& vlm);                  // W_r

@@ -64,6 +64,22 @@ std::optional<size_t> walk_to_gap(const Scan& scan, size_t from, size_t to, cons
   return std::nullopt;
 }
 
+double surface_extent(const Scan& scan, size_t i, double link)
+{
+  if (i >= scan.size() || !scan.hit(i)) return 0.0;
+  auto walk = [&](int step) {
+    size_t cur = i;
+    for (;;) {
+      const long next = static_cast<long>(cur) + step;
+      if (next < 0 || next >= static_cast<long>(scan.size())) return cur;
+      const auto n = static_cast<size_t>(next);
+      if (!scan.hit(n) || (scan.point(n) - scan.point(cur)).norm() > link) return cur;
+      cur = n;
+    }
+  };
+  return (scan.point(walk(+1)) - scan.point(walk(-1))).norm();
+}
+
 std::vector<NarrowPassage> detect_narrow_passages(const Scan& scan, const NarrowPassageOptions& o)
 {
   std::vector<NarrowPassage> out;
@@ -100,6 +116,9 @@ std::vector<NarrowPassage> detect_narrow_passages(const Scan& scan, const Narrow
         if (np.width < o.min_width || np.width > o.max_width) continue;        // door width
         if (np.aperture < o.min_aperture || np.aperture > o.max_aperture) continue;
         if (np.distance >= o.max_distance) continue;
+        if (o.min_jamb_extent > 0 && (surface_extent(scan, l, o.jamb_link_distance) < o.min_jamb_extent ||
+                                      surface_extent(scan, r, o.jamb_link_distance) < o.min_jamb_extent))
+          continue;
         if (!best || np.width < best->width) best = np;  // the pair of minimum distance
       }
     }

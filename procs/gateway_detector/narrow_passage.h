@@ -27,6 +27,12 @@ struct NarrowPassageOptions
   double min_aperture = 0.25;      // [rad] alpha_NP range
   double max_aperture = 3.0;       // [rad]
   double min_depth_behind = 0.5;   // [m] a gap behind the passage must reach at least this far past it
+  // A gateway point of a door is the end of a wall, a jamb or a door leaf; the legs of tables
+  // and chairs (a few centimetres of surface with free space around) make passages a robot
+  // cannot take and no door. Each gateway point's surface (the run of hits through it, each
+  // within jamb_link_distance of the next) must extend at least this far; 0 disables the check.
+  double min_jamb_extent = 0.0;    // [m]
+  double jamb_link_distance = 0.15;  // [m]
   // Openings in a wall seen from the side (the robot drives along a wall and turns into a door
   // at the last moment, when its jambs are already out of a forward view): a gap of door width
   // between two segments of one virtual line, with the beams through it passing the line.
@@ -63,6 +69,9 @@ std::optional<ClosestPair> closest_pair(const Scan& scan, double viewing_directi
 std::optional<size_t> walk_to_gap(const Scan& scan, size_t from, size_t to, const NarrowPassageOptions& o);
 
 std::vector<NarrowPassage> detect_narrow_passages(const Scan& scan, const NarrowPassageOptions& options);
+// Extent [m] of the surface through beam i: the distance between the ends of the run of hits
+// around it in which each hit lies within link_distance of the next.
+double surface_extent(const Scan& scan, size_t i, double link_distance);
 // Door-width gaps in the virtual lines of the scan (see wall_gaps above).
 std::vector<NarrowPassage> detect_wall_gaps(const Scan& scan, const ScanFeatures& features, const NarrowPassageOptions& options);
 

@@ -43,6 +43,8 @@ DetectorOptions load_detector_options(const config::Config& cfg)
     m.over_line_setback = s.number("over_line_setback_m", m.over_line_setback, 0.0, 5.0);
     m.f_vlm = s.number("f_vlm", m.f_vlm, 0.0, 100.0);
     m.f_gw = s.number("f_gw", m.f_gw, 0.0, 100.0);
+    m.exclude_occluded = s.boolean("exclude_occluded", m.exclude_occluded);
+    m.min_visible_beams = static_cast<int>(s.integer("min_visible_beams", m.min_visible_beams, 1, 1000));
   }
   {
     const auto s = cfg.section("narrow_passages");
@@ -58,6 +60,8 @@ DetectorOptions load_detector_options(const config::Config& cfg)
     n.min_aperture = s.number("min_aperture_rad", n.min_aperture, 0.0, M_PI);
     n.max_aperture = s.number("max_aperture_rad", n.max_aperture, 0.0, 2 * M_PI);
     n.min_depth_behind = s.number("min_depth_behind_m", n.min_depth_behind, 0.0, 10.0);
+    n.min_jamb_extent = s.number("min_jamb_extent_m", n.min_jamb_extent, 0.0, 5.0);
+    n.jamb_link_distance = s.number("jamb_link_distance_m", n.jamb_link_distance, 0.01, 1.0);
     n.wall_gaps = s.boolean("wall_gaps", n.wall_gaps);
     n.wall_gap_max_distance = s.number("wall_gap_max_distance_m", n.wall_gap_max_distance, 0.2, 20.0);
     n.wall_gap_min_through = s.number("wall_gap_min_through", n.wall_gap_min_through, 0.0, 1.0);
@@ -88,6 +92,8 @@ DetectorOptions load_detector_options(const config::Config& cfg)
     t.observation_spacing = s.number("observation_spacing_m", t.observation_spacing, 0.0, 5.0);
     t.max_missed = static_cast<int>(s.integer("max_missed_scans", t.max_missed, 0, 1000));
     t.hold_distance = s.number("hold_distance_m", t.hold_distance, 0.0, 10.0);
+    t.lost_travel = s.number("lost_travel_m", t.lost_travel, 0.0, 10.0);
+    t.max_missed_stationary = static_cast<int>(s.integer("max_missed_scans_stationary", t.max_missed_stationary, 0, 100000));
     t.min_observations = static_cast<int>(s.integer("min_observations", t.min_observations, 1, 1000));
     t.enter_distance = s.number("enter_distance_m", t.enter_distance, 0.01, 5.0);
     t.exit_margin = s.number("exit_margin_m", t.exit_margin, 0.0, 5.0);

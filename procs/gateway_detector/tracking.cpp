@@ -135,6 +135,7 @@ std::vector<TrackEvent> GatewayTracker::update(int64_t scan_id, const geometry::
     ++t.seen;
     t.missed = 0;
     t.last_scan = scan_id;
+    t.seen_robot = rp;
     if (!t.sequence_closed && t.distance <= options_.sequence_start_distance &&
         (t.sequence.empty() || (rp - t.last_robot).norm() >= options_.observation_spacing)) {
       t.sequence.push_back(d.observation);
@@ -150,6 +151,7 @@ std::vector<TrackEvent> GatewayTracker::update(int64_t scan_id, const geometry::
     ++t.seen;
     t.missed = 0;
     t.last_scan = scan_id;
+    t.seen_robot = rp;
   };
 
   const size_t old_count = tracks_.size();
@@ -160,7 +162,8 @@ std::vector<TrackEvent> GatewayTracker::update(int64_t scan_id, const geometry::
       const double gap = t.kind == GatewayKind::kNarrowPassage
                              ? distance_to_segment(rp, t.points[0], t.points[1])
                              : std::max(0.0, side_distance(t.points, static_cast<size_t>(std::max(0, outside_side(t.points, rp, 0.0))), rp));
-      if (++t.missed > options_.max_missed && gap > options_.hold_distance) {
+      const bool moved_on = (rp - t.seen_robot).norm() >= options_.lost_travel || t.missed >= options_.max_missed_stationary;
+      if (++t.missed > options_.max_missed && gap > options_.hold_distance && moved_on) {
         close_sequence(t);
         if (t.approached && t.group == t.id)
           events.push_back({EventKind::kLost, t.id, t.kind, t.points, heading(t.axis)});

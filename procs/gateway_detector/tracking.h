@@ -32,6 +32,12 @@ struct TrackingOptions
   int max_missed = 8;                     // scans without a match before a track is lost ...
   double hold_distance = 1.0;             // [m] ... unless the robot is this close to it (near a
                                           // gateway the scanner no longer sees all of it)
+  // ... and unless the robot has moved less than this since the track was last seen: a person
+  // walking through the view or clutter passing the beams hides a gateway for a few scans, and
+  // what matters is how much of the approach went unobserved, not how many scans (25 or 75 a
+  // second). A robot standing still keeps its tracks up to max_missed_stationary scans.
+  double lost_travel = 0.0;               // [m]
+  int max_missed_stationary = 250;
   int min_observations = 3;               // before a track is reported (approached)
   double enter_distance = 0.3;            // [m] robot centre this close to a passage line: entered
   double exit_margin = 0.1;               // [m] outside a crossing by this much: left it
@@ -56,6 +62,7 @@ struct Track
   int approach_side = 0;             // narrow passage: side of the line the robot came from
   int entry_side = -1;               // crossing: side index the robot entered through
   Vec2 last_robot{0, 0};             // where the last observation was added
+  Vec2 seen_robot{0, 0};             // where the robot was when the track was last matched
   int64_t last_scan = 0;
 };
 

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "msg/conversions.h"
+#include "runtime/realtime.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "trajectory/trajectory_conversions.h"
 
@@ -101,7 +102,7 @@ void LldNode::control_thread()
 {
   bool granted = false;
   if (options_.loop.realtime_priority > 0 || options_.loop.lock_memory) {
-    const std::string what = request_realtime(options_.loop.realtime_priority, options_.loop.lock_memory, &granted);
+    const std::string what = runtime::request_realtime(options_.loop.realtime_priority, options_.loop.lock_memory, &granted);
     if (granted)
       spdlog::info("control loop at {:.0f} Hz: {}", options_.loop.rate_hz, what);
     else

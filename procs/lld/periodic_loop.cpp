@@ -1,13 +1,8 @@
 #include "lld/periodic_loop.h"
 
-#include <pthread.h>
-#include <sched.h>
-#include <sys/mman.h>
 #include <time.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 
 namespace rgnav::lld {
 
@@ -94,30 +89,6 @@ LoopStats PeriodicLoop::stats() const
   s.jitter_p99_ms = std::min(quantile(0.99), s.jitter_max_ms);
   s.jitter_p50_ms = std::min(s.jitter_p50_ms, s.jitter_max_ms);
   return s;
-}
-
-std::string request_realtime(int priority, bool lock_memory, bool* granted)
-{
-  std::string what;
-  bool ok = true;
-  if (lock_memory && mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
-    ok = false;
-    what += std::string("mlockall refused (") + std::strerror(errno) + ")";
-  } else if (lock_memory) {
-    what += "memory locked";
-  }
-  sched_param sp{};
-  sp.sched_priority = priority;
-  const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
-  if (rc != 0) {
-    ok = false;
-    what += std::string(what.empty() ? "" : ", ") + "SCHED_FIFO " + std::to_string(priority) + " refused (" +
-            std::strerror(rc) + "): running with normal scheduling";
-  } else {
-    what += std::string(what.empty() ? "" : ", ") + "SCHED_FIFO priority " + std::to_string(priority);
-  }
-  if (granted) *granted = ok;
-  return what;
 }
 
 }  // namespace rgnav::lld

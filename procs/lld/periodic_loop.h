@@ -63,8 +63,4 @@ class PeriodicLoop
   std::array<std::atomic<uint32_t>, kBins> histogram_{};
 };
 
-// Asks for SCHED_FIFO at `priority` for the calling thread and locks memory (mlockall).
-// Returns a one-line description of what was granted / refused (the caller logs it once).
-std::string request_realtime(int priority, bool lock_memory, bool* granted);
-
 }  // namespace rgnav::lld

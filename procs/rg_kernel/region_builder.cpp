@@ -113,7 +113,11 @@ void RegionBuilder::add_incrementally(const StoredScan& scan) const
   std::vector<Vector2d> pts;
   pts.reserve(scan.laser_points.size());
   for (const auto& lp : scan.laser_points) pts.push_back(scan.region_from_laser * lp);
-  segments_ = merge_into(std::move(segments_), extract_segments(pts, options_.extract), options_.merge);
+  // Tolerances follow the scan's own range noise (line_map.h): coarse logs keep walls whole.
+  const double noise = estimate_range_noise(pts, options_.extract.max_point_gap);
+  const auto correction = align_to_line_map(pts, segments_, options_.align);
+  segments_ = merge_into(std::move(segments_), extract_segments(pts, options_.extract, noise), options_.merge, noise,
+                         correction ? &*correction : nullptr);
   auto circles = circles_in_scan({o, pts}, options_.objects);
   if (circles.empty()) circle_observations_.erase(scan.scan_id);
   else circle_observations_[scan.scan_id] = std::move(circles);
@@ -154,6 +158,16 @@ int64_t RegionBuilder::raw_points() const
   int64_t n = 0;
   for (const auto& kv : scans_) n += static_cast<int64_t>(kv.second.laser_points.size());
   return n;
+}
+
+LineMapFidelity RegionBuilder::fidelity(double tolerance, double cap) const
+{
+  refresh();
+  std::vector<Vector2d> pts;
+  pts.reserve(static_cast<size_t>(raw_points()));
+  for (const auto& [id, s] : scans_)
+    for (const auto& lp : s.laser_points) pts.push_back(s.region_from_laser * lp);
+  return measure_fidelity(pts, segments_, tolerance, cap);
 }
 
 std::vector<Vector2d> RegionBuilder::laser_origins() const

@@ -15,7 +15,9 @@
 #include <vector>
 
 #include "geometry/pose2.h"
+#include "procs/rg_kernel/line_alignment.h"
 #include "procs/rg_kernel/line_map.h"
+#include "procs/rg_kernel/line_map_fidelity.h"
 #include "procs/rg_kernel/object_grouping.h"
 #include "procs/rg_kernel/state_codec.h"
 #include "rgmap/rg_map.h"
@@ -35,6 +37,7 @@ struct RegionBuildOptions
 {
   ExtractOptions extract;
   MergeOptions merge;
+  LineAlignOptions align;              // scans aligned to the line map before merging (line map only)
   double freespace_resolution = 0.15;  // [m] (diss.: 15 cm)
   double freespace_max_range = 8.0;    // [m] beams are carved up to this length
   ObjectOptions objects;               // 2D objects (rectangles, circles), diss. 3.1-3.2
@@ -56,6 +59,8 @@ class RegionBuilder
   const std::vector<rgmap::LineSegment>& segments() const;
   const std::map<int64_t, StoredScan>& scans() const { return scans_; }
   int64_t raw_points() const;
+  // Every raw end point of the region's scans against its line map (line_map_fidelity.h).
+  LineMapFidelity fidelity(double tolerance, double cap) const;
 
   using GatewayLines = std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>;
   // Fills bbox, freespace, accuracy/completeness, segments and 2D objects of `region`. Exact (at

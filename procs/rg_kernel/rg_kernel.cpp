@@ -310,4 +310,13 @@ KernelStats RgKernel::stats() const
   return s;
 }
 
+LineMapFidelity RgKernel::line_map_fidelity(double tolerance, double cap) const
+{
+  LineMapFidelity f;
+  f.tolerance = tolerance;
+  f.cap = cap;
+  for (const auto& [id, b] : builders_) f.add(b.fidelity(tolerance, cap));
+  return f;
+}
+
 }  // namespace rgnav::rg_kernel

@@ -77,6 +77,8 @@ class RgKernel
   rgmap::RgMap described_map() const;
   rgmap::Region describe_region(int64_t id) const;
   KernelStats stats() const;
+  // How well the regions' line maps describe their scans (all regions not merged away).
+  LineMapFidelity line_map_fidelity(double tolerance = 0.05, double cap = 0.5) const;
 
   // The kernel's complete state (map, every region's scans and derived caches, bookkeeping):
   // a kernel restored from it continues exactly as this one would, input for input. Not the

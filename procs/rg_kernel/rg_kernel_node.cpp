@@ -52,6 +52,15 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   c.kernel.build.merge.alpha_max = lines.number("merge_alpha_max_deg", 3.0, 0.1, 45.0) * M_PI / 180.0;
   c.kernel.build.merge.dl_max = lines.number("merge_dl_max_m", 0.020, 0.001, 1.0);
   c.kernel.build.merge.gap_max = lines.number("merge_gap_max_m", 0.150, 0.0, 5.0);
+  c.kernel.build.merge.noise_dl_factor = lines.number("merge_noise_dl_factor", c.kernel.build.merge.noise_dl_factor, 0.0, 20.0);
+  auto& al = c.kernel.build.align;
+  al.enabled = lines.boolean("align_scans", al.enabled);
+  al.max_distance = lines.number("align_max_distance_m", al.max_distance, 0.01, 1.0);
+  al.max_translation = lines.number("align_max_correction_m", al.max_translation, 0.0, 1.0);
+  al.max_rotation = lines.number("align_max_correction_deg", al.max_rotation * 180.0 / M_PI, 0.0, 10.0) * M_PI / 180.0;
+  al.min_matches = static_cast<int>(lines.integer("align_min_matches", al.min_matches, 3, 100000));
+  c.kernel.build.extract.noise_split_factor =
+      lines.number("split_noise_factor", c.kernel.build.extract.noise_split_factor, 0.0, 20.0);
   c.kernel.build.extract.split_distance = lines.number("split_distance_m", c.kernel.build.extract.split_distance, 0.001, 1.0);
   c.kernel.build.extract.max_point_gap = lines.number("max_point_gap_m", c.kernel.build.extract.max_point_gap, 0.01, 5.0);
   c.kernel.build.extract.min_points = static_cast<int>(lines.integer("min_points", c.kernel.build.extract.min_points, 2, 1000));

@@ -6,6 +6,7 @@
 #include "bus/socket_can.h"
 #include "bus/virtual_can.h"
 #include "canopen/protocol.h"
+#include "runtime/realtime.h"
 #include "time/message_time.h"
 
 namespace rgnav::can::base {
@@ -82,6 +83,14 @@ void BaseDriver::step(Clock::time_point now)
 
 void BaseDriver::run()
 {
+  if (options_.realtime_priority > 0 || options_.lock_memory) {
+    bool granted = false;
+    const std::string what = runtime::request_realtime(options_.realtime_priority, options_.lock_memory, &granted);
+    if (granted)
+      spdlog::info("base driver CAN thread: {}", what);
+    else
+      spdlog::warn("base driver CAN thread: {} (heartbeat supervision may trip under load)", what);
+  }
   std::optional<Clock::time_point> stop_deadline;
   for (;;) {
     // Wake on frames, and at least every 2 ms for SYNC, heartbeats and the deadman.

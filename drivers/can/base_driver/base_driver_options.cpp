@@ -65,6 +65,8 @@ BaseDriverOptions load_base_driver_options(const config::Config& root)
   o.virtual_bus_path = can.string("virtual_bus_path", o.virtual_bus_path);
   o.virtual_client_name = can.string("virtual_client_name", o.virtual_client_name);
   if (o.interface == "virtual" && o.virtual_bus_path.size() < 2) can.fail("virtual_bus_path", "must name a socket");
+  o.realtime_priority = static_cast<int>(can.integer("realtime_priority", o.realtime_priority, 0, 99));
+  o.lock_memory = can.boolean("lock_memory", o.lock_memory);
   o.master.node_id = static_cast<uint8_t>(can.integer("master_node_id", o.master.node_id, 1, 127));
   o.master.sync_period = ms(can, "sync_period_ms", o.master.sync_period, 1, 100);
   o.master.heartbeat_period = ms(can, "master_heartbeat_ms", o.master.heartbeat_period, 5, 1000);

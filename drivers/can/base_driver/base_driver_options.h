@@ -36,6 +36,9 @@ struct BaseDriverOptions
   std::string socketcan_device = "can0";
   std::string virtual_bus_path = "/tmp/rgnav-vcan-base.sock";
   std::string virtual_client_name = "base_driver";
+  // The CAN thread's scheduling: drive heartbeats are watched to 60 ms (see drives).
+  int realtime_priority = 45;  // SCHED_FIFO when permitted (0: normal scheduling)
+  bool lock_memory = true;     // mlockall when permitted
   // CANopen master and the drive supervision common to both drives (node id, ramps and
   // limits are per axis).
   master::CanopenMasterOptions master;

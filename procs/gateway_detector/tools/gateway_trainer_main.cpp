@@ -56,7 +56,9 @@ int main(int argc, char** argv)
       m.hallway_width = w;
       m.f_vlm = base.measures.f_vlm;
       m.f_gw = base.measures.f_gw;
-      m.classifier = tools::train_classifier(seqs, training.hmm);
+      m.exclude_occluded = base.measures.exclude_occluded;
+      m.over_line_setback = base.measures.over_line_setback;
+      m.classifier = tools::train_classifier(seqs, training.hmm, training.features);
       std::ostringstream name;
       name << "hallways_" << w << "m.yaml";
       save_gateway_models(m, models_dir + "/" + name.str());

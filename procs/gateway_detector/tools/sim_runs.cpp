@@ -171,6 +171,7 @@ std::vector<LabelledSequence> record_sequences(const sim::World& world, const De
       const auto dt = std::chrono::microseconds(static_cast<int64_t>(1e6 / ro.scan_hz));
       const double limit = length / ro.speed + 15.0;
       int64_t id = 0;
+      int kept = 0;
       while (!follower.done() && sim.time_s() < limit) {
         sim.step(dt);
         PosedScan ps;
@@ -181,19 +182,39 @@ std::vector<LabelledSequence> record_sequences(const sim::World& world, const De
         det.process(ps);
         if (stats) stats->scan_ms.push_back(elapsed_ms(t0));
         for (auto& f : det.take_finished_sequences()) {
+          spdlog::debug("{} {} approach {} run {}: track {} group {} entered {} n {} d {:.2f}->{:.2f} pts ({:.2f},{:.2f}) ({:.2f},{:.2f}) ({:.2f},{:.2f}) ({:.2f},{:.2f}) match {}",
+                        world.gateways[a.gateway].name, crossing_class_name(a.cls), ai, r, f.track_id, f.group, f.entered, f.sequence.size(),
+                        f.sequence.empty() ? 0.0 : f.sequence.front().distance, f.sequence.empty() ? 0.0 : f.sequence.back().distance,
+                        f.points[0].x(), f.points[0].y(), f.points[1].x(), f.points[1].y(), f.points[2].x(), f.points[2].y(),
+                        f.points[3].x(), f.points[3].y(), matches(f, world.gateways[a.gateway], ro.match_fraction * a.width));
           if (f.sequence.size() < 2) continue;
           if (!matches(f, world.gateways[a.gateway], ro.match_fraction * a.width)) {
             if (stats) ++stats->sequences_unmatched;
             continue;
           }
           if (ro.complete_only && !f.entered) {
-            if (stats) ++stats->sequences_corrupted;
+            if (stats) {
+              ++stats->sequences_corrupted;
+              stats->corrupted_lengths.push_back(static_cast<int>(f.sequence.size()));
+              stats->corrupted_last_distance.push_back(f.sequence.back().distance);
+            }
             continue;
           }
-          out.push_back({world.name, world.gateways[a.gateway].name, a.cls, r, std::move(f.sequence)});
+          if (stats) {
+            stats->kept_first_distance.push_back(f.sequence.front().distance);
+            stats->kept_lengths.push_back(static_cast<int>(f.sequence.size()));
+          }
+          ++kept;
+          out.push_back({world.name, world.gateways[a.gateway].name, a.cls, r, static_cast<int>(ai), f.group, std::move(f.sequence)});
         }
       }
-      if (stats) ++stats->runs;
+      if (stats) {
+        ++stats->runs;
+        if (kept == 0) {
+          ++stats->runs_without_sequence;
+          ++stats->runs_without_sequence_by_approach[world.gateways[a.gateway].name + " " + crossing_class_name(a.cls)];
+        }
+      }
     }
   }
   return out;
@@ -253,6 +274,10 @@ DoorEvaluation evaluate_doors(const sim::World& world, const DetectorOptions& op
       if (e.kind != EventKind::kApproached || (e.gateway_class != kOutNarrowPassage && e.gateway_class != kOutDoor)) continue;
       ++ev.passages_reported;
       const int d = door_of(e.gateway_points);
+      if (d < 0)
+        spdlog::debug("t={:.1f} passage not on a door: ({:.2f},{:.2f}) ({:.2f},{:.2f}) robot ({:.2f},{:.2f})", sim.time_s(),
+                      e.gateway_points[0].x(), e.gateway_points[0].y(), e.gateway_points[1].x(), e.gateway_points[1].y(),
+                      sim.truth().x, sim.truth().y);
       if (d >= 0) {
         ++ev.passages_on_doors;
         last_report[static_cast<size_t>(d)] = sim.time_s();

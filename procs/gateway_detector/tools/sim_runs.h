@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,9 @@ struct LabelledSequence
   std::string gateway;
   int cls = -1;
   int run = 0;          // repetition index (even runs train, odd runs test in the benchmark)
+  int approach = 0;     // index into approaches(world)
+  int64_t group = 0;    // tracker group: the sequences of one run with the same group are
+                        // what the detector fuses for one physical gateway
   ObservationSequence sequence;
 };
 
@@ -58,6 +62,12 @@ struct RecordStats
   int runs = 0;
   int sequences_unmatched = 0;
   int sequences_corrupted = 0;    // matched, but lost before reaching the gateway
+  int runs_without_sequence = 0;  // runs that gave no complete matched sequence at all
+  std::map<std::string, int> runs_without_sequence_by_approach;  // "<gateway> <class>" -> runs
+  std::vector<int> corrupted_lengths;        // observations in each corrupted sequence
+  std::vector<double> corrupted_last_distance;  // [m] robot to crossing point when lost
+  std::vector<double> kept_first_distance;   // [m] where each kept sequence started
+  std::vector<int> kept_lengths;
   std::vector<double> scan_ms;  // detector time per processed scan
 };
 

@@ -33,6 +33,10 @@ TrainingConfig load_training_config(const std::string& path)
   r.match_fraction = rec.number("match_fraction", r.match_fraction, 0.05, 1.0);
   r.complete_only = rec.boolean("complete_only", r.complete_only);
   r.seed = static_cast<uint64_t>(rec.integer("seed", 1, 1, 1'000'000'000));
+  const std::string features = cfg.string("features", hmm_features_name(t.features));
+  const auto f = hmm_features_from_name(features);
+  if (!f) cfg.fail("features", "must be weights or measures");
+  t.features = *f;
   t.hmm = load_training_options(cfg.section("hmm"));
   cfg.finish();
   return t;
@@ -46,15 +50,16 @@ double width_of_environment(const std::string& name)
   return std::stod(name.substr(prefix.size(), m - prefix.size()));
 }
 
-HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, const HmmTrainingOptions& options)
+HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, const HmmTrainingOptions& options,
+                               HmmFeatures features)
 {
-  HmmClassifier c;
+  HmmClassifier c(features);
   for (int cls = 0; cls < kNumSequenceClasses; ++cls) {
     std::vector<TrainingSequence> data;
     for (const auto& s : sequences) {
       if (s.cls != cls) continue;
       TrainingSequence t;
-      for (const auto& o : s.sequence) t.push_back({feature_vector(o), o.distance});
+      for (const auto& o : s.sequence) t.push_back({feature_vector(o, features), o.distance});
       data.push_back(std::move(t));
     }
     if (data.size() < 2) continue;

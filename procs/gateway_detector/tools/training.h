@@ -22,6 +22,7 @@ struct TrainingConfig
   std::vector<Environment> environments;
   std::string office_world = "office";    // door evaluation
   RecordOptions record;
+  HmmFeatures features = HmmFeatures::kWeights;  // what the HMMs observe
   HmmTrainingOptions hmm;
 };
 TrainingConfig load_training_config(const std::string& path);
@@ -30,6 +31,7 @@ TrainingConfig load_training_config(const std::string& path);
 double width_of_environment(const std::string& name);
 
 // One HMM per sequence class that has at least two sequences.
-HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, const HmmTrainingOptions& options);
+HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, const HmmTrainingOptions& options,
+                               HmmFeatures features);
 
 }  // namespace rgnav::gateway_detector::tools

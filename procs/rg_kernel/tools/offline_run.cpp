@@ -28,6 +28,7 @@ OfflineRun finish_run(const RgMapPipeline& p)
   r.counts = p.counts();
   r.map = p.kernel().described_map();
   r.kernel_stats = p.kernel().stats();
+  r.fidelity = p.kernel().line_map_fidelity();
   return r;
 }
 
@@ -76,10 +77,17 @@ nlohmann::json counts_json(const MapCounts& c)
           {"consistency_problems", c.consistency_problems}};
 }
 
+void add_fidelity_json(const rg_kernel::LineMapFidelity& f, nlohmann::json* j)
+{
+  (*j)["points_explained"] = f.explained_share();
+  (*j)["point_map_distance_m"] = f.mean_distance();
+}
+
 nlohmann::json summary_json(const OfflineRun& r)
 {
   const auto& s = r.mapper_stats;
   nlohmann::json j = counts_json(count_map(r.map, r.kernel_stats.raw_points));
+  add_fidelity_json(r.fidelity, &j);
   j["scans"] = s.scans_in;
   j["accepted_scans"] = s.accepted;
   j["loop_closures"] = s.loop_closures;

@@ -19,6 +19,7 @@ struct OfflineRun
   PipelineCounts counts;
   rgmap::RgMap map;                            // every region described from all its scans
   rg_kernel::KernelStats kernel_stats;
+  rg_kernel::LineMapFidelity fidelity;         // raw scan points against their regions' line maps
   double cpu_seconds = 0;                      // this thread, whole pipeline
   double log_seconds = 0;                      // message time from the first to the last scan
 };
@@ -46,5 +47,8 @@ nlohmann::json write_run_outputs(const OfflineRun& run, const PipelineOptions& o
 
 nlohmann::json summary_json(const OfflineRun& run);
 nlohmann::json counts_json(const MapCounts& c);
+// points_explained (share of raw scan points within fidelity.tolerance of a segment of their
+// region's line map) and point_map_distance_m (their mean distance, each capped at fidelity.cap).
+void add_fidelity_json(const rg_kernel::LineMapFidelity& f, nlohmann::json* j);
 
 }  // namespace rgnav::rgmap_pipeline

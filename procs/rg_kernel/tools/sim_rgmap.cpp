@@ -191,6 +191,7 @@ nlohmann::json to_json(const SimRgMapRun& r, const WorldScore& s)
   j["neutralized"] = c.neutralized;
   j["segments"] = c.segments;
   j["compression"] = c.compression;
+  add_fidelity_json(r.run.fidelity, &j);
   j["mean_region_bytes"] = c.mean_region_bytes;
   j["consistency_problems"] = c.consistency_problems;
   j["alignment_rmse_m"] = s.alignment_rmse_m;

@@ -21,6 +21,8 @@
 #include "sim/simulator.h"
 #include "trajectory/construct.h"
 
+#include "obstacle_course.h"
+
 using namespace rgnav;
 using trajectory::Chain;
 using trajectory::Segment;
@@ -155,53 +157,6 @@ nlohmann::json tracking(const lld::LldOptions& lo, double v, int chains, uint64_
           {"time_pred_err_max_pct", terr_max}};
 }
 
-// A corridor 3 m wide, 14 m long, with boxes and people; targets 1 m apart along its centre.
-struct Course
-{
-  sim::World world;
-  std::vector<Pose2> targets;  // odom frame == world frame (start pose at the origin)
-};
-
-Course make_course(std::mt19937& rng)
-{
-  Course c;
-  const double L = 14.0, W = 3.0;
-  auto wall = [](double x0, double y0, double x1, double y1) {
-    sim::Wall w;
-    w.a = {x0, y0};
-    w.b = {x1, y1};
-    return w;
-  };
-  c.world.name = "course";
-  c.world.walls = {wall(-1, -W / 2, L, -W / 2), wall(-1, W / 2, L, W / 2), wall(-1, -W / 2, -1, W / 2),
-                   wall(L, -W / 2, L, W / 2)};
-  std::uniform_real_distribution<double> ux(2.0, 10.5), uy(-0.8, 0.8), us(0.3, 0.7), uyaw(0, M_PI);
-  std::uniform_int_distribution<int> nbox(2, 4), nppl(1, 2);
-  const int nb = nbox(rng);
-  for (int i = 0; i < nb; ++i) {
-    sim::Box b;
-    b.name = "box" + std::to_string(i);
-    b.center = {ux(rng), uy(rng)};
-    b.size = {us(rng), us(rng)};
-    b.yaw = uyaw(rng);
-    c.world.boxes.push_back(b);
-  }
-  std::uniform_real_distribution<double> px(3.0, 11.0), pv(0.4, 0.9), pd(0.0, 8.0);
-  const int np = nppl(rng);
-  for (int i = 0; i < np; ++i) {
-    sim::Person p;
-    p.name = "p" + std::to_string(i);
-    const double x = px(rng);
-    p.path = {{x, -1.2}, {x + 0.5, 1.2}};  // crossing the corridor back and forth
-    p.loop = false;
-    p.speed = pv(rng);
-    p.start_delay = pd(rng);
-    c.world.people.push_back(p);
-  }
-  for (double x = 1.0; x <= 12.0 + 1e-9; x += 1.0) c.targets.emplace_back(x, 0.0, 0.0);
-  return c;
-}
-
 nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaOptions& co, int n, uint64_t seed,
                        int only)
 {
@@ -211,8 +166,12 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
   double time_sum = 0.0;
   int64_t fallbacks = 0, replans = 0;
   nlohmann::json failures = nlohmann::json::array();
+  int redrawn = 0;
+  const double clearance = co.planner.robot_radius + co.planner.safety_margin;
   for (int k = 0; k < n; ++k) {
-    Course course = make_course(rng);
+    const bench::CourseDraw draw = bench::draw_course(rng, clearance);
+    redrawn += draw.redrawn;
+    const bench::Course& course = draw.course;
     if (only >= 0 && k != only) continue;  // debugging one course: the others are drawn, not run
     if (getenv("CB_DEBUG")) {
       for (const auto& b : course.world.boxes)
@@ -295,6 +254,7 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
           {"reached_ratio", n ? static_cast<double>(reached) / n : 0.0},
           {"mean_time_s", reached ? time_sum / reached : -1.0},
           {"course_length_m", 12.0},
+          {"impassable_redrawn", redrawn},
           {"replans", replans},
           {"fallbacks", fallbacks},
           {"failures", failures}};

@@ -67,5 +67,53 @@ TEST(LocalMap, GridPointsAndScanCount)
   EXPECT_NEAR(map.clearance({0.0, 0.0}, 1.0), 0.4, 1e-9);
 }
 
+
+// A scan from a robot at `pose` seeing one obstacle point `hit` (base frame) and free space
+// out to 4 m elsewhere, over a 180 degree field of view.
+ScanPoints scan_with(time::Time stamp, const Pose2& pose, const std::vector<Eigen::Vector2d>& hits)
+{
+  ScanPoints s;
+  s.stamp = stamp;
+  s.odom_from_base = pose;
+  s.points = hits;
+  for (int b = 0; b <= 180; ++b) {
+    const double a = (b - 90) * M_PI / 180.0;
+    double r = 4.0;
+    for (const auto& h : hits)
+      if (std::fabs(std::atan2(h.y(), h.x()) - a) < 0.6 * M_PI / 180.0) r = std::min(r, h.norm());
+    s.outline.emplace_back(r * std::cos(a), r * std::sin(a));
+  }
+  return s;
+}
+
+TEST(LocalMap, RemembersStaticObstaclesOutOfViewUntilSeenThrough)
+{
+  LocalMapOptions o;
+  LocalMap map(o);
+  // Two seconds looking at a box corner 1.5 m ahead: static.
+  int64_t us = 1'000'000;
+  for (; us < 3'000'000; us += 26'667) map.add_scan(scan_with(time::from_utime(us), Pose2(0, 0, 0), {{1.5, 0.0}}));
+  // Turned around: the box is behind the laser now, for longer than max_age.
+  for (; us < 6'000'000; us += 26'667) map.add_scan(scan_with(time::from_utime(us), Pose2(0, 0, M_PI), {}));
+  map.rebuild(time::from_utime(us));
+  EXPECT_NEAR(map.clearance({1.0, 0.0}, 1.0), 0.5, 0.04);
+  // Turned back: the beams now pass where the box was (it was moved away): forgotten.
+  map.add_scan(scan_with(time::from_utime(us), Pose2(0, 0, 0), {}));
+  map.rebuild(time::from_utime(us));
+  EXPECT_TRUE(std::isinf(map.clearance({1.0, 0.0}, 1.0)));
+}
+
+TEST(LocalMap, DoesNotRememberWhatWasSeenOnlyBriefly)
+{
+  LocalMap map(LocalMapOptions{});
+  int64_t us = 1'000'000;
+  // A person passing through the view for 0.3 s, then gone out of view.
+  for (; us < 1'300'000; us += 26'667) map.add_scan(scan_with(time::from_utime(us), Pose2(0, 0, 0), {{1.5, 0.0}}));
+  for (; us < 4'000'000; us += 26'667) map.add_scan(scan_with(time::from_utime(us), Pose2(0, 0, M_PI), {}));
+  map.rebuild(time::from_utime(us));
+  EXPECT_TRUE(std::isinf(map.clearance({1.0, 0.0}, 1.0)));
+  EXPECT_EQ(map.remembered_size(), 0u);
+}
+
 }  // namespace
 }  // namespace rgnav::collision_avoidance

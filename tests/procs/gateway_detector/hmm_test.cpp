@@ -158,5 +158,38 @@ TEST(Classifiers, SocAscAndFusion)
   EXPECT_NEAR(q[kT], 1.0, 1e-12);
 }
 
+TEST(Classifiers, FeatureVectorsOfWeightsAndOfMeasures)
+{
+  Observation o;
+  o.measures.on_line = {0.9, 0.1, 0.2};
+  o.measures.over_line = {0.05, 0.8, 0.7};
+  o.measures.occluded = {0.0, 0.1, 0.3};
+  o.measures.w_d = 0.95;
+  o.measures.w_r = 0.97;
+  const MeasureOptions mo;
+  o.weights = class_weights(o.measures, mo);
+  const auto w = feature_vector(o, HmmFeatures::kWeights);
+  ASSERT_EQ(w.size(), feature_dimension(HmmFeatures::kWeights));
+  for (int c = 0; c < kNumCrossingClasses; ++c) EXPECT_DOUBLE_EQ(w[c], o.weights[static_cast<size_t>(c)]);
+  const auto m = feature_vector(o, HmmFeatures::kMeasures);
+  ASSERT_EQ(m.size(), feature_dimension(HmmFeatures::kMeasures));
+  EXPECT_DOUBLE_EQ(m[0], 0.9);   // left on
+  EXPECT_DOUBLE_EQ(m[4], 0.8);   // front over
+  EXPECT_DOUBLE_EQ(m[8], 0.3);   // right occluded
+  EXPECT_DOUBLE_EQ(m[9], 0.95);  // W_d
+  EXPECT_DOUBLE_EQ(m[10], 0.97); // W_r
+  // The weights keep only 4 independent numbers: every weight is the dead-end weight plus the
+  // (over - on) of the sectors the class leaves open.
+  for (int c = 0; c < kNumCrossingClasses; ++c) {
+    double v = o.weights[kDeadEnd];
+    for (int s = 0; s < 3; ++s)
+      if (expects_open(c, s)) v += mo.f_gw / 3 * (o.measures.over_line[static_cast<size_t>(s)] - o.measures.on_line[static_cast<size_t>(s)]);
+    EXPECT_NEAR(o.weights[static_cast<size_t>(c)], v, 1e-12) << crossing_class_name(c);
+  }
+  EXPECT_EQ(hmm_features_from_name(hmm_features_name(HmmFeatures::kMeasures)), HmmFeatures::kMeasures);
+  EXPECT_EQ(hmm_features_from_name(hmm_features_name(HmmFeatures::kWeights)), HmmFeatures::kWeights);
+  EXPECT_FALSE(hmm_features_from_name("pixels").has_value());
+}
+
 }  // namespace
 }  // namespace rgnav::gateway_detector

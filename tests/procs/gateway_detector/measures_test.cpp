@@ -121,5 +121,70 @@ TEST(Measures, EveryClassWinsOnItsOwnIdealCrossing)
   }
 }
 
+TEST(Measures, ClutterBeforeTheLineIsLeftOutOfTheSectorWhenAsked)
+{
+  // A dead end seen from 2 m before its square, with a 0.8 m wide box 0.6 m before the end wall
+  // (world x = 2, x = 4 in the laser frame).
+  const Vlm v = true_vlm(2.0, 2.0);
+  test::Walls ws = crossing(kDeadEnd, 2.0);
+  ws.push_back({{1.4, -0.4}, {1.4, 0.4}});
+  const Scan s = cast(ws, geometry::Pose2(-2.0, 0, 0));
+  MeasureOptions paper;
+  MeasureOptions robust;
+  robust.exclude_occluded = true;
+  const Measures a = measure(s, v, paper), b = measure(s, v, robust);
+  // The box hides about a third of the front sector; both variants see that.
+  EXPECT_GT(a.occluded[kFrontSector], 0.2);
+  EXPECT_LT(a.occluded[kFrontSector], 0.5);
+  EXPECT_DOUBLE_EQ(b.occluded[kFrontSector], a.occluded[kFrontSector]);
+  // The dissertation's FSM counts the hidden beams as off the wall; left out, the wall is whole.
+  EXPECT_NEAR(a.on_line[kFrontSector], 1.0 - a.occluded[kFrontSector], 0.05);
+  EXPECT_GT(b.on_line[kFrontSector], 0.95);
+  EXPECT_LT(b.over_line[kFrontSector], 0.05);
+  // Sectors without clutter are the same either way.
+  EXPECT_DOUBLE_EQ(a.on_line[kLeftSector], b.on_line[kLeftSector]);
+  EXPECT_DOUBLE_EQ(a.occluded[kLeftSector], 0.0);
+  // The single-pass sector measure agrees with the separate FSM functions.
+  int beams = 0;
+  EXPECT_DOUBLE_EQ(on_line_fsm(s, v.front, v.points[1], v.points[2], robust, &beams), b.on_line[kFrontSector]);
+  EXPECT_EQ(beams, b.beams[kFrontSector]);
+  EXPECT_DOUBLE_EQ(over_line_fsm(s, v.front, v.points[1], v.points[2], robust), b.over_line[kFrontSector]);
+}
+
+TEST(Measures, AWhollyHiddenSectorSaysNothing)
+{
+  // A wall right across the hallway 1 m ahead hides the whole crossing.
+  const Vlm v = true_vlm(2.0, 2.0);
+  test::Walls ws = crossing(kX, 2.0);
+  ws.push_back({{1.0, -1.0}, {1.0, 1.0}});
+  const Scan s = cast(ws, geometry::Pose2(0.0, 0, 0));
+  MeasureOptions robust;
+  robust.exclude_occluded = true;
+  const Measures m = measure(s, v, robust);
+  for (int sec = 0; sec < 3; ++sec) {
+    if (m.beams[static_cast<size_t>(sec)] == 0) continue;
+    EXPECT_DOUBLE_EQ(m.occluded[static_cast<size_t>(sec)], 1.0) << sec;
+    EXPECT_DOUBLE_EQ(m.on_line[static_cast<size_t>(sec)], 0.0) << sec;
+    EXPECT_DOUBLE_EQ(m.over_line[static_cast<size_t>(sec)], 0.0) << sec;
+  }
+  EXPECT_GT(m.beams[kFrontSector], 0);
+}
+
+TEST(Measures, ALargerSetbackTellsAWallBehindClutterFromAnOpening)
+{
+  // Clutter along the left wall (cabinet faces at y = 0.6, the wall at y = 1) taken for the
+  // left line of a crossing at [2, 4] ahead: the wall 0.4 m behind that line passes a 0.25 m
+  // setback line as if the side were open, but not a 0.6 m one; a real side branch does.
+  Vlm v;
+  ASSERT_TRUE(make_vlm(through({0, 0.6}, {1, 0.6}), through({0, -1}, {1, -1}), through({4, 0}, {4, 1}), through({2, 0}, {2, 1}), &v));
+  const Scan closed = cast({{{-10, 1}, {10, 1}}, {{-10, -1}, {10, -1}}}, geometry::Pose2());
+  const Scan open = cast(crossing(kT, 2.0), geometry::Pose2(-2.0, 0, 0));
+  MeasureOptions near_setback, far_setback;
+  far_setback.over_line_setback = 0.6;
+  EXPECT_GT(measure(closed, v, near_setback).over_line[kLeftSector], 0.95);
+  EXPECT_LT(measure(closed, v, far_setback).over_line[kLeftSector], 0.05);
+  EXPECT_GT(measure(open, true_vlm(2.0, 2.0), far_setback).over_line[kLeftSector], 0.3);
+}
+
 }  // namespace
 }  // namespace rgnav::gateway_detector

@@ -6,6 +6,7 @@
 
 #include "config/config.h"
 #include "gateway_detector/gateway_models.h"
+#include "gateway_detector/options.h"
 
 namespace rgnav::gateway_detector {
 namespace {
@@ -106,6 +107,80 @@ TEST(GatewayModels, BrokenFilesAreRefusedWithTheKey)
   std::filesystem::remove(path);
 }
 
+TEST(GatewayModels, MeasureFeaturesRoundTripAndMismatchesAreNamed)
+{
+  std::mt19937 rng(2);
+  std::normal_distribution<double> n(0, 0.03);
+  HmmClassifier c(HmmFeatures::kMeasures);
+  for (int cls : {int{kLTurn}, int{kDeadEnd}}) {
+    std::vector<TrainingSequence> seqs;
+    for (int s = 0; s < 15; ++s) {
+      TrainingSequence seq;
+      for (int t = 0; t < 8; ++t) {
+        Observation ob;
+        ob.measures.on_line = {cls == kLTurn ? 0.1 + n(rng) : 0.9 + n(rng), 0.9 + n(rng), 0.9 + n(rng)};
+        ob.measures.over_line = {cls == kLTurn ? 0.8 + n(rng) : 0.05 + n(rng), 0.05 + n(rng), 0.05 + n(rng)};
+        ob.measures.occluded = {0.02 + n(rng), 0.02 + n(rng), 0.02 + n(rng)};
+        ob.measures.w_d = 0.9 + n(rng);
+        ob.measures.w_r = 0.95 + n(rng);
+        seq.push_back({feature_vector(ob, HmmFeatures::kMeasures), 6.0 - 0.6 * t});
+      }
+      seqs.push_back(seq);
+    }
+    HmmTrainingOptions o;
+    o.clusters = 2;
+    o.min_cluster_size = 5;
+    c.models()[static_cast<size_t>(cls)] = train_hmm(seqs, o);
+  }
+  GatewayModels m;
+  m.hallway_width = 2.5;
+  m.f_vlm = 0.5;
+  m.f_gw = 1.0;
+  m.exclude_occluded = true;
+  m.over_line_setback = 0.75;
+  m.classifier = c;
+  const auto path = temp_path("measures.yaml");
+  save_gateway_models(m, path);
+  const auto back = load_gateway_models(path);
+  EXPECT_EQ(back.classifier.features(), HmmFeatures::kMeasures);
+  EXPECT_TRUE(back.exclude_occluded);
+  ObservationSequence turn(4);
+  for (auto& ob : turn) {
+    ob.measures.on_line = {0.1, 0.9, 0.9};
+    ob.measures.over_line = {0.8, 0.05, 0.05};
+    ob.measures.occluded = {0.02, 0.02, 0.02};
+    ob.measures.w_d = 0.9;
+    ob.measures.w_r = 0.95;
+  }
+  EXPECT_EQ(back.classifier.classify(turn), kLTurn);
+  // The detector refuses features made differently from the training.
+  MeasureOptions mo;
+  mo.hallway_width = 2.5;
+  mo.exclude_occluded = true;
+  EXPECT_EQ(models_mismatch(back, mo)->key, "over_line_setback_m");
+  mo.over_line_setback = 0.75;
+  EXPECT_FALSE(models_mismatch(back, mo).has_value());
+  mo.exclude_occluded = false;
+  ASSERT_TRUE(models_mismatch(back, mo).has_value());
+  EXPECT_EQ(models_mismatch(back, mo)->key, "exclude_occluded");
+  mo.exclude_occluded = true;
+  mo.hallway_width = 2.0;
+  EXPECT_EQ(models_mismatch(back, mo)->key, "hallway_width_m");
+  // A file whose feature set and dimension disagree is refused.
+  std::string text;
+  {
+    std::ifstream f(path);
+    text.assign(std::istreambuf_iterator<char>(f), {});
+  }
+  text.replace(text.find("features: measures"), 18, "features: weights ");
+  {
+    std::ofstream f(path);
+    f << text;
+  }
+  EXPECT_THROW(load_gateway_models(path), config::ConfigError);
+  std::filesystem::remove(path);
+}
+
 TEST(GatewayModels, CheckedInModelsLoad)
 {
   const std::string path = RGNAV_SOURCE_DIR "/config/gateway_models/default.yaml";
@@ -113,6 +188,10 @@ TEST(GatewayModels, CheckedInModelsLoad)
   const auto m = load_gateway_models(path);
   EXPECT_GT(m.hallway_width, 0.0);
   for (int c = 0; c < kNumSequenceClasses; ++c) EXPECT_TRUE(m.classifier.models()[static_cast<size_t>(c)].has_value()) << c;
+  // They were trained on features made the way the detector's config makes them.
+  const auto o = load_detector_options(config::Config::load(RGNAV_SOURCE_DIR "/config/gateway_detector.yaml"));
+  const auto bad = models_mismatch(m, o.measures);
+  EXPECT_FALSE(bad.has_value()) << bad->key << ": " << bad->reason;
 }
 
 }  // namespace

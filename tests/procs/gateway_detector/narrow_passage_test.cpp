@@ -34,6 +34,25 @@ TEST(NarrowPassage, DoorInFrontIsDetected)
   EXPECT_NEAR(nps[0].width, 0.9, 0.1);
 }
 
+TEST(NarrowPassage, TableLegsAreNoDoorWhenJambsNeedSurface)
+{
+  // Two 5 cm legs 1 m apart, 2 m ahead, a wall behind: a passage by the distances of 4.2.1.
+  const test::Walls legs = {{{2.0, 0.5}, {2.0, 0.55}}, {{2.0, -0.55}, {2.0, -0.5}}, {{6, -5}, {6, 5}}};
+  const Scan s = cast(legs, geometry::Pose2());
+  NarrowPassageOptions o;
+  const auto between = detect_narrow_passages(s, o);
+  ASSERT_EQ(between.size(), 1u);
+  EXPECT_LT(surface_extent(s, between[0].left_index, o.jamb_link_distance), 0.1);
+  EXPECT_LT(surface_extent(s, between[0].right_index, o.jamb_link_distance), 0.1);
+  o.min_jamb_extent = 0.2;
+  EXPECT_TRUE(detect_narrow_passages(s, o).empty());
+  // A real door frame keeps its passage: its gateway points end walls.
+  const Scan d = cast(test::door(2.0, 0.9), geometry::Pose2(0.3, 0.05, 0.0), 0.005);
+  const auto nps = detect_narrow_passages(d, o);
+  ASSERT_EQ(nps.size(), 1u);
+  EXPECT_GT(surface_extent(d, nps[0].left_index, o.jamb_link_distance), 1.0);
+}
+
 TEST(NarrowPassage, TooNarrowForTheRobot)
 {
   const Scan s = cast(test::door(2.0, 0.55), geometry::Pose2(0.3, 0, 0));

@@ -129,6 +129,76 @@ TEST(Tracking, CrossingTraversedThroughTheFront)
   EXPECT_NEAR(trav->direction, 0.0, 1e-9);
 }
 
+// A crossing 6 m ahead seen on every scan but a run of `hidden` scans (a person walking through
+// the view) while the robot drives 0.04 m per scan toward it.
+std::vector<FinishedSequence> approach_with_gap(const TrackingOptions& o, int hidden, int64_t* tracks_created)
+{
+  GatewayTracker tracker(o);
+  std::vector<FinishedSequence> out;
+  int64_t max_id = 0;
+  for (int k = 0; k < 140; ++k) {
+    const double x = 0.04 * k;
+    std::vector<CrossingDetection> dets;
+    if (k < 40 || k >= 40 + hidden) {
+      CrossingDetection d;
+      d.points = {Vec2(5, 1), Vec2(7, 1), Vec2(7, -1), Vec2(5, -1)};
+      d.axis = Vec2(1, 0);
+      d.observation.distance = 6.0 - x;
+      dets.push_back(d);
+    }
+    tracker.update(k + 1, geometry::Pose2(x, 0, 0), dets, {});
+    for (const auto& t : tracker.tracks()) max_id = std::max(max_id, t.id);
+    for (auto& f : tracker.take_finished()) out.push_back(std::move(f));
+  }
+  *tracks_created = max_id;
+  return out;
+}
+
+TEST(Tracking, AShortOcclusionDoesNotSplitTheSequenceWhenLossNeedsTravel)
+{
+  TrackingOptions o;
+  o.max_missed = 8;
+  int64_t created = 0;
+  // 15 hidden scans = 0.6 m of travel: counted in scans alone the track is lost and a new one
+  // starts, leaving a corrupted first part and a complete sequence that starts late.
+  o.lost_travel = 0.0;
+  auto split = approach_with_gap(o, 15, &created);
+  EXPECT_EQ(created, 2);
+  ASSERT_EQ(split.size(), 2u);
+  EXPECT_FALSE(split[0].entered);
+  EXPECT_TRUE(split[1].entered);
+  EXPECT_LT(split[1].sequence.front().distance, 4.5);
+  // Lost only after 0.8 m without a sighting: one track, one complete sequence from 6 m.
+  o.lost_travel = 0.8;
+  auto whole = approach_with_gap(o, 15, &created);
+  EXPECT_EQ(created, 1);
+  ASSERT_EQ(whole.size(), 1u);
+  EXPECT_TRUE(whole[0].entered);
+  EXPECT_NEAR(whole[0].sequence.front().distance, 6.0, 1e-9);
+  // A longer gap (1.2 m) still loses it.
+  whole = approach_with_gap(o, 30, &created);
+  EXPECT_EQ(created, 2);
+}
+
+TEST(Tracking, AStandingRobotKeepsItsTracksOnlySoLong)
+{
+  TrackingOptions o;
+  o.lost_travel = 0.5;
+  o.max_missed_stationary = 40;
+  GatewayTracker tracker(o);
+  CrossingDetection d;
+  d.points = {Vec2(5, 1), Vec2(7, 1), Vec2(7, -1), Vec2(5, -1)};
+  d.axis = Vec2(1, 0);
+  d.observation.distance = 6.0;
+  tracker.update(1, geometry::Pose2(), {d}, {});
+  for (int k = 2; k <= 40; ++k) tracker.update(k, geometry::Pose2(), {}, {});
+  EXPECT_EQ(tracker.take_finished().size(), 0u);
+  for (int k = 41; k <= 45; ++k) tracker.update(k, geometry::Pose2(), {}, {});
+  const auto f = tracker.take_finished();
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_FALSE(f[0].entered);
+}
+
 TEST(DoorConfirmation, RectangleEdgesMakeAPassageADoor)
 {
   DetectorOptions o;

@@ -1,0 +1,63 @@
+// Tracks what moves in the laser's view (people walking) and predicts where it will be:
+// the possibly moving points of each scan (local_map.h: cells hit for less than
+// static_after) are clustered, clusters are associated with the tracks of the previous
+// scans by nearest centroid, and each track's velocity is the least-squares slope of its
+// centroid over the last `history` seconds. A track moving faster than min_speed predicts
+// its points shifted along its velocity over the next `horizon` seconds; the local map
+// treats those like obstacles that may move. The planner then neither plans across the
+// path a person is about to walk nor stops on it: over the obstacle courses every collision
+// was a person walking into a robot that had stopped in that person's way to let them pass.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <deque>
+#include <vector>
+
+#include "time/message_time.h"
+
+namespace rgnav::collision_avoidance {
+
+struct PeopleTrackerOptions
+{
+  double cluster_distance = 0.30;  // [m] points closer than this belong to one cluster
+  int min_points = 3;              // smaller clusters are ignored (noise, edges)
+  double gate = 0.6;               // [m] a cluster this close to a track's prediction continues it
+  double history = 0.6;            // [s] centroid history for the velocity fit
+  double lost_after = 0.4;         // [s] a track not seen this long is dropped
+  double min_speed = 0.15;         // [m/s] slower tracks predict nothing
+  double max_speed = 2.5;          // [m/s] faster is an association error: no prediction
+  double horizon = 1.0;            // [s] predicted this far ahead
+  double step = 0.25;              // [s] one predicted copy of the cluster per step
+};
+
+struct Track
+{
+  int id = 0;
+  std::deque<std::pair<time::Time, Eigen::Vector2d>> centroids;  // oldest first
+  std::vector<Eigen::Vector2d> points;                           // newest cluster
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();           // [m/s]
+  time::Time last_seen{};
+};
+
+class PeopleTracker
+{
+ public:
+  explicit PeopleTracker(const PeopleTrackerOptions& options) : options_(options) {}
+
+  // The possibly moving points of one scan (odom frame) at its time.
+  void update(time::Time stamp, const std::vector<Eigen::Vector2d>& moving_points);
+  // Points where the tracked movers will be over the horizon (odom frame), from `now`.
+  std::vector<Eigen::Vector2d> predicted(time::Time now) const;
+  const std::vector<Track>& tracks() const { return tracks_; }
+
+ private:
+  std::vector<std::vector<Eigen::Vector2d>> clusters(const std::vector<Eigen::Vector2d>& points) const;
+  void fit_velocity(Track& t) const;
+
+  const PeopleTrackerOptions options_;
+  std::vector<Track> tracks_;
+  int next_id_ = 1;
+};
+
+}  // namespace rgnav::collision_avoidance
