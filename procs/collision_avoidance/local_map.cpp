@@ -202,11 +202,13 @@ double LocalMap::clearance(const Eigen::Vector2d& p, double radius) const
 
 namespace rgnav::collision_avoidance {
 
-double LocalMap::clearance_predicted(const Eigen::Vector2d& p, double radius) const
+namespace {
+// Few points (people), queried for the first metre of a chain only: a plain scan will do.
+double nearest_within(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& p, double radius)
 {
   double best2 = radius * radius;
   bool found = false;
-  for (const auto& q : predicted_) {
+  for (const auto& q : points) {
     const double d2 = (q - p).squaredNorm();
     if (d2 <= best2) {
       best2 = d2;
@@ -215,20 +217,16 @@ double LocalMap::clearance_predicted(const Eigen::Vector2d& p, double radius) co
   }
   return found ? std::sqrt(best2) : std::numeric_limits<double>::infinity();
 }
+}  // namespace
+
+double LocalMap::clearance_predicted(const Eigen::Vector2d& p, double radius) const
+{
+  return nearest_within(predicted_, p, radius);
+}
 
 double LocalMap::clearance_moving(const Eigen::Vector2d& p, double radius) const
 {
-  // Few points (people), queried for the first metre of a chain only: a plain scan will do.
-  double best2 = radius * radius;
-  bool found = false;
-  for (const auto& q : moving_) {
-    const double d2 = (q - p).squaredNorm();
-    if (d2 <= best2) {
-      best2 = d2;
-      found = true;
-    }
-  }
-  return found ? std::sqrt(best2) : std::numeric_limits<double>::infinity();
+  return nearest_within(moving_, p, radius);
 }
 
 }  // namespace rgnav::collision_avoidance
