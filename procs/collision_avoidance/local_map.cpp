@@ -10,41 +10,27 @@ namespace rgnav::collision_avoidance {
 
 void LocalMap::add_scan(ScanPoints scan)
 {
-  for (const auto& b : scan.points) {
-    if (b.squaredNorm() > options_.max_range * options_.max_range) continue;
-    CellHits& h = hits_[cell_key(scan.odom_from_base * b)];
-    if (h.last == time::Time{} || time::to_seconds(scan.stamp - h.last) > options_.occupancy_gap) h.first = scan.stamp;
-    h.last = scan.stamp;
-  }
+  const bool memory = options_.memory > 0.0;
+  // Before this scan's hits are remembered: they lie at their own beams' ends.
+  if (memory) forget_seen_through(scan);
+  // One pass over the hits: how long each cell has been hit decides whether a point may be
+  // moving (the people tracker's input) or stands still (remembered: a person walking
+  // leaves no trail of obstacles behind in places no beam looks at again).
   std::vector<Eigen::Vector2d> young;
   for (const auto& b : scan.points) {
     if (b.squaredNorm() > options_.max_range * options_.max_range) continue;
     const Eigen::Vector2d p = scan.odom_from_base * b;
-    const CellHits& h = hits_[cell_key(p)];
-    if (time::to_seconds(h.last - h.first) < options_.static_after) young.push_back(p);
+    CellHits& h = hits_[cell_key(p)];
+    if (h.last == time::Time{} || time::to_seconds(scan.stamp - h.last) > options_.occupancy_gap) h.first = scan.stamp;
+    h.last = scan.stamp;
+    if (time::to_seconds(h.last - h.first) < options_.static_after)
+      young.push_back(p);
+    else if (memory)
+      remembered_[memory_key(p)] = {p, scan.stamp};
   }
   tracker_.update(scan.stamp, young);
-  if (options_.memory > 0.0) {
-    forget_seen_through(scan);
-    remember(scan);
-  }
-  scans_.push_back(std::move(scan));
-  while (static_cast<int>(scans_.size()) > options_.max_scans) scans_.pop_front();
-}
-
-void LocalMap::remember(const ScanPoints& scan)
-{
-  for (const auto& b : scan.points) {
-    if (b.squaredNorm() > options_.max_range * options_.max_range) continue;
-    const Eigen::Vector2d p = scan.odom_from_base * b;
-    // Only what stood still (static cells): a person walking leaves no trail of obstacles
-    // behind in places no beam looks at again.
-    auto h = hits_.find(cell_key(p));
-    if (h == hits_.end() || time::to_seconds(h->second.last - h->second.first) < options_.static_after) continue;
-    remembered_[memory_key(p)] = {p, scan.stamp};
-  }
-  if (scan.outline.empty()) return;
-  if (views_.empty() || time::to_seconds(scan.stamp - views_.back().stamp) >= options_.view_interval) {
+  if (memory && !scan.outline.empty() &&
+      (views_.empty() || time::to_seconds(scan.stamp - views_.back().stamp) >= options_.view_interval)) {
     ScanPoints view;
     view.stamp = scan.stamp;
     view.odom_from_base = scan.odom_from_base;
@@ -52,6 +38,8 @@ void LocalMap::remember(const ScanPoints& scan)
     view.outline = scan.outline;
     views_.push_back(std::move(view));
   }
+  scans_.push_back(std::move(scan));
+  while (static_cast<int>(scans_.size()) > options_.max_scans) scans_.pop_front();
 }
 
 void LocalMap::forget_seen_through(const ScanPoints& scan)

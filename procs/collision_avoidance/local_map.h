@@ -98,7 +98,6 @@ class LocalMap
 
  private:
   void build_field();
-  void remember(const ScanPoints& scan);
   void forget_seen_through(const ScanPoints& scan);
   int64_t memory_key(const Eigen::Vector2d& p) const
   {
