@@ -54,6 +54,18 @@ double PoseGraph::edge_weight(const PoseGraphEdge& e, const OptimizerOptions& o)
   return robust_weight(r.dot(e.information * r), o);
 }
 
+double PoseGraph::edges_cost(size_t first, size_t last, const OptimizerOptions& o) const
+{
+  double c = 0.0;
+  for (size_t k = first; k < last && k < edges_.size(); ++k) {
+    const auto& e = edges_[k];
+    const Eigen::Vector3d r = edge_error(pose(e.from), pose(e.to), e.from_from_to);
+    const double s = r.dot(e.information * r);
+    c += e.robust ? robust_rho(s, o) : s;
+  }
+  return c;
+}
+
 double PoseGraph::cost(const std::vector<Pose2>& poses, const OptimizerOptions& o) const
 {
   double c = 0.0;

@@ -51,6 +51,9 @@ class PoseGraph
   const std::vector<PoseGraphEdge>& edges() const { return edges_; }
   // Robust weight an edge currently gets (1 for non-robust edges).
   double edge_weight(const PoseGraphEdge& e, const OptimizerOptions& options) const;
+  // The optimiser's cost of edges [first, last) at the current poses (chi2, robust edges
+  // through the kernel).
+  double edges_cost(size_t first, size_t last, const OptimizerOptions& options) const;
 
  private:
   double cost(const std::vector<Pose2>& poses, const OptimizerOptions& o) const;

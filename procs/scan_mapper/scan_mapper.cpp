@@ -299,7 +299,13 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
                                  std::clamp(l.gate_sigmas * sth, l.angular_window_base_rad, l.angular_window_max_rad)};
   const auto cor = correlative_match(thin_points(cur.points, l.point_spacing_m), *sm.grid, guess, window, l.correlative);
   if (cor.score < l.min_score) return std::nullopt;
-  const IcpResult icp = icp_point_to_line(cur.points, *sm.points, cor.map_from_scan, options_.icp);
+  IcpResult icp = icp_point_to_line(cur.points, *sm.points, cor.map_from_scan, options_.icp);
+  // The correlative optimum is only as good as its grid; where the graph already knows the
+  // relative pose, ICP from there may find a better fit that the coarse search stepped over.
+  const IcpResult from_guess = icp_point_to_line(cur.points, *sm.points, guess, options_.icp);
+  if (from_guess.ok && (!icp.ok || from_guess.inlier_ratio > icp.inlier_ratio ||
+                        (from_guess.inlier_ratio == icp.inlier_ratio && from_guess.rms_m < icp.rms_m)))
+    icp = from_guess;
   if (!icp.ok || icp.inlier_ratio < l.min_inlier_ratio) return std::nullopt;
   ClosureHypothesis h;
   h.node = n;
@@ -385,8 +391,15 @@ bool ScanMapper::adopt(const OptimizationJob& job, MapperUpdate* up, int unpubli
 {
   const auto& l = options_.loop;
   const PoseGraph& g = job.graph;
-  // A new closure the rest of the graph still disagrees with is most likely false (a
-  // look-alike place): the whole batch is dropped and the estimate stays as it was.
+  // A new closure the rest of the graph still disagrees with, or one the rest of the graph
+  // has to bend for, is most likely false (a look-alike place): the whole batch is dropped
+  // and the estimate stays as it was.
+  const size_t batch = g.edges().size() - job.first_closure;
+  if (job.strain > l.max_strain_chi2 * static_cast<double>(batch)) {
+    ++stats_.loop_rejected_after_opt;
+    ++stats_.loop_rejected_strain;
+    return false;
+  }
   for (size_t k = job.first_closure; k < g.edges().size(); ++k) {
     const auto& e = g.edges()[k];
     const Eigen::Vector3d r = edge_error(g.pose(e.from), g.pose(e.to), e.from_from_to);

@@ -14,7 +14,10 @@
 //     hypothesis is accepted alone only where the graph knows the relative pose well;
 //     elsewhere it waits for a hypothesis from a later scan that agrees with it (pairwise
 //     consistency). Accepted closures become robust edges of the pose graph, which is
-//     re-optimised; a batch left inconsistent after optimising is removed again.
+//     re-optimised; a batch left inconsistent after optimising is removed again, and so is
+//     one the rest of the graph had to bend for (its strain: the rise in cost of the edges
+//     that were there before). In a row of equal rooms a look-alike fits its own edge and
+//     even agrees with its neighbours' hypotheses; only the odometry chain shows it false.
 // Algorithms run on message time only; the same inputs give the same map.
 //
 // The optimisation is the one step that can take long (hundreds of ms on a large graph). By
@@ -69,7 +72,15 @@ struct OptimizationJob
   Eigen::Matrix3d closure_covariance = Eigen::Matrix3d::Zero();  // of the last closure
   OptimizerOptions options;
   OptimizerSummary summary;
-  void run() { summary = graph.optimize(options); }
+  // How much the optimisation raised the cost of the edges that were there before the
+  // closures (what the closures force the rest of the map to give).
+  double strain = 0.0;
+  void run()
+  {
+    const double before = graph.edges_cost(0, first_closure, options);
+    summary = graph.optimize(options);
+    strain = graph.edges_cost(0, first_closure, options) - before;
+  }
 };
 
 struct MapperUpdate
@@ -86,6 +97,7 @@ struct MapperStats
 {
   int64_t scans_in = 0, accepted = 0, no_odometry = 0, matched = 0, correlative_retries = 0,
           match_rejected = 0, loop_attempts = 0, loop_closures = 0, loop_rejected_after_opt = 0, invalid = 0;
+  int64_t loop_rejected_strain = 0;  // of loop_rejected_after_opt: for the strain on the graph
 };
 
 // Everything needed to resume: nodes and graph edges.

@@ -83,6 +83,7 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   l.min_score = lc.number("min_score", l.min_score, 0.0, 1.0);
   l.min_inlier_ratio = lc.number("min_inlier_ratio", l.min_inlier_ratio, 0.0, 1.0);
   l.max_residual_chi2 = lc.number("max_residual_chi2", l.max_residual_chi2, 0.1, 1e9);
+  l.max_strain_chi2 = lc.number("max_strain_chi2", l.max_strain_chi2, 0.1, 1e9);
   l.covariance_scale = lc.number("covariance_scale", l.covariance_scale, 1.0, 1e6);
   l.point_spacing_m = lc.number("point_spacing_m", l.point_spacing_m, 0.0, 1.0);
   const auto lcor = lc.section("correlative");

@@ -49,6 +49,10 @@ struct LoopClosureOptions
   int confirm_within_nodes = 30;
   ConsistencyTolerance consistency;
   double max_residual_chi2 = 25.0; // after optimising, a closure this inconsistent is removed
+  // ... and so is a batch that strains the rest of the graph: the cost of the edges it did
+  // not add rises by more than this per closure (chi2). A look-alike place (a row of equal
+  // rooms) fits its closure edge perfectly; it is the odometry chain that must bend for it.
+  double max_strain_chi2 = 100.0;
   double covariance_scale = 4.0;   // loop edges are trusted less than sequential ones
   double point_spacing_m = 0.1;    // thinner scans for the correlative search
   // Coarser than local registration: the window is large and ICP refines afterwards.

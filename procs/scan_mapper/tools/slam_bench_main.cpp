@@ -79,6 +79,7 @@ nlohmann::json evaluate_real(const RealLog& spec, sm::ScanMapperOptions options,
   j["loop_closures"] = r.stats.loop_closures;
   j["loop_attempts"] = r.stats.loop_attempts;
   j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
+  j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
   j["correlative_retries"] = r.stats.correlative_retries;
   j["match_rejected"] = r.stats.match_rejected;
   j["map_png"] = maps_dir + "/" + spec.name + "/map.png";
@@ -161,6 +162,8 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["collisions"] = r.collisions;
   j["accepted_scans"] = r.stats.accepted;
   j["loop_closures"] = r.stats.loop_closures;
+  j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
+  j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
   return j;
 }
 #endif

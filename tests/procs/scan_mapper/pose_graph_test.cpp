@@ -3,6 +3,8 @@
 #include <random>
 
 #include "scan_mapper/pose_graph.h"
+#include "scan_mapper/scan_mapper.h"
+#include "scan_mapper/scan_mapper_options.h"
 
 namespace sm = rgnav::scan_mapper;
 
@@ -98,4 +100,36 @@ TEST(PoseGraph, RobustKernelLimitsAFalseClosure)
   auto c = build(true, true);
   c.graph.optimize(cauchy);
   EXPECT_LT(max_error(c.graph, c.truth), e_plain);
+}
+
+// A look-alike place (the next of a row of equal rooms) gives a closure that the optimiser can
+// satisfy almost exactly by bending the odometry chain: its own residual afterwards is small,
+// so only the strain it puts on the rest of the graph gives it away. A true closure after
+// real drift strains the chain little.
+TEST(OptimizationJob, StrainSeparatesATrueClosureFromALookAlike)
+{
+  const sm::LoopClosureOptions loop;
+  auto run = [](bool true_closure) {
+    auto b = build(false, false);
+    sm::OptimizationJob job;
+    job.graph = b.graph;
+    job.first_closure = job.graph.edges().size();
+    const int last = static_cast<int>(b.truth.size()) - 1;
+    // A closure as confident as the loop search gives them (ICP covariance, inflated).
+    const Eigen::Matrix3d closure_info = info(0.01, 0.005);
+    if (true_closure)
+      job.graph.add_edge({0, last, sm::between(b.truth[0], b.truth[last]), closure_info, true});
+    else  // node 25 seen 2.5 m from where it is, along its own heading
+      job.graph.add_edge({5, 25, sm::between(b.truth[5], b.truth[25] * sm::Pose2{2.5, 0.0, 0.0}), closure_info, true});
+    job.run();
+    const auto& e = job.graph.edges().back();
+    const Eigen::Vector3d r = sm::edge_error(job.graph.pose(e.from), job.graph.pose(e.to), e.from_from_to);
+    return std::make_pair(job.strain, r.dot(e.information * r));
+  };
+  const auto [true_strain, true_residual] = run(true);
+  const auto [false_strain, false_residual] = run(false);
+  EXPECT_LT(true_strain, loop.max_strain_chi2);
+  EXPECT_LT(true_residual, loop.max_residual_chi2);
+  EXPECT_LT(false_residual, loop.max_residual_chi2);  // the residual test alone lets it in
+  EXPECT_GT(false_strain, 3.0 * loop.max_strain_chi2);
 }

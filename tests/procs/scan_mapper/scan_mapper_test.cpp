@@ -114,6 +114,7 @@ TEST(ScanMapper, GatesCorrectsDriftAndClosesTheLoop)
   EXPECT_LT(nodes.size(), run.scans.size() / 2);  // gating dropped most scans
   EXPECT_GT(nodes.size(), 50u);
   EXPECT_GE(mapper.stats().loop_closures, 1);
+  EXPECT_EQ(mapper.stats().loop_rejected_strain, 0);  // closing a true loop after drift is no strain
   EXPECT_GT(corrections, 0);
   // Accuracy against the truth (the map frame = odometry frame at the first scan = truth there).
   std::vector<sm::Pose2> est, ref;
