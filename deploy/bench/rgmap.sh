@@ -12,6 +12,10 @@
 #     (0.05 m) in its best-overlapping room, per room the share of its explored cells covered by
 #     its best region, unweighted means; seg_recall_full: over whole rooms (unexplored = missed);
 #     seg_jaccard: mean best IoU per room; seg_coverage: share of room cells in some region.
+#   seg_loss_seen_through / seg_loss_driven_through: 1 - seg_precision split by cause (they add up to
+#     it): region cells outside the region's best room in rooms its robot never stood in (seen
+#     through an opening) / in rooms where it stood (a missed gateway or a merge joined the rooms).
+#     Per region with rgnav_rgmap_bench --diagnose (procs/rg_kernel/tools/segmentation_diagnosis.h).
 #   over_segmented_rooms / under_segmented_regions: rooms split by >= 2 regions each holding
 #     >= 20 % of the room / regions spanning >= 2 rooms each >= 20 % of the region.
 #   gateways_truth / _matched / _missed / _false: RG map gateways (not neutralized) matched one to

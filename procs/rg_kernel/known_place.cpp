@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "procs/rg_kernel/gateway_geometry.h"
 #include "procs/rg_kernel/region_builder.h"
 
 namespace rgnav::rg_kernel {
@@ -28,8 +29,9 @@ KnownPlaces::KnownPlaces(const rgmap::RgMap& map, const std::map<int64_t, Region
     if (g.neutralized || g.gateway_points.size() < 2) continue;
     const Region* a = map.region(g.region_a);
     if (!a) continue;
-    for (size_t k = 0; k + 1 < g.gateway_points.size(); k += 2)
-      gateway_lines_.push_back({a->map_from_region * g.gateway_points[k], a->map_from_region * g.gateway_points[k + 1]});
+    // Every side of a crossing's outline: a line of sight out of the junction has left the region.
+    for (const auto& [p, q] : gateway_edges(g.gateway_points))
+      gateway_lines_.push_back({a->map_from_region * p, a->map_from_region * q});
   }
 }
 

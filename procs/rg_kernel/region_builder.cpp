@@ -195,7 +195,9 @@ void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_
     fill_objects(region);
     return;
   }
-  // Exact: every beam again, with every gateway of the region known now.
+  // Exact: every beam again, with every gateway known now and the doorways of the line map.
+  GatewayLines lines = gateway_lines;
+  for (const auto& l : doorways_not_crossed(find_doorways(segments_, options_.doorways), laser_origins())) lines.push_back(l);
   std::unordered_set<uint64_t> cells_set;
   Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::max()), hi = -lo;
   for (const auto& [id, s] : scans_) {
@@ -205,7 +207,7 @@ void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_
     std::vector<Vector2d> pts;
     std::vector<bool> usable;
     for (const auto& lp : s.laser_points) {
-      const Vector2d p = clip_at_gateways(o, s.region_from_laser * lp, gateway_lines);
+      const Vector2d p = clip_at_gateways(o, s.region_from_laser * lp, lines);
       pts.push_back(p);
       usable.push_back((p - o).norm() <= options_.freespace_max_range);
       if (!usable.back()) continue;

@@ -1,8 +1,9 @@
 // Everything the RG kernel keeps about the scans of one region, and what it derives from
 // them: the merged line map (incrementally), and at finalisation — or whenever the open
 // region is published — the bounding rectangle and the freespace bitmap from in-region
-// measurements only: a beam that crosses one of the region's gateway lines is filtered out
-// (diss. 5.2), though its line segments stay in the line map for localization.
+// measurements only: a beam that crosses a gateway line (diss. 5.2) or a doorway of the line map
+// the robot never went through ends there, though its line segments stay in the line map for
+// localization.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "geometry/pose2.h"
+#include "procs/rg_kernel/doorways.h"
 #include "procs/rg_kernel/line_alignment.h"
 #include "procs/rg_kernel/line_map.h"
 #include "procs/rg_kernel/line_map_fidelity.h"
@@ -41,6 +43,7 @@ struct RegionBuildOptions
   double freespace_resolution = 0.15;  // [m] (diss.: 15 cm)
   double freespace_max_range = 8.0;    // [m] beams are carved up to this length
   ObjectOptions objects;               // 2D objects (rectangles, circles), diss. 3.1-3.2
+  DoorwayOptions doorways;             // the exact freespace also ends at doorways of the line map never crossed
 };
 
 class RegionBuilder
@@ -64,9 +67,10 @@ class RegionBuilder
 
   using GatewayLines = std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>;
   // Fills bbox, freespace, accuracy/completeness, segments and 2D objects of `region`. Exact (at
-  // finalisation): recomputed from all beams, leaving out every beam that crosses one of the
-  // gateway lines (points in the region frame). Otherwise (the open region, published often):
-  // from the cells carved as scans arrived, which skips only the gateways known then.
+  // finalisation): recomputed from all beams, each ending where it crosses one of the gateway
+  // lines (points in the region frame) or a doorway of the line map the robot did not go through
+  // (doorways.h). Otherwise (the open region, published often): from the cells carved as scans
+  // arrived, which end only at the gateways known then.
   void describe(rgmap::Region* region, const GatewayLines& gateway_lines, bool exact) const;
   // Gateways of the region known when later scans are carved (beams crossing them are skipped).
   void set_gateway_lines(GatewayLines lines) { gateway_lines_ = std::move(lines); }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "procs/rg_kernel/gateway_geometry.h"
 #include "procs/rg_kernel/known_place.h"
 
 namespace rgnav::rg_kernel {
@@ -16,20 +17,25 @@ using rgmap::Region;
 namespace {
 
 // True if the robot position p is through the gateway crossed with heading `heading`: beyond
-// one of its lines (consecutive point pairs, map frame) that the crossing goes through, less
-// than `reach` from it and not beside its ends.
+// one of its lines that the crossing goes through (for a crossing's outline, a side whose
+// outward normal points along the heading: the side it left by), less than `reach` from it and
+// not beside its ends.
 bool past_gateway(const Vector2d& p, const std::vector<Vector2d>& points, double heading, double reach)
 {
   const Vector2d dir(std::cos(heading), std::sin(heading));
-  for (size_t k = 0; k + 1 < points.size(); k += 2) {
-    Vector2d u = points[k + 1] - points[k];
+  const bool outline = points.size() == 4;
+  Vector2d centre = Vector2d::Zero();
+  for (const auto& q : points) centre += q;
+  if (!points.empty()) centre /= static_cast<double>(points.size());
+  for (const auto& [a, b] : gateway_edges(points)) {
+    Vector2d u = b - a;
     const double len = u.norm();
     if (len < 1e-6) continue;
     u /= len;
     Vector2d n(-u.y(), u.x());
-    if (n.dot(dir) < 0) n = -n;
-    if (n.dot(dir) < 0.5) continue;  // the crossing runs nearly along this line: not through it
-    const Vector2d m = 0.5 * (points[k] + points[k + 1]);
+    const Vector2d m = 0.5 * (a + b);
+    if (outline ? n.dot(centre - m) > 0 : n.dot(dir) < 0) n = -n;
+    if (n.dot(dir) < 0.5) continue;  // the crossing does not go out through this line
     const double depth = n.dot(p - m), along = u.dot(p - m);
     if (depth > 0 && depth < reach && std::fabs(along) < 0.5 * len + 0.5) return true;
   }
@@ -59,14 +65,14 @@ int64_t RgKernel::open_region(const geometry::Pose2& map_from_region, int64_t ut
   return r.id;
 }
 
-void RgKernel::enter(int64_t region_id, int64_t utime)
+void RgKernel::enter(int64_t region_id, int64_t utime, const Vector2d& robot)
 {
   Region* r = map_.region(region_id);
   r->state = Region::State::kOpen;
   r->utime = utime;
   map_.current_region = region_id;
   scans_since_entering_ = 0;
-  builders_.at(region_id).set_gateway_lines(gateway_lines(region_id));
+  builders_.at(region_id).set_gateway_lines(gateway_lines(region_id, &robot));
 }
 
 bool RgKernel::add_scan(const ScanInput& s)
@@ -93,9 +99,10 @@ bool RgKernel::add_scan(const ScanInput& s)
   }
   if (map_.current_region == 0) {
     // The first region's frame is the first scan's robot pose.
-    enter(open_region(s.map_from_base, s.utime), s.utime);
+    enter(open_region(s.map_from_base, s.utime), s.utime, s.map_from_base.translation());
   }
   const int64_t rid = map_.current_region;
+  const std::vector<Vector2d> before = builders_.at(rid).laser_origins();
   builders_.at(rid).add_scan(to_stored(s, rid));
   region_of_scan_[s.scan_id] = rid;
   scan_inputs_[s.scan_id] = s;
@@ -104,8 +111,39 @@ bool RgKernel::add_scan(const ScanInput& s)
   dirty_.insert(rid);
   ++scans_since_entering_;
   ++map_.version;
+  if (!before.empty()) walk_through_doorway(map_.region(rid)->map_from_region * before.back(), s);
   maybe_merge_current(s.utime);
   return true;
+}
+
+void RgKernel::walk_through_doorway(const Vector2d& from, const ScanInput& s)
+{
+  // A doorway of the current region's line map that the robot's last step went through and that
+  // no gateway stands in yet: a door the gateway detector missed (issue 8: missed gateways merge
+  // rooms). The kernel crosses it as the detector would have reported it.
+  if (!options_.doorway_gateways) return;
+  const int64_t rid = map_.current_region;
+  const Region* r = map_.region(rid);
+  const geometry::Pose2 region_from_map = r->map_from_region.inverse();
+  const Vector2d to = (s.map_from_base * s.base_from_laser).translation();
+  const auto door =
+      doorway_stepped_through(builders_.at(rid).segments(), region_from_map * from, region_from_map * to, options_.build.doorways);
+  if (!door) return;
+  const Vector2d p = r->map_from_region * door->first, q = r->map_from_region * door->second;
+  for (const auto& [id, g] : map_.gateways())
+    if (!g.neutralized && (crossing_in_map(g) - 0.5 * (p + q)).norm() < options_.gateway_match_distance) return;
+  GatewayEventInput e;
+  e.utime = s.utime;
+  e.scan_id = s.scan_id;
+  e.kind = GatewayEventInput::Kind::kTraversed;
+  e.track_id = -s.scan_id;   // no detector track: never matches an ENTERED time
+  e.cls = rgmap::GatewayClass::kNarrowPassage;
+  e.map_from_base = s.map_from_base;
+  e.gateway_points = {p, q};
+  e.direction = std::atan2(to.y() - from.y(), to.x() - from.x());
+  spdlog::info("region {}: the robot went through a doorway of its line map at ({:.2f}, {:.2f})", rid, 0.5 * (p.x() + q.x()),
+               0.5 * (p.y() + q.y()));
+  add_gateway_event(e);
 }
 
 Vector2d RgKernel::crossing_in_map(const Gateway& g) const
@@ -116,20 +154,58 @@ Vector2d RgKernel::crossing_in_map(const Gateway& g) const
   return a->map_from_region * c;
 }
 
-std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t region_id) const
+std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t region_id, const Vector2d* robot) const
 {
+  // Every gateway of the map, not only the region's own: a hallway region's robot looks
+  // through the open doors of rooms it never entered, and what lies beyond a door is the room
+  // behind it once that door is a gateway (of whichever region found it).
   std::vector<std::pair<Vector2d, Vector2d>> lines;
   const Region* r = map_.region(region_id);
+  std::vector<Vector2d> origins;
+  if (auto b = builders_.find(region_id); b != builders_.end()) origins = b->second.laser_origins();
+  if (robot) origins.push_back(r->map_from_region.inverse() * *robot);
   for (const auto& [id, g] : map_.gateways()) {
     if (g.neutralized || g.gateway_points.size() < 2) continue;
     const Region* a = map_.region(g.region_a);
-    if (g.region_a != region_id && g.region_b != region_id) continue;
     // Gateway points are stored in region_a's frame: move them into this region's frame.
     const geometry::Pose2 r_from_a = r->map_from_region.inverse() * a->map_from_region;
-    for (size_t k = 0; k + 1 < g.gateway_points.size(); k += 2)
-      lines.push_back({r_from_a * g.gateway_points[k], r_from_a * g.gateway_points[k + 1]});
+    std::vector<Vector2d> points;
+    for (const auto& p : g.gateway_points) points.push_back(r_from_a * p);
+    for (const auto& l : clip_lines(points, origins, options_.junction_side_reach)) lines.push_back(l);
   }
   return lines;
+}
+
+void RgKernel::mark_regions_behind(const Gateway& g)
+{
+  // A new gateway clips the beams of every region that saw past it: those whose freespace
+  // reaches its points are described again (exactly, from all their beams) at the next refresh.
+  const Region* a = map_.region(g.region_a);
+  for (const auto& [id, b] : builders_) {
+    const Region* r = map_.region(id);
+    if (r->state != Region::State::kFinalised || r->freespace.width() == 0) continue;
+    const geometry::Pose2 r_from_a = r->map_from_region.inverse() * a->map_from_region;
+    for (const auto& p : g.gateway_points) {
+      const Vector2d q = r_from_a * p;
+      if (q.x() >= r->bbox_min.x() && q.y() >= r->bbox_min.y() && q.x() <= r->bbox_max.x() && q.y() <= r->bbox_max.y()) {
+        dirty_.insert(id);
+        break;
+      }
+    }
+  }
+}
+
+bool RgKernel::repeats_entry(const Gateway& g, int64_t current, double direction) const
+{
+  // A door (a single line) crossed in the direction that leads into the current region does not
+  // lead out of it: the same crossing reported a second time (the kernel's doorway and then the
+  // detector's late event). Crossings (outlines) are left alone: they are left in many headings.
+  if (g.gateway_points.size() != 2 || g.traversal_directions.empty() || g.region_b == 0) return false;
+  const int64_t a = map_.resolve(g.region_a), b = map_.resolve(g.region_b);
+  if (a == b || (current != a && current != b)) return false;
+  const double a_to_b = g.traversal_directions.front() + map_.region(g.region_a)->map_from_region.theta();
+  const double into_current = current == b ? a_to_b : a_to_b + M_PI;
+  return std::cos(direction - into_current) > 0.5;
 }
 
 std::vector<int64_t> RgKernel::scans_past_gateway(int64_t region_id, const GatewayEventInput& e) const
@@ -176,6 +252,10 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
     }
   }
   int64_t next = 0;
+  if (g && repeats_entry(*g, from, e.direction)) {
+    spdlog::info("gateway {}: traversal into region {} reported again, ignored", g->id, from);
+    return false;
+  }
   if (g) {
     const int64_t a = map_.resolve(g->region_a), b = g->region_b ? map_.resolve(g->region_b) : 0;
     if (a == from) next = b;
@@ -195,6 +275,7 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
     fresh.traversal_directions.push_back(geometry::normalize_angle(e.direction - cur->map_from_region.theta()));
     g = &fresh;
     spdlog::info("gateway {} ({}) found leaving region {}", fresh.id, rgmap::to_string(e.cls), from);
+    mark_regions_behind(fresh);
   }
   const std::vector<int64_t> late = scans_past_gateway(from, e);
   for (const int64_t id : late) builders_.at(from).remove_scan(id);
@@ -220,7 +301,7 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
     entered_utime_.erase(it);
   }
   ++g->traversals;
-  enter(next, e.utime);
+  enter(next, e.utime, e.map_from_base.translation());
   for (auto id = late.rbegin(); id != late.rend(); ++id) {
     builders_.at(next).add_scan(to_stored(scan_inputs_.at(*id), next));
     region_of_scan_[*id] = next;
@@ -262,7 +343,7 @@ void RgKernel::maybe_merge_current(int64_t utime)
     dirty_.insert(q);
     spdlog::info("region {} is region {} seen again ({} of its {} robot positions seen from region {}'s): merged, {} "
                  "gateway(s) neutralized", cur, q, n, origins.size(), q, neutralized);
-    enter(q, utime);
+    enter(q, utime, r->map_from_region * origins.back());
     return;
   }
 }
@@ -291,6 +372,16 @@ rgmap::RgMap RgKernel::described_map() const
   rgmap::RgMap m = map_;
   for (const auto& [id, b] : builders_) *m.region(id) = describe_region(id);
   return m;
+}
+
+std::vector<Vector2d> RgKernel::robot_positions(int64_t region_id) const
+{
+  std::vector<Vector2d> out;
+  const auto b = builders_.find(region_id);
+  if (b == builders_.end()) return out;
+  const Region* r = map_.region(region_id);
+  for (const auto& o : b->second.laser_origins()) out.push_back(r->map_from_region * o);
+  return out;
 }
 
 KernelStats RgKernel::stats() const

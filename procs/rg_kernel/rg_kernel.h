@@ -1,6 +1,9 @@
 // The RG kernel's algorithm (diss. 5.0, 5.2, 6.1), no LCM: aligned scans are stacked into the
 // current region; a traversed gateway finalises the region (line map, bounding rectangle,
-// freespace from in-region beams) and opens the region beyond, or re-enters a known one; a
+// freespace from in-region beams: each beam ends at every gateway of the map and at the doorways
+// of the region's line map its robot never went through, gateway_geometry.h, doorways.h) and
+// opens the region beyond, or re-enters a known one; a doorway of the line map the robot does go
+// through where no gateway is known is crossed like a reported gateway (one the detector missed); a
 // region that turns out to be a known place (the robot's positions lie in a finalised
 // region's own space, seen by that region's robot: known_place.h) is merged into it and gateways with one region on both sides are
 // neutralized (diss. 6.1.1); republished scans (loop-closure corrections) update their region.
@@ -25,6 +28,8 @@ struct KernelOptions
   double merge_inside_ratio = 0.7;       // share of its robot positions seen by a known region's robot
   KnownPlaceOptions known_place;         // what makes a position part of a known region (known_place.h)
   double late_scan_reach = 3.0;          // [m] scans this far past a crossed gateway belong beyond it
+  double junction_side_reach = 2.0;      // [m] robot this near outside a crossing's side: its region lies beyond
+  bool doorway_gateways = true;          // a doorway of the line map (build.doorways) the robot goes through is a gateway
 };
 
 struct ScanInput
@@ -77,6 +82,8 @@ class RgKernel
   rgmap::RgMap described_map() const;
   rgmap::Region describe_region(int64_t id) const;
   KernelStats stats() const;
+  // Robot (laser) positions of a live region's scans in the map frame, oldest first (evaluation).
+  std::vector<Eigen::Vector2d> robot_positions(int64_t region_id) const;
   // How well the regions' line maps describe their scans (all regions not merged away).
   LineMapFidelity line_map_fidelity(double tolerance = 0.05, double cap = 0.5) const;
 
@@ -92,9 +99,16 @@ class RgKernel
 
  private:
   int64_t open_region(const geometry::Pose2& map_from_region, int64_t utime);
-  void enter(int64_t region_id, int64_t utime);
+  void enter(int64_t region_id, int64_t utime, const Eigen::Vector2d& robot);
   void maybe_merge_current(int64_t utime);
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> gateway_lines(int64_t region_id) const;
+  // The lines of every non-neutralized gateway of the map (gateway_geometry.h) that end the
+  // beams of region_id, in its frame; `robot` (map frame), if given, counts as one of its robot
+  // positions (the region just entered has none yet).
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> gateway_lines(int64_t region_id,
+                                                                         const Eigen::Vector2d* robot = nullptr) const;
+  void mark_regions_behind(const rgmap::Gateway& g);
+  void walk_through_doorway(const Eigen::Vector2d& from, const ScanInput& s);
+  bool repeats_entry(const rgmap::Gateway& g, int64_t current, double direction) const;
   Eigen::Vector2d crossing_in_map(const rgmap::Gateway& g) const;
   std::vector<int64_t> scans_past_gateway(int64_t region_id, const GatewayEventInput& e) const;
   StoredScan to_stored(const ScanInput& s, int64_t region_id) const;

@@ -48,6 +48,8 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   c.kernel.known_place.max_origin_distance =
       k.number("merge_max_origin_distance_m", c.kernel.known_place.max_origin_distance, 0.1, 20.0);
   c.kernel.late_scan_reach = k.number("late_scan_reach_m", c.kernel.late_scan_reach, 0.0, 10.0);
+  c.kernel.junction_side_reach = k.number("junction_side_reach_m", c.kernel.junction_side_reach, 0.1, 10.0);
+  c.kernel.doorway_gateways = k.boolean("doorway_gateways", c.kernel.doorway_gateways);
   const auto lines = cfg.section("line_map");
   c.kernel.build.merge.alpha_max = lines.number("merge_alpha_max_deg", 3.0, 0.1, 45.0) * M_PI / 180.0;
   c.kernel.build.merge.dl_max = lines.number("merge_dl_max_m", 0.020, 0.001, 1.0);
@@ -69,6 +71,14 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   c.kernel.build.freespace_resolution = fs.number("resolution_m", c.kernel.build.freespace_resolution, 0.02, 1.0);
   c.kernel.build.freespace_max_range = fs.number("max_range_m", c.kernel.build.freespace_max_range, 1.0, 80.0);
   c.kernel.build.objects = load_object_options(cfg.section("objects"));
+  const auto dw = cfg.section("doorways");
+  auto& d = c.kernel.build.doorways;
+  d.enabled = dw.boolean("enabled", d.enabled);
+  d.min_width = dw.number("min_width_m", d.min_width, 0.1, 5.0);
+  d.max_width = dw.number("max_width_m", d.max_width, d.min_width, 10.0);
+  d.min_wall_length = dw.number("min_wall_length_m", d.min_wall_length, 0.0, 10.0);
+  d.max_angle = dw.number("max_angle_deg", d.max_angle * 180.0 / M_PI, 0.0, 45.0) * M_PI / 180.0;
+  d.max_offset = dw.number("max_offset_m", d.max_offset, 0.0, 1.0);
   const auto g = cfg.section("graph");
   c.graph.nominal_speed = g.number("nominal_speed_mps", c.graph.nominal_speed, 0.05, 3.0);
   c.graph.gateway_crossing_time = g.number("gateway_crossing_time_s", c.graph.gateway_crossing_time, 0.0, 600.0);

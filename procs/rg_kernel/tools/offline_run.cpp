@@ -29,6 +29,8 @@ OfflineRun finish_run(const RgMapPipeline& p)
   r.map = p.kernel().described_map();
   r.kernel_stats = p.kernel().stats();
   r.fidelity = p.kernel().line_map_fidelity();
+  for (const auto& [id, region] : r.map.regions())
+    if (region.state != rgmap::Region::State::kMerged) r.robot_positions[id] = p.kernel().robot_positions(id);
   return r;
 }
 

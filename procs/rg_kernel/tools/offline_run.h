@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct OfflineRun
   rgmap::RgMap map;                            // every region described from all its scans
   rg_kernel::KernelStats kernel_stats;
   rg_kernel::LineMapFidelity fidelity;         // raw scan points against their regions' line maps
+  std::map<int64_t, std::vector<Eigen::Vector2d>> robot_positions;   // live region -> its scans' laser positions (map frame)
   double cpu_seconds = 0;                      // this thread, whole pipeline
   double log_seconds = 0;                      // message time from the first to the last scan
 };

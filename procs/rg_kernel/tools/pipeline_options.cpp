@@ -20,12 +20,10 @@ LoadedPipeline load_pipeline(const PipelineConfigPaths& paths)
   const auto cls = gateway_detector::load_classifier_config(gw.section("classifier"), paths.gateway_detector);
   if (!cls.models_path.empty() && std::filesystem::exists(cls.models_path)) {
     auto models = gateway_detector::load_gateway_models(cls.models_path);
-    // Same checks as the gateway_detector process: features made with other weights than the
-    // models were trained with would be classified wrongly without any error.
-    if (std::fabs(models.f_vlm - o.detector.measures.f_vlm) > 1e-9 || std::fabs(models.f_gw - o.detector.measures.f_gw) > 1e-9)
-      gw.section("crossings").fail("f_vlm", "differs from the weights the models in " + cls.models_path + " were trained with");
-    if (std::fabs(models.hallway_width - o.detector.measures.hallway_width) > 1e-6)
-      gw.section("crossings").fail("hallway_width_m", "differs from the width the models in " + cls.models_path + " were trained for");
+    // Same check as the gateway_detector process: features made otherwise than the models were
+    // trained on (weights, width, setback, occlusion) would be classified wrongly without any error.
+    if (const auto bad = gateway_detector::models_mismatch(models, o.detector.measures))
+      gw.section("crossings").fail(bad->key, bad->reason + " (" + cls.models_path + ")");
     out.classifier = std::move(models.classifier);
     out.classifier_note = cls.models_path + " (" + models.description + ")";
   } else if (cls.require_models) {

@@ -49,7 +49,8 @@ int main(int argc, char** argv)
   app.add_option("--gateway-match-m", match_m, "gateway positions closer than this match ground truth [m]")->check(CLI::Range(0.1, 5.0));
   app.add_option("--json", json_path, "output JSON")->required();
   app.add_option("--out", out_dir, "folder for the maps and pictures of every run")->required();
-  bool verbose = false;
+  bool verbose = false, diagnose = false;
+  app.add_flag("--diagnose", diagnose, "print per region where its freespace falls outside its best room (and why)");
   app.add_flag("--verbose", verbose, "log the libraries' progress messages (regions opened, merged, ...)");
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(verbose ? spdlog::level::info : spdlog::level::warn);
@@ -79,6 +80,7 @@ int main(int argc, char** argv)
           rp::write_run_outputs(run.run, loaded.options, dir);
           w["pictures"] = {dir + "/rgmap.svg", dir + "/rgmap.png"};
           j["worlds"][name] = w;
+          if (diagnose) std::cerr << name << ":\n" << rp::to_text(score.segmentation_diagnosis, truth.room_names);
           std::cerr << name << ": precision " << w["seg_precision"] << " recall " << w["seg_recall"] << " gateways "
                     << w["gateways_matched"] << "/" << w["gateways_truth"] << " isomorphic " << w["graph_isomorphic"] << "\n";
         } catch (const std::exception& e) {

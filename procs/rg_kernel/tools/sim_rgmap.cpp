@@ -120,7 +120,12 @@ WorldScore score_world(const SimRgMapRun& run, const GroundTruth& truth, double 
   s.alignment_rmse_m = est.empty() ? 0.0 : std::sqrt(se / static_cast<double>(est.size()));
 
   s.counts = count_map(run.run.map, run.run.kernel_stats.raw_points);
-  s.segmentation = score_segmentation(truth.rooms, region_cells(run.run.map, s.world_from_map, truth.rooms));
+  const RegionCells cells = region_cells(run.run.map, s.world_from_map, truth.rooms);
+  s.segmentation = score_segmentation(truth.rooms, cells);
+  std::map<int64_t, std::vector<Vector2d>> positions;
+  for (const auto& [id, ps] : run.run.robot_positions)
+    for (const auto& p : ps) positions[id].push_back(s.world_from_map * p);
+  s.segmentation_diagnosis = diagnose_segmentation(truth.rooms, cells, positions);
 
   // Rooms the tour explored: the planned tour's rooms.
   std::vector<int32_t> rooms;
@@ -158,6 +163,8 @@ nlohmann::json to_json(const SimRgMapRun& r, const WorldScore& s)
   j["seg_recall_full"] = seg.recall_full;
   j["seg_jaccard"] = seg.jaccard;
   j["seg_coverage"] = seg.coverage;
+  j["seg_loss_seen_through"] = s.segmentation_diagnosis.seen_loss;
+  j["seg_loss_driven_through"] = s.segmentation_diagnosis.driven_loss;
   j["rooms_truth"] = seg.rooms;
   j["rooms_explored"] = seg.rooms_explored;
   j["rooms_visited_by_tour"] = static_cast<int>(r.visited.size());

@@ -12,6 +12,7 @@
 
 #include "ground_truth.h"
 #include "offline_run.h"
+#include "segmentation_diagnosis.h"
 #include "sim/simulator.h"
 
 namespace rgnav::rgmap_pipeline {
@@ -48,6 +49,7 @@ struct WorldScore
   geometry::Pose2 world_from_map;
   double alignment_rmse_m = 0;     // of the accepted scans after the rigid fit
   SegmentationScore segmentation;
+  SegmentationDiagnosis segmentation_diagnosis;   // where the precision is lost
   GatewayMatch gateways;            // against every gateway between explored rooms
   GatewayMatch gateways_crossed;    // against the gateways the robot went through
   GraphComparison graph;            // against the room graph of the explored rooms

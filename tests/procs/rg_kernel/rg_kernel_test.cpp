@@ -11,7 +11,9 @@ using Eigen::Vector2d;
 
 struct Drive
 {
-  RgKernel kernel{KernelOptions{}};
+  explicit Drive(KernelOptions options = {}) : kernel(std::move(options)) {}
+
+  RgKernel kernel;
   std::vector<testing::Wall> walls = testing::two_rooms();
   int64_t next_id = 1;
   int64_t t = 1'000'000;
@@ -143,7 +145,10 @@ TEST(KnownPlaces, NeedsTheRegionsOwnRobotToHaveSeenThePlaceInRegion)
   rgmap::RgMap map;
   rgmap::Region& a = map.add_region(geometry::Pose2(1.0, 1.5, 0), 1);
   std::map<int64_t, RegionBuilder> builders;
-  RegionBuilder& b = builders.emplace(a.id, RegionBuilder(RegionBuildOptions{})).first->second;
+  // Without doorway clipping (doorways.h), as for a door the line map does not show as one.
+  RegionBuildOptions build;
+  build.doorways.enabled = false;
+  RegionBuilder& b = builders.emplace(a.id, RegionBuilder(build)).first->second;
   int64_t id = 1;
   for (double x = 1.0; x < 3.9; x += 0.2) {
     StoredScan s;
@@ -172,6 +177,128 @@ TEST(KnownPlaces, NeedsTheRegionsOwnRobotToHaveSeenThePlaceInRegion)
   const KnownPlaces known(map, builders, 0, o);
   EXPECT_EQ(known.region_holding(Vector2d(4.6, 1.5)), 0);
   EXPECT_EQ(known.region_holding(Vector2d(3.5, 1.5)), a.id);
+}
+
+// A straight hallway y in [0, 2] from x = 0 to 12 with an X-crossing at x in [4, 6] (branches
+// north and south).
+std::vector<testing::Wall> hallway_with_crossing()
+{
+  using V = Vector2d;
+  return {{V(0, 0), V(4, 0)},   {V(6, 0), V(12, 0)}, {V(0, 2), V(4, 2)},   {V(6, 2), V(12, 2)},
+          {V(0, 0), V(0, 2)},   {V(12, 0), V(12, 2)}, {V(4, 2), V(4, 6)},  {V(6, 2), V(6, 6)},
+          {V(4, 6), V(6, 6)},   {V(4, 0), V(4, -4)}, {V(6, 0), V(6, -4)}, {V(4, -4), V(6, -4)}};
+}
+
+TEST(RgKernel, RegionEndsWhereItsBeamsLeaveACrossing)
+{
+  // The crossing's outline (entry, left, ahead, right sides) is shared by the hallway regions it
+  // joins; beyond its other sides lie the branches and the hallway ahead. Only the branch sides
+  // ended beams before issue 8: the region before the crossing held the hallway after it, and
+  // the region after it was merged back into the one before (lab_ipa: every crossing).
+  Drive d;
+  d.walls = hallway_with_crossing();
+  for (double x = 0.5; x < 6.6; x += 0.2) d.scan_at(geometry::Pose2(x, 1.0, 0));   // the last ones past it
+  GatewayEventInput e;
+  e.utime = (d.t += 1000);
+  e.kind = GatewayEventInput::Kind::kTraversed;
+  e.track_id = 7;
+  e.cls = rgmap::GatewayClass::kXCrossing;
+  e.map_from_base = geometry::Pose2(6.6, 1.0, 0);
+  e.gateway_points = {Vector2d(4, 2), Vector2d(6, 2), Vector2d(6, 0), Vector2d(4, 0)};
+  e.direction = 0;
+  ASSERT_TRUE(d.kernel.add_gateway_event(e));
+  for (double x = 6.8; x < 10.0; x += 0.2) d.scan_at(geometry::Pose2(x, 1.0, 0));
+  d.scan_at(geometry::Pose2(10.0, 1.0, M_PI));   // looking back along the hallway
+
+  const auto& m = d.kernel.map();
+  EXPECT_EQ(d.kernel.stats().regions, 2);
+  EXPECT_EQ(m.current_region, 2);
+  EXPECT_EQ(m.region(2)->state, rgmap::Region::State::kOpen);
+  const auto r1 = d.kernel.describe_region(1);   // frame: the first pose (0.5, 1)
+  EXPECT_TRUE(r1.freespace.is_free(Vector2d(2.5, 0.0)));    // (3, 1): the hallway before
+  EXPECT_TRUE(r1.freespace.is_free(Vector2d(4.5, 0.0)));    // (5, 1): in the crossing
+  EXPECT_FALSE(r1.freespace.is_free(Vector2d(7.5, 0.0)));   // (8, 1): the hallway ahead
+  EXPECT_FALSE(r1.freespace.is_free(Vector2d(4.5, 3.0)));   // (5, 4): the north branch
+  EXPECT_LT(r1.bbox_max.x(), 6.0 - 0.5 + 0.2);
+  const auto r2 = d.kernel.describe_region(2);
+  const geometry::Pose2 r2_from_map = m.region(2)->map_from_region.inverse();
+  EXPECT_TRUE(r2.freespace.is_free(r2_from_map * Vector2d(8, 1)));
+  EXPECT_FALSE(r2.freespace.is_free(r2_from_map * Vector2d(2, 1)));
+}
+
+TEST(RgKernel, DoorwayTheDetectorMissedIsCrossedAsAGateway)
+{
+  // No gateway event: the robot drives from room A through the door into room B. Room A's line
+  // map shows the door (a 1 m gap in the wall x = 4); the step through it is a gateway
+  // traversal. The detector's late report of the same crossing changes nothing.
+  Drive d;
+  for (double x = 1.1; x < 7.5; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
+  const auto& m = d.kernel.map();
+  ASSERT_EQ(d.kernel.stats().regions, 2);
+  ASSERT_EQ(m.gateways().size(), 1u);
+  const auto& g = m.gateways().begin()->second;
+  EXPECT_EQ(g.region_a, 1);
+  EXPECT_EQ(g.region_b, 2);
+  EXPECT_EQ(g.cls, rgmap::GatewayClass::kNarrowPassage);
+  EXPECT_EQ(m.current_region, 2);
+  const auto r1 = d.kernel.describe_region(1);   // frame: (1.1, 1.5)
+  EXPECT_TRUE(r1.freespace.is_free(Vector2d(1.9, 0.0)));    // (3, 1.5)
+  EXPECT_FALSE(r1.freespace.is_free(Vector2d(4.9, 0.0)));   // (6, 1.5): room B
+  EXPECT_EQ(r1.nscans, 15);                                  // x = 1.1 .. 3.9
+
+  d.traverse_door(4.6, 0);
+  EXPECT_EQ(m.current_region, 2);
+  EXPECT_EQ(m.gateways().size(), 1u);
+  EXPECT_EQ(m.gateways().begin()->second.traversals, 1);
+  // Going back is a traversal the other way.
+  d.traverse_door(3.6, M_PI);
+  EXPECT_EQ(m.current_region, 1);
+  EXPECT_TRUE(m.consistency_problems().empty());
+}
+
+TEST(RgKernel, FreespaceEndsAtTheGatewaysOfOtherRegions)
+{
+  // Rooms A, B, E in a row (x in [0, 4], [4, 8], [8, 11]), doors at x = 0, 4 and 8 (y in
+  // [1, 2]). A's robot sees through both inner doors as far as E, then leaves by the west door.
+  // Later (a loop through unmapped space) the robot is in E and goes through the door E -> B:
+  // a gateway of two other regions, beyond which A's beams end too.
+  KernelOptions o;
+  o.build.doorways.enabled = false;   // only gateways: the line map's doorways are another test
+  Drive d(o);
+  using V = Vector2d;
+  d.walls = {{V(0, 0), V(11, 0)}, {V(0, 3), V(11, 3)}, {V(0, 0), V(0, 1)}, {V(0, 2), V(0, 3)},   {V(4, 0), V(4, 1)},
+             {V(4, 2), V(4, 3)},  {V(8, 0), V(8, 1)},  {V(8, 2), V(8, 3)}, {V(11, 0), V(11, 3)}};
+  for (double x = 0.5; x < 3.6; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
+  for (double x = 3.5; x > 0.6; x -= 0.5) d.scan_at(geometry::Pose2(x, 1.5, M_PI));
+  GatewayEventInput west;
+  west.utime = (d.t += 1000);
+  west.kind = GatewayEventInput::Kind::kTraversed;
+  west.track_id = 1;
+  west.cls = rgmap::GatewayClass::kDoor;
+  west.map_from_base = geometry::Pose2(-0.4, 1.5, M_PI);
+  west.gateway_points = {V(0, 1), V(0, 2)};
+  west.direction = M_PI;
+  d.kernel.add_gateway_event(west);
+  const geometry::Pose2 r1_from_map = d.kernel.map().region(1)->map_from_region.inverse();
+  EXPECT_TRUE(d.kernel.refreshed_map().region(1)->freespace.is_free(r1_from_map * V(10, 1.5)));   // E, through 2 doors
+
+  for (double x = 10.5; x > 8.4; x -= 0.2) d.scan_at(geometry::Pose2(x, 1.5, M_PI));
+  GatewayEventInput east = west;
+  east.utime = (d.t += 1000);
+  east.track_id = 2;
+  east.map_from_base = geometry::Pose2(7.6, 1.5, M_PI);
+  east.gateway_points = {V(8, 1), V(8, 2)};
+  d.kernel.add_gateway_event(east);
+  const auto& m = d.kernel.map();
+  ASSERT_EQ(d.kernel.stats().regions, 3);
+  const auto& g = *m.gateway(2);
+  EXPECT_NE(g.region_a, 1);
+  EXPECT_NE(g.region_b, 1);
+  const rgmap::Region& a = *d.kernel.refreshed_map().region(1);   // described again: a new gateway stands in its view
+  EXPECT_TRUE(a.freespace.is_free(r1_from_map * V(2, 1.5)));
+  EXPECT_TRUE(a.freespace.is_free(r1_from_map * V(6, 1.5)));    // B: no gateway at x = 4 yet
+  EXPECT_FALSE(a.freespace.is_free(r1_from_map * V(10, 1.5)));  // E: beyond the gateway of B and E
+  EXPECT_TRUE(m.consistency_problems().empty());
 }
 
 TEST(RgKernel, CorrectedScanIsReplacedNotDuplicated)

@@ -1,0 +1,94 @@
+#include "procs/rg_kernel/doorways.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "procs/rg_kernel/region_builder.h"
+
+namespace rgnav::rg_kernel {
+
+using Eigen::Vector2d;
+
+namespace {
+
+// Distance of p from the infinite line through a and b.
+double line_distance(const Vector2d& p, const Vector2d& a, const Vector2d& b)
+{
+  const Vector2d u = (b - a).normalized();
+  const Vector2d d = p - a;
+  return std::fabs(u.x() * d.y() - u.y() * d.x());
+}
+
+// Angle between the directions of two lines, in [0, pi/2].
+double line_angle(const Vector2d& u, const Vector2d& v)
+{
+  const double c = std::fabs(u.normalized().dot(v.normalized()));
+  return std::acos(std::min(1.0, c));
+}
+
+}  // namespace
+
+std::vector<Line> find_doorways(const std::vector<rgmap::LineSegment>& segments, const DoorwayOptions& o)
+{
+  std::vector<Line> out;
+  if (!o.enabled) return out;
+  std::vector<size_t> walls;
+  for (size_t i = 0; i < segments.size(); ++i)
+    if ((segments[i].b - segments[i].a).norm() >= o.min_wall_length) walls.push_back(i);
+  for (size_t wi = 0; wi < walls.size(); ++wi) {
+    const auto& s = segments[walls[wi]];
+    for (size_t wj = wi + 1; wj < walls.size(); ++wj) {
+      const auto& t = segments[walls[wj]];
+      if (line_angle(s.b - s.a, t.b - t.a) > o.max_angle) continue;
+      // The facing ends: the pair of end points, one of each, closest together.
+      const Vector2d se[2] = {s.a, s.b}, te[2] = {t.a, t.b};
+      int bi = 0, bj = 0;
+      double best = std::numeric_limits<double>::max();
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+          if (const double d = (se[i] - te[j]).norm(); d < best) best = d, bi = i, bj = j;
+      if (best < o.min_width || best > o.max_width) continue;
+      const Vector2d p = se[bi], q = te[bj];
+      // One straight wall with a gap: the gap lies along both pieces, each end on the other's line,
+      // and the pieces lie on either side of the gap (not overlapping side by side).
+      if (line_angle(q - p, s.b - s.a) > o.max_angle) continue;
+      if (line_distance(q, s.a, s.b) > o.max_offset || line_distance(p, t.a, t.b) > o.max_offset) continue;
+      const Vector2d u = (q - p).normalized();
+      if (u.dot(se[1 - bi] - p) > 0 || u.dot(te[1 - bj] - q) < 0) continue;
+      out.push_back({p, q});
+    }
+  }
+  return out;
+}
+
+std::optional<Line> doorway_stepped_through(const std::vector<rgmap::LineSegment>& segments, const Vector2d& from,
+                                            const Vector2d& to, const DoorwayOptions& o)
+{
+  if (!o.enabled || (to - from).norm() > o.max_width) return std::nullopt;
+  // Only wall pieces near the step can frame a doorway it goes through.
+  const double reach = o.max_width + 0.5 * (to - from).norm() + 0.5;
+  const Vector2d mid = 0.5 * (from + to);
+  std::vector<rgmap::LineSegment> near;
+  for (const auto& seg : segments) {
+    const Vector2d d = seg.b - seg.a;
+    const double t = d.squaredNorm() > 0 ? std::clamp((mid - seg.a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    if ((seg.a + t * d - mid).norm() <= reach) near.push_back(seg);
+  }
+  for (const auto& [p, q] : find_doorways(near, o))
+    if (segments_cross(from, to, p, q)) return Line{p, q};
+  return std::nullopt;
+}
+
+std::vector<Line> doorways_not_crossed(const std::vector<Line>& doorways, const std::vector<Vector2d>& path)
+{
+  std::vector<Line> out;
+  for (const auto& [a, b] : doorways) {
+    bool crossed = false;
+    for (size_t k = 0; k + 1 < path.size() && !crossed; ++k) crossed = segments_cross(path[k], path[k + 1], a, b);
+    if (!crossed) out.push_back({a, b});
+  }
+  return out;
+}
+
+}  // namespace rgnav::rg_kernel

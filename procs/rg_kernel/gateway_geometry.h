@@ -1,0 +1,29 @@
+// Gateways as boundaries of regions' free space (diss. 5.2: beams that cross a gateway are not
+// the region's). A narrow passage is one line; a crossing is the outline of the junction (the
+// gateway detector's four points: entry, left, ahead and right sides, diss. fig. 4.1). The
+// junction is shared by the regions it joins: a region's beams may enter it through the sides
+// its robot came in or left by, and end where they leave it through any other side. Every other
+// region's beams end where they first cross its outline.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <utility>
+#include <vector>
+
+namespace rgnav::rg_kernel {
+
+using Line = std::pair<Eigen::Vector2d, Eigen::Vector2d>;
+
+// The boundary lines of one gateway: four points are a closed outline (its four sides),
+// otherwise consecutive point pairs are lines.
+std::vector<Line> gateway_edges(const std::vector<Eigen::Vector2d>& points);
+
+// The lines of one gateway (points in the region frame) that end the beams of a region whose
+// robot stood at `origins` (region frame): all its edges, except for an outline the sides with
+// one of the origins just outside them (less than `side_reach` beyond the side, not beside it):
+// the region lies beyond those.
+std::vector<Line> clip_lines(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& origins,
+                             double side_reach);
+
+}  // namespace rgnav::rg_kernel
