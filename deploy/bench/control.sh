@@ -43,7 +43,7 @@ done
 # 2. Tracking and obstacle courses on the simulator (part of the load at first; it goes on
 #    alone once the jitter measurement is over).
 "$BUILD/bin/control_bench" --config-dir "$ROOT/config" --out "$tmp/sim.json" \
-  --courses "$courses" --chains "$chains" > /dev/null &
+  --courses "$courses" --chains "$chains" --personal-space 0.4 --oblivious-too > /dev/null &
 bench_pid=$!
 sleep "$jitter_s"
 kill -TERM "$lld_pid"
@@ -69,9 +69,14 @@ out = {
     "plant": sim["plant"],
     "notes": "xtrack_* and time_pred_err_pct: odometry pose the lld tracks, 0.6 m/s runs, max over runs; "
              "true-pose errors (incl. odometry drift) and 0.3 m/s runs under 'tracking'. Jitter: real lld "
-             "executable, |actual - nominal| period, with one busy loop per core plus this benchmark running.",
+             "executable, |actual - nominal| period, with one busy loop per core plus this benchmark running. "
+             "Courses: people walking toward the robot wait 0.4 m from it (personal_space, as people let a "
+             "robot pass); 'obstacle_courses_oblivious_people' repeats them with people who wait only rather "
+             "than touch it. Targets are re-expressed in the odometry frame from the true pose (a perfect "
+             "localizer) whenever the odometry drift has moved.",
     "tracking": sim["tracking"],
     "obstacle_courses": sim["obstacle_courses"],
+    "obstacle_courses_oblivious_people": sim.get("obstacle_courses_oblivious_people"),
     "loop": loop,
 }
 json.dump(out, open(sys.argv[3], "w"), indent=2)

@@ -49,9 +49,15 @@ void People::advance(double dt, const Circle& robot)
     const Vec2 next = position(i, next_s);
     const Vec2 now = position(i, st.s);
     const double gap = p.radius + robot.radius;
-    // Wait when the step would bring the person closer than touching the robot.
+    // Wait when the step would bring the person closer than touching the robot, or, walking
+    // toward it, closer than the personal space.
     const double d_next = (next - robot.center).norm();
-    if (d_next < gap && d_next < (now - robot.center).norm()) continue;
+    const double d_now = (now - robot.center).norm();
+    if (d_next < gap && d_next < d_now) continue;
+    const Vec2 step = next - now, to_robot = robot.center - now;
+    const bool toward = step.norm() > 1e-12 && to_robot.norm() > 1e-12 &&
+                        step.dot(to_robot) > std::cos(70.0 * M_PI / 180.0) * step.norm() * to_robot.norm();
+    if (p.personal_space > 0.0 && toward && d_next < gap + p.personal_space && d_next < d_now) continue;
     st.s = next_s;
   }
 }

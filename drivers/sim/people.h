@@ -1,5 +1,6 @@
 // People walking their paths at constant speed. A person who would step into the robot
-// waits instead (people do not walk through robots, and the robot never drives into them).
+// waits instead (people do not walk through robots, and the robot never drives into them);
+// with a personal space, a person walking toward the robot waits that far from it.
 #pragma once
 
 #include <vector>

@@ -87,6 +87,10 @@ struct Person
   double radius = 0.22;
   double height = 1.75;
   double start_delay = 0.0;  // [s] stands at path[0] until then
+  // Walking toward the robot (within 70 degrees of the walking direction), the person waits
+  // rather than come closer than this to it, surface to surface, as people let a robot
+  // pass; 0: only rather than touch it.
+  double personal_space = 0.0;  // [m]
 };
 
 enum class RegionKind { kRoom, kHallway, kLobby, kOther };

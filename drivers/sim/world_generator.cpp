@@ -239,6 +239,10 @@ World office_world()
   w.people.push_back(make_person("walker_b", {{30.0, 12.6}, {8.0, 12.6}}, 0.7, false, 5.0));
   w.people.push_back(make_person("visitor", {{21.5, 4.5}, {24.5, 4.5}, {24.5, 1.0}, {21.5, 1.0}}, 0.6, true, 0.0));
   w.people.push_back(make_person("walker_c", {{20.0, 25.0}, {36.0, 25.0}, {36.0, 15.0}}, 0.8, false, 10.0));
+  // Office people let the robot pass, as people in an office do (world.h): walking the
+  // hallways back and forth without ever giving way, they locked the demo robot in front of
+  // hall_c for minutes.
+  for (auto& p : w.people) p.personal_space = 0.4;
 
   using G = GatewayClass;
   // The crossing square belongs to hall_a; the X-crossing joins both halves of hall_b to it.

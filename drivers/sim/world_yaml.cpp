@@ -207,6 +207,7 @@ World parse_world_yaml(const config::Config& cfg, const std::string& base_dir)
     p.radius = c.number("radius", p.radius, 0.05, 1.0);
     p.height = c.number("height", p.height, 0.5, 2.5);
     p.start_delay = c.number("start_delay", p.start_delay, 0.0, 1e7);
+    p.personal_space = c.number("personal_space", p.personal_space, 0.0, 5.0);
     world.people.push_back(p);
   }
   std::set<std::string> region_names;
@@ -309,7 +310,8 @@ std::string world_to_yaml(const World& w)
   for (const auto& p : w.people)
     o << "  - {name: " << quoted(p.name) << ", path: " << points_text(p.path) << ", speed: " << num(p.speed)
       << ", loop: " << (p.loop ? "true" : "false") << ", radius: " << num(p.radius) << ", height: " << num(p.height)
-      << ", start_delay: " << num(p.start_delay) << "}\n";
+      << ", start_delay: " << num(p.start_delay)
+      << (p.personal_space > 0.0 ? ", personal_space: " + num(p.personal_space) : std::string()) << "}\n";
   if (!w.regions.empty()) o << "regions:\n";
   for (const auto& r : w.regions)
     o << "  - {name: " << quoted(r.name) << ", kind: " << to_string(r.kind) << ", polygon: " << points_text(r.polygon) << "}\n";

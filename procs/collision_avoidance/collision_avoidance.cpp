@@ -272,21 +272,26 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::backing_off(time::Time
   const double heading = std::atan2(away.y(), away.x());
   const double dth = geometry::normalize_angle(heading - pose_.theta());
   const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
-  if (std::fabs(dth) > 0.3) {
-    if (!standing) return stop(now, Mode::kReactive, "reactive fallback: backing off, stopping first");
-    const double t = trajectory::turn_duration(dth, options_.omega_max, 1.0);
-    if (active_ && !stopped_ && mode_ == Mode::kReactive && status_ == kTurningAway &&
-        time::to_seconds(now - last_sent_) < t)
-      return std::nullopt;  // the turn is under way
-    status_ = kTurningAway;
-    return commit_backoff(send_new(Chain({Segment::turn(pose_, dth)}), now, t, Mode::kReactive), now, t);
-  }
+  const bool turn_first = std::fabs(dth) > 0.3;
+  if (turn_first && !standing) return stop(now, Mode::kReactive, "reactive fallback: backing off, stopping first");
+  // Turn and drive out as one committed manoeuvre: turning first and deciding the way out
+  // afterwards made the robot turn back and forth beside a person who stood waiting for it
+  // (what the laser saw of them changed with every turn, and so did "away").
   Segment out = Segment::line(Pose2(here, heading), options_.backoff_length);
   out.set_v_max(options_.backoff_speed);
-  Chain c({out});
-  if (first_collision(c, map_, clearance, options_.planner.check_step)) return std::nullopt;
-  status_ = "reactive fallback: backing off, driving away";
-  const double t = options_.backoff_length / options_.backoff_speed;
+  Chain c = turn_first ? Chain({Segment::turn(pose_, dth), out}) : Chain({out});
+  const double t_turn = turn_first ? trajectory::turn_duration(dth, options_.omega_max, 1.0) : 0.0;
+  if (first_collision(c, map_, clearance, options_.planner.check_step)) {
+    if (!turn_first) return std::nullopt;
+    // No way out that way: still face it (the turn brings the space there into view).
+    if (active_ && !stopped_ && mode_ == Mode::kReactive && status_ == kTurningAway &&
+        time::to_seconds(now - last_sent_) < t_turn)
+      return std::nullopt;  // the turn is under way
+    status_ = kTurningAway;
+    return commit_backoff(send_new(Chain({Segment::turn(pose_, dth)}), now, t_turn, Mode::kReactive), now, t_turn);
+  }
+  status_ = turn_first ? "reactive fallback: backing off, turning and driving away" : "reactive fallback: backing off, driving away";
+  const double t = t_turn + options_.backoff_length / options_.backoff_speed;
   return commit_backoff(send_new(std::move(c), now, t, Mode::kReactive), now, t);
 }
 

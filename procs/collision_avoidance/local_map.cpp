@@ -93,10 +93,22 @@ void LocalMap::rebuild(time::Time now)
   for (auto it = hits_.begin(); it != hits_.end();)
     it = time::to_seconds(now - it->second.last) > keep ? hits_.erase(it) : std::next(it);
   moving_.clear();
+  auto is_static = [&](int64_t k) {
+    auto it = hits_.find(k);
+    return it != hits_.end() && time::to_seconds(it->second.last - it->second.first) >= options_.static_after;
+  };
   for (const auto& p : points_) {
-    auto it = hits_.find(cell_key(p));
-    if (it == hits_.end() || time::to_seconds(it->second.last - it->second.first) < options_.static_after)
-      moving_.push_back(p);
+    if (is_static(cell_key(p))) continue;
+    // A young cell right beside a static one extends what stands there (the face of a box
+    // coming into view as the robot drives round it); treating those as possibly moving kept
+    // the robot creeping past boxes, stopping for every newly seen piece of their sides.
+    const int cx = static_cast<int>(std::floor(p.x() / options_.cell));
+    const int cy = static_cast<int>(std::floor(p.y() / options_.cell));
+    bool extends_static = false;
+    for (int dx = -1; dx <= 1 && !extends_static; ++dx)
+      for (int dy = -1; dy <= 1 && !extends_static; ++dy)
+        if ((dx || dy) && is_static(key(cx + dx, cy + dy))) extends_static = true;
+    if (!extends_static) moving_.push_back(p);
   }
   // Remembered points from before the kept scans (the kept ones are in already); static:
   // what stays out of view stays where it was as far as the robot can tell.

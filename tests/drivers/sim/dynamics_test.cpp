@@ -243,6 +243,40 @@ TEST(People, WalkTheirPathsAndAreSeen)
   EXPECT_NEAR(out.scans[0].ranges[90], 8.0 - 0.22 - 0.12, 0.0011);
 }
 
+TEST(People, WaitForTheRobotAtTheirPersonalSpace)
+{
+  // A person walking straight at the standing robot (start -6,0; radius 0.26) stops touching
+  // it without a personal space, 0.4 m from it with one, and never walks on into it.
+  for (const double space : {0.0, 0.4}) {
+    World w = box_world(8.0);
+    w.start = {-6, 0, 0};
+    Person p;
+    p.path = {{2, 0}, {-7.5, 0}};
+    p.speed = 1.0;
+    p.loop = false;
+    p.personal_space = space;
+    w.people.push_back(p);
+    Simulator sim(w, quiet_options());
+    sim.step(microseconds(12'000'000));
+    const double gap = (sim.people()[0].center - Vec2(-6, 0)).norm() - p.radius - 0.26;
+    EXPECT_GE(gap, space - 1e-9) << space;
+    EXPECT_LT(gap, space + 0.05) << space;
+    EXPECT_EQ(sim.collisions(), 0);
+  }
+  // Walking away from the robot nobody waits.
+  World w = box_world(8.0);
+  w.start = {-6, 0, 0};
+  Person away;
+  away.path = {{-5.2, 0}, {3, 0}};
+  away.speed = 1.0;
+  away.loop = false;
+  away.personal_space = 0.4;
+  w.people.push_back(away);
+  Simulator sim(w, quiet_options());
+  sim.step(microseconds(2'000'000));
+  EXPECT_NEAR(sim.people()[0].center.x(), -3.2, 1e-6);
+}
+
 TEST(Doors, ScheduledDoorClosesDuringTheRun)
 {
   World w = box_world(8.0);

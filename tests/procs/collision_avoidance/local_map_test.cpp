@@ -50,6 +50,32 @@ TEST(LocalMap, DistanceFieldShortcutAgreesWithExactSearch)
   }
 }
 
+TEST(LocalMap, NewlySeenPartOfAStaticFaceIsNotPossiblyMoving)
+{
+  // A wall face seen for 1.5 s (static); then the next 0.12 m of it (cells right beside the
+  // static ones) come into view, and a blob appears 1 m away from everything. Only the blob
+  // may be a person stepping in.
+  LocalMap map(LocalMapOptions{});
+  auto scan = [](int64_t us, bool more) {
+    ScanPoints s;
+    s.stamp = time::from_utime(us);
+    for (double y = -1.0; y <= 0.0 + 1e-9; y += 0.02) s.points.emplace_back(2.0, y);
+    if (more) {
+      for (double y = 0.02; y <= 0.12 + 1e-9; y += 0.02) s.points.emplace_back(2.0, y);
+      for (double a = -0.5; a <= 0.5; a += 0.1) s.points.emplace_back(1.0 + 0.1 * std::cos(a), 1.0 + 0.1 * std::sin(a));
+    }
+    return s;
+  };
+  int64_t t = 1'000'000;
+  for (; t < 2'500'000; t += 26'667) map.add_scan(scan(t, false));
+  map.add_scan(scan(t, true));
+  map.rebuild(time::from_utime(t));
+  // Possibly moving points within 0.2 m of the blob, none near the wall's new end.
+  EXPECT_LT(map.clearance_moving({1.0, 1.0}, 0.5), 0.2);
+  EXPECT_TRUE(std::isinf(map.clearance_moving({2.0, 0.12}, 0.5)));
+  EXPECT_LT(map.clearance({2.0, 0.12}, 0.5), 0.05);  // still an obstacle, with the plain margin
+}
+
 TEST(LocalMap, GridPointsAndScanCount)
 {
   LocalMapOptions o;

@@ -94,7 +94,7 @@ bool passable(const sim::World& world, const Eigen::Vector2d& from, const Eigen:
   return false;
 }
 
-CourseDraw draw_course(std::mt19937& rng, double clearance)
+CourseDraw draw_course(std::mt19937& rng, double clearance, double personal_space)
 {
   CourseDraw d;
   for (;; ++d.redrawn) {
@@ -125,6 +125,7 @@ CourseDraw draw_course(std::mt19937& rng, double clearance)
       p.loop = false;
       p.speed = pv(rng);
       p.start_delay = pd(rng);
+      p.personal_space = personal_space;
       // People walk around furniture: the whole crossing keeps their radius from the boxes.
       for (double t = 0.0; t <= 1.0 + 1e-9; t += 0.02) {
         const Eigen::Vector2d q = p.path[0] + t * (p.path[1] - p.path[0]);

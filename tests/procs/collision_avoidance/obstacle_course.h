@@ -27,7 +27,8 @@ struct CourseDraw
 };
 
 // `clearance`: robot radius plus safety margin the static obstacles must leave on some path.
-CourseDraw draw_course(std::mt19937& rng, double clearance);
+// `personal_space`: the people's (world.h Person); the course geometry does not depend on it.
+CourseDraw draw_course(std::mt19937& rng, double clearance, double personal_space);
 
 // Whether a disc of radius `clearance` can move from `from` to `to` among the world's walls
 // and boxes (grid search at `cell`, conservative by half a cell diagonal).
