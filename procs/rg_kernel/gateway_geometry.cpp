@@ -1,5 +1,6 @@
 #include "procs/rg_kernel/gateway_geometry.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rgnav::rg_kernel {
@@ -25,29 +26,39 @@ std::vector<Line> gateway_edges(const std::vector<Vector2d>& points)
   return edges;
 }
 
+bool EdgeFrame::just_beyond(const Vector2d& p, double reach) const
+{
+  const double depth = normal.dot(p - mid);
+  return depth > 0 && depth < reach && std::fabs(along.dot(p - mid)) < 0.5 * length + kSideMargin;
+}
+
+std::vector<EdgeFrame> edge_frames(const std::vector<Vector2d>& points)
+{
+  Vector2d centre = Vector2d::Zero();
+  for (const auto& q : points) centre += q;
+  if (!points.empty()) centre /= static_cast<double>(points.size());
+  std::vector<EdgeFrame> out;
+  for (const auto& [a, b] : gateway_edges(points)) {
+    EdgeFrame e;
+    e.line = {a, b};
+    e.length = (b - a).norm();
+    if (e.length < 1e-6) continue;
+    e.along = (b - a) / e.length;
+    e.normal = Vector2d(-e.along.y(), e.along.x());
+    e.mid = 0.5 * (a + b);
+    if (points.size() == 4 && e.normal.dot(centre - e.mid) > 0) e.normal = -e.normal;  // outward
+    out.push_back(e);
+  }
+  return out;
+}
+
 std::vector<Line> clip_lines(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach)
 {
-  std::vector<Line> edges = gateway_edges(points);
-  if (points.size() != 4) return edges;
-  const Vector2d centre = 0.25 * (points[0] + points[1] + points[2] + points[3]);
+  if (points.size() != 4) return gateway_edges(points);
   std::vector<Line> out;
-  for (const auto& [a, b] : edges) {
-    Vector2d u = b - a;
-    const double len = u.norm();
-    if (len < 1e-6) continue;
-    u /= len;
-    Vector2d n(-u.y(), u.x());
-    const Vector2d m = 0.5 * (a + b);
-    if (n.dot(centre - m) > 0) n = -n;   // outward
-    bool open = false;
-    for (const auto& o : origins) {
-      const double depth = n.dot(o - m), along = u.dot(o - m);
-      if (depth > 0 && depth < side_reach && std::fabs(along) < 0.5 * len + kSideMargin) {
-        open = true;
-        break;
-      }
-    }
-    if (!open) out.push_back({a, b});
+  for (const EdgeFrame& e : edge_frames(points)) {
+    const bool open = std::any_of(origins.begin(), origins.end(), [&](const Vector2d& o) { return e.just_beyond(o, side_reach); });
+    if (!open) out.push_back(e.line);
   }
   return out;
 }

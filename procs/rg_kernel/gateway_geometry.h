@@ -19,6 +19,22 @@ using Line = std::pair<Eigen::Vector2d, Eigen::Vector2d>;
 // otherwise consecutive point pairs are lines.
 std::vector<Line> gateway_edges(const std::vector<Eigen::Vector2d>& points);
 
+// A gateway line with its own frame: midpoint, unit direction, unit normal (for an outline
+// pointing out of it, otherwise to the left of the line's direction) and length.
+struct EdgeFrame
+{
+  Line line;
+  Eigen::Vector2d mid, along, normal;
+  double length = 0.0;
+
+  // Whether p lies beyond the line along its normal, less than `reach` from it and not beside
+  // its ends (a robot leaving diagonally, pose noise: up to 0.5 m beside them still counts).
+  bool just_beyond(const Eigen::Vector2d& p, double reach) const;
+};
+
+// gateway_edges with their frames; zero-length lines are left out.
+std::vector<EdgeFrame> edge_frames(const std::vector<Eigen::Vector2d>& points);
+
 // The lines of one gateway (points in the region frame) that end the beams of a region whose
 // robot stood at `origins` (region frame): all its edges, except for an outline the sides with
 // one of the origins just outside them (less than `side_reach` beyond the side, not beside it):

@@ -23,21 +23,10 @@ namespace {
 bool past_gateway(const Vector2d& p, const std::vector<Vector2d>& points, double heading, double reach)
 {
   const Vector2d dir(std::cos(heading), std::sin(heading));
-  const bool outline = points.size() == 4;
-  Vector2d centre = Vector2d::Zero();
-  for (const auto& q : points) centre += q;
-  if (!points.empty()) centre /= static_cast<double>(points.size());
-  for (const auto& [a, b] : gateway_edges(points)) {
-    Vector2d u = b - a;
-    const double len = u.norm();
-    if (len < 1e-6) continue;
-    u /= len;
-    Vector2d n(-u.y(), u.x());
-    const Vector2d m = 0.5 * (a + b);
-    if (outline ? n.dot(centre - m) > 0 : n.dot(dir) < 0) n = -n;
-    if (n.dot(dir) < 0.5) continue;  // the crossing does not go out through this line
-    const double depth = n.dot(p - m), along = u.dot(p - m);
-    if (depth > 0 && depth < reach && std::fabs(along) < 0.5 * len + 0.5) return true;
+  for (EdgeFrame e : edge_frames(points)) {
+    if (points.size() != 4 && e.normal.dot(dir) < 0) e.normal = -e.normal;  // a line: its side the crossing went to
+    if (e.normal.dot(dir) < 0.5) continue;  // the crossing does not go out through this line
+    if (e.just_beyond(p, reach)) return true;
   }
   return false;
 }
