@@ -238,7 +238,12 @@ World office_world()
   w.people.push_back(make_person("walker_a", {{3.0, 13.3}, {37.0, 13.3}}, 0.9, false, 0.0));
   w.people.push_back(make_person("walker_b", {{30.0, 12.6}, {8.0, 12.6}}, 0.7, false, 5.0));
   w.people.push_back(make_person("visitor", {{21.5, 4.5}, {24.5, 4.5}, {24.5, 1.0}, {21.5, 1.0}}, 0.6, true, 0.0));
-  w.people.push_back(make_person("walker_c", {{20.0, 25.0}, {36.0, 25.0}, {36.0, 15.0}}, 0.8, false, 10.0));
+  // walker_c keeps to the right of the 2 m hallways hall_c and hall_d, as people do: walking
+  // their centre line back and forth, a person waiting for the robot left it no room to pass
+  // (0.78 m either side for a robot that needs 2 x 0.36 m), and the demo stood there for good.
+  w.people.push_back(make_person("walker_c",
+                                 {{20.0, 24.6}, {35.6, 24.6}, {35.6, 15.0}, {36.4, 15.0}, {36.4, 25.4}, {20.0, 25.4}},
+                                 0.8, true, 10.0));
   // Office people let the robot pass, as people in an office do (world.h): walking the
   // hallways back and forth without ever giving way, they locked the demo robot in front of
   // hall_c for minutes.

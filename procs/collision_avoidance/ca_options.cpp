@@ -44,6 +44,7 @@ CaNodeOptions load_ca_options(const config::Config& root)
   po.max_speed = ppl.number("max_speed_mps", po.max_speed, 0.1, 10.0);
   po.horizon = ppl.number("horizon_s", po.horizon, 0.0, 10.0);
   po.step = ppl.number("step_s", po.step, 0.05, 2.0);
+  po.max_still_there = ppl.number("max_still_there", po.max_still_there, 0.0, 1.0);
 
   const auto pl = root.section("planner");
   c.planner.safety_margin = pl.number("safety_margin_m", c.planner.safety_margin, 0.0, 1.0);

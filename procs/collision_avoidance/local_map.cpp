@@ -11,8 +11,9 @@ namespace rgnav::collision_avoidance {
 void LocalMap::add_scan(ScanPoints scan)
 {
   const bool memory = options_.memory > 0.0;
+  const BeamView view(scan, options_.clear_margin);
   // Before this scan's hits are remembered: they lie at their own beams' ends.
-  if (memory) forget_seen_through(scan);
+  if (memory) forget_seen_through(view);
   // One pass over the hits: how long each cell has been hit decides whether a point may be
   // moving (the people tracker's input) or stands still (remembered: a person walking
   // leaves no trail of obstacles behind in places no beam looks at again).
@@ -28,7 +29,10 @@ void LocalMap::add_scan(ScanPoints scan)
     else if (memory)
       remembered_[memory_key(p)] = {p, scan.stamp};
   }
-  tracker_.update(scan.stamp, young);
+  if (view.empty())
+    tracker_.update(scan.stamp, young);
+  else
+    tracker_.update(scan.stamp, young, [&view](const Eigen::Vector2d& p) { return view.look(p); });
   if (memory && !scan.outline.empty() &&
       (views_.empty() || time::to_seconds(scan.stamp - views_.back().stamp) >= options_.view_interval)) {
     ScanPoints view;
@@ -42,31 +46,35 @@ void LocalMap::add_scan(ScanPoints scan)
   while (static_cast<int>(scans_.size()) > options_.max_scans) scans_.pop_front();
 }
 
-void LocalMap::forget_seen_through(const ScanPoints& scan)
+BeamView::BeamView(const ScanPoints& scan, double margin)
+    : laser_from_odom_(Pose2(scan.laser_origin, 0.0).inverse() * scan.odom_from_base.inverse()), margin_(margin)
 {
-  if (scan.outline.size() < 2 || remembered_.empty()) return;
-  // The scan as (bearing, free range) around the laser, in bearing order.
-  std::vector<std::pair<double, double>> beams;
-  beams.reserve(scan.outline.size());
+  beams_.reserve(scan.outline.size());
   for (const auto& e : scan.outline) {
     const Eigen::Vector2d d = e - scan.laser_origin;
-    beams.emplace_back(std::atan2(d.y(), d.x()), d.norm());
+    beams_.emplace_back(std::atan2(d.y(), d.x()), d.norm());
   }
-  std::sort(beams.begin(), beams.end());
-  const Pose2 base_from_odom = scan.odom_from_base.inverse();
-  for (auto it = remembered_.begin(); it != remembered_.end();) {
-    const Eigen::Vector2d q = base_from_odom * it->second.point - scan.laser_origin;
-    const double bearing = std::atan2(q.y(), q.x());
-    auto hi = std::lower_bound(beams.begin(), beams.end(), std::make_pair(bearing, -1.0));
-    bool seen_through = false;
-    if (hi != beams.begin() && hi != beams.end()) {
-      // Both beams around the point reach past it: the space there is free now. (One beam
-      // only would clear the corners of a box a neighbouring beam grazes.)
-      const double reach = std::min(hi->second, std::prev(hi)->second);
-      seen_through = reach > q.norm() + options_.clear_margin;
-    }
-    it = seen_through ? remembered_.erase(it) : std::next(it);
-  }
+  std::sort(beams_.begin(), beams_.end());
+}
+
+SeenNow BeamView::look(const Eigen::Vector2d& odom_point) const
+{
+  const Eigen::Vector2d q = laser_from_odom_ * odom_point;
+  const double bearing = std::atan2(q.y(), q.x());
+  auto hi = std::lower_bound(beams_.begin(), beams_.end(), std::make_pair(bearing, -1.0));
+  if (hi == beams_.begin() || hi == beams_.end()) return SeenNow::kUnknown;
+  const auto lo = std::prev(hi);
+  const double d = q.norm();
+  if (std::min(hi->second, lo->second) > d + margin_) return SeenNow::kFreeNow;
+  if (std::max(hi->second, lo->second) < d - margin_) return SeenNow::kHidden;
+  return SeenNow::kStillThere;
+}
+
+void LocalMap::forget_seen_through(const BeamView& view)
+{
+  if (view.empty()) return;
+  for (auto it = remembered_.begin(); it != remembered_.end();)
+    it = view.look(it->second.point) == SeenNow::kFreeNow ? remembered_.erase(it) : std::next(it);
 }
 
 void LocalMap::set_grid_points(time::Time stamp, std::vector<Eigen::Vector2d> odom_points)

@@ -54,6 +54,26 @@ struct LocalMapOptions
 };
 
 // A scan's obstacle readings in the robot's base frame.
+struct ScanPoints;
+
+// One scan's beams as (bearing, free range) around the laser, in bearing order: what the scan
+// says about a place in the odom frame (people_tracker.h SeenNow).
+class BeamView
+{
+ public:
+  BeamView(const ScanPoints& scan, double margin);
+  // Both beams around the point reach past it by `margin`: free now; both end short of it
+  // by `margin`: hidden; otherwise (one of them ends at it) still there. One beam only
+  // would free the corners of a box a neighbouring beam grazes.
+  SeenNow look(const Eigen::Vector2d& odom_point) const;
+  bool empty() const { return beams_.size() < 2; }
+
+ private:
+  std::vector<std::pair<double, double>> beams_;
+  Pose2 laser_from_odom_;
+  double margin_;
+};
+
 struct ScanPoints
 {
   time::Time stamp{};
@@ -98,7 +118,7 @@ class LocalMap
 
  private:
   void build_field();
-  void forget_seen_through(const ScanPoints& scan);
+  void forget_seen_through(const BeamView& view);
   int64_t memory_key(const Eigen::Vector2d& p) const
   {
     return key(static_cast<int>(std::floor(p.x() / options_.memory_cell)),

@@ -49,7 +49,21 @@ void PeopleTracker::fit_velocity(Track& t) const
   t.velocity = (n * stp - st * sp) / den;
 }
 
-void PeopleTracker::update(time::Time stamp, const std::vector<Eigen::Vector2d>& moving_points)
+bool PeopleTracker::left_its_place(const Track& t, const SeenNowFn& seen_now) const
+{
+  if (!seen_now || t.clusters.size() < 2) return true;
+  int known = 0, still = 0;
+  for (const auto& p : t.clusters.front()) {
+    const SeenNow s = seen_now(p);
+    if (s == SeenNow::kUnknown) continue;
+    ++known;
+    if (s == SeenNow::kStillThere) ++still;
+  }
+  return known == 0 || still <= options_.max_still_there * known;
+}
+
+void PeopleTracker::update(time::Time stamp, const std::vector<Eigen::Vector2d>& moving_points,
+                           const SeenNowFn& seen_now)
 {
   std::vector<char> continued(tracks_.size(), 0);
   for (auto& cluster : clusters(moving_points)) {
@@ -70,17 +84,25 @@ void PeopleTracker::update(time::Time stamp, const std::vector<Eigen::Vector2d>&
       }
     }
     if (best < 0) {
-      tracks_.push_back(Track{next_id_++, {}, {}, Eigen::Vector2d::Zero(), stamp});
+      Track fresh;
+      fresh.id = next_id_++;
+      fresh.last_seen = stamp;
+      tracks_.push_back(std::move(fresh));
       continued.push_back(0);
       best = static_cast<int>(tracks_.size()) - 1;
     }
     Track& t = tracks_[static_cast<size_t>(best)];
     continued[static_cast<size_t>(best)] = 1;
     t.centroids.emplace_back(stamp, c);
-    while (time::to_seconds(stamp - t.centroids.front().first) > options_.history) t.centroids.pop_front();
+    t.clusters.push_back(cluster);
+    while (time::to_seconds(stamp - t.centroids.front().first) > options_.history) {
+      t.centroids.pop_front();
+      t.clusters.pop_front();
+    }
     t.points = std::move(cluster);
     t.last_seen = stamp;
     fit_velocity(t);
+    t.left_its_place = left_its_place(t, seen_now);
   }
   tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
                                [&](const Track& t) { return time::to_seconds(stamp - t.last_seen) > options_.lost_after; }),
@@ -96,7 +118,7 @@ std::vector<Eigen::Vector2d> PeopleTracker::predicted(time::Time now) const
     if (t.centroids.size() < 3 ||
         time::to_seconds(t.centroids.back().first - t.centroids.front().first) < 0.5 * options_.history)
       continue;
-    if (speed < options_.min_speed || speed > options_.max_speed) continue;
+    if (speed < options_.min_speed || speed > options_.max_speed || !t.left_its_place) continue;
     const double since = time::to_seconds(now - t.last_seen);
     for (double dt = options_.step; dt <= options_.horizon + 1e-9; dt += options_.step) {
       const Eigen::Vector2d shift = t.velocity * (since + dt);

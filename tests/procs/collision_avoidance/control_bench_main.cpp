@@ -13,6 +13,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <random>
 
 #include "collision_avoidance/ca_options.h"
@@ -256,6 +257,25 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
                   << " nseg=" << (ca.active() ? ca.active()->chain.size() : 0) << " map=" << ca.map().size()
                   << " clr=" << ca.map().clearance(odi.pose.translation(), 3.0) << " odom=" << odi.pose.x() << ","
                   << odi.pose.y() << "\n";
+      if (getenv("CB_DEBUG_NEAREST")) {
+        // Every tick: the nearest obstacle point in the base frame, the nearest possibly
+        // moving and predicted ones, and where the people are (phantom movers show here).
+        double best = std::numeric_limits<double>::infinity();
+        Eigen::Vector2d nearest(0.0, 0.0);
+        for (const auto& q : ca.map().points()) {
+          const double d = (q - odi.pose.translation()).norm();
+          if (d < best) {
+            best = d;
+            nearest = q;
+          }
+        }
+        const Eigen::Vector2d in_base = odi.pose.inverse() * nearest;
+        std::cerr << "  t=" << sim.time_s() << " nearest base " << in_base.x() << "," << in_base.y() << " d=" << best
+                  << " moving_d=" << ca.map().clearance_moving(odi.pose.translation(), 3.0)
+                  << " predicted_d=" << ca.map().clearance_predicted(odi.pose.translation(), 3.0) << " people";
+        for (const auto& disc : sim.people()) std::cerr << " " << disc.center.x() << "," << disc.center.y();
+        std::cerr << " '" << ca.status() << "'\n";
+      }
       if (ca.mode() == collision_avoidance::Mode::kArrived) {
         arrived = true;
         t_end = sim.time_s();
@@ -298,7 +318,8 @@ int main(int argc, char** argv)
   app.add_option("--out", out_path)->required();
   app.add_option("--chains", chains);
   app.add_option("--courses", ncourses);
-  app.add_option("--only", only, "run only this course (debugging; set CB_DEBUG=1 for a trace)");
+  app.add_option("--only", only,
+                 "run only this course (debugging; CB_DEBUG=1: a trace, CB_DEBUG_NEAREST=1: the nearest obstacles)");
   app.add_option("--seed", seed);
   app.add_option("--personal-space", personal_space,
                  "people walking toward the robot wait this far from it [m] (0: only rather than touch it)");

@@ -63,5 +63,56 @@ TEST(PeopleTracker, TwoPeopleKeepTheirOwnTracks)
   EXPECT_LT(tracker.tracks()[0].velocity.y() * tracker.tracks()[1].velocity.y(), 0.0);
 }
 
+
+// A face 2 m ahead coming into view as the robot turns: each scan sees 2 cm more of it. Its
+// young points' centroid slides along it like a slow walker.
+std::vector<Eigen::Vector2d> face_seen_up_to(double y_end)
+{
+  std::vector<Eigen::Vector2d> pts;
+  for (double y = -0.3; y <= y_end + 1e-9; y += 0.05) pts.push_back({2.0, y});
+  return pts;
+}
+
+TEST(PeopleTracker, AFaceComingIntoViewIsNoMover)
+{
+  PeopleTracker tracker(PeopleTrackerOptions{});
+  // The newest scan still hits the face where it was first seen.
+  const SeenNowFn still_hit = [](const Eigen::Vector2d& p) {
+    return std::fabs(p.x() - 2.0) < 0.05 ? SeenNow::kStillThere : SeenNow::kFreeNow;
+  };
+  time::Time t{};
+  for (int k = 0; k < 30; ++k) {
+    t = time::from_utime(1'000'000 + k * 26'667);
+    tracker.update(t, face_seen_up_to(0.2 + 0.02 * k), still_hit);
+  }
+  ASSERT_EQ(tracker.tracks().size(), 1u);
+  EXPECT_GT(tracker.tracks()[0].velocity.norm(), PeopleTrackerOptions{}.min_speed);  // it does "move"
+  EXPECT_FALSE(tracker.tracks()[0].left_its_place);
+  EXPECT_TRUE(tracker.predicted(t).empty());
+}
+
+TEST(PeopleTracker, APersonLeavesItsPlaceWalkingAsideOrTowardTheLaser)
+{
+  for (const SeenNow behind : {SeenNow::kFreeNow, SeenNow::kHidden}) {
+    PeopleTracker tracker(PeopleTrackerOptions{});
+    const Eigen::Vector2d v = behind == SeenNow::kFreeNow ? Eigen::Vector2d(0.0, 0.8) : Eigen::Vector2d(-0.8, 0.0);
+    Eigen::Vector2d centre(3.0, -0.5);
+    // The scan hits the person's current arc; where they were is free (walked aside) or
+    // hidden behind them (walked toward the laser at the origin).
+    const SeenNowFn seen = [&](const Eigen::Vector2d& p) {
+      return (p - centre).norm() < 0.25 ? SeenNow::kStillThere : behind;
+    };
+    time::Time t{};
+    for (int k = 0; k < 30; ++k) {
+      t = time::from_utime(1'000'000 + k * 26'667);
+      centre = Eigen::Vector2d(3.0, -0.5) + v * (k * 0.026667);
+      tracker.update(t, person(centre), seen);
+    }
+    ASSERT_EQ(tracker.tracks().size(), 1u);
+    EXPECT_TRUE(tracker.tracks()[0].left_its_place);
+    EXPECT_FALSE(tracker.predicted(t).empty());
+  }
+}
+
 }  // namespace
 }  // namespace rgnav::collision_avoidance
