@@ -11,6 +11,9 @@
 # maps, feeding its scans and odometry straight into the mapping library; relations metric
 # (Kuemmerle et al.) and ATE against the true poses. Each world is capped at SLAM_SIM_MAX_S
 # simulated seconds (default 1800); a capped run says so ("capped": true) in the JSON.
+# Every world is also driven with each simulator seed of SLAM_SIM_SEEDS (default 1,2,3; "" for
+# none): sim_seeds.<map> holds the figures per seed, their mean and the worst, since one seed's
+# odometry noise can hide or provoke an error (sim.<map> stays the config's seed).
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"
@@ -38,6 +41,7 @@ imp="$BUILD/bin/rgnav_import"
   --real "mines_exp2=$WORK/mines_exp2.lcmlog@0.145,0,0" \
   --real "csail=$WORK/csail.lcmlog@0,0,0" \
   --sim-config "$ROOT/config/sim.yaml" --sim-laps 2 --sim-max-s "${SLAM_SIM_MAX_S:-1800}" \
+  --sim-seeds "${SLAM_SIM_SEEDS-1,2,3}" \
   --sim "Freiburg79_scan=$IPA/Freiburg79_scan.png" \
   --sim "lab_intel=$IPA/lab_intel.png" \
   --sim "lab_ipa=$IPA/lab_ipa.png" \

@@ -14,6 +14,8 @@ struct Normal
   Eigen::Vector3d g = Eigen::Vector3d::Zero();
   double sq = 0.0;
   int n = 0;
+  double line_sq = 0.0;  // of the point-to-line residuals alone
+  int line_n = 0;
 
   void add(const Eigen::Vector3d& J, double r, double w)
   {
@@ -24,14 +26,33 @@ struct Normal
   }
 };
 
+// The scan with its oriented normals, if any, and the pairing rule.
+struct ScanSide
+{
+  const Points& points;
+  const Points* normals = nullptr;          // null: no normal check
+  const std::vector<char>* has_normal = nullptr;
+  double min_cos = -1.0;
+
+  // Nearest model point within max_dist that may be the same surface as scan point i, placed
+  // at p by the pose with rotation (c, s).
+  int pair(const PointMap& model, size_t i, const Eigen::Vector2d& p, double c, double s, double max_dist) const
+  {
+    if (!normals || !(*has_normal)[i]) return model.nearest(p, max_dist);
+    const Eigen::Vector2d& n = (*normals)[i];
+    return model.nearest(p, max_dist, Eigen::Vector2d(c * n.x() - s * n.y(), s * n.x() + c * n.y()), min_cos);
+  }
+};
+
 // Accumulates the Gauss-Newton system for the correspondences within max_dist.
-Normal linearize(const Points& scan, const PointMap& model, const Pose2& T, double max_dist)
+Normal linearize(const ScanSide& scan, const PointMap& model, const Pose2& T, double max_dist)
 {
   Normal ne;
   const double c = std::cos(T.theta()), s = std::sin(T.theta());
-  for (const auto& q : scan) {
+  for (size_t i = 0; i < scan.points.size(); ++i) {
+    const auto& q = scan.points[i];
     const Eigen::Vector2d p(T.x() + c * q.x() - s * q.y(), T.y() + s * q.x() + c * q.y());
-    const int j = model.nearest(p, max_dist);
+    const int j = scan.pair(model, i, p, c, s, max_dist);
     if (j < 0) continue;
     const Eigen::Vector2d d = p - model.points()[static_cast<size_t>(j)];
     const Eigen::Vector2d dp_dth(-s * q.x() - c * q.y(), c * q.x() - s * q.y());
@@ -42,6 +63,8 @@ Normal linearize(const Points& scan, const PointMap& model, const Pose2& T, doub
       const double r = n.dot(d);
       const double w = std::fabs(r) <= k ? 1.0 : k / std::fabs(r);
       ne.add(Eigen::Vector3d(n.x(), n.y(), n.dot(dp_dth)), r, w);
+      ne.line_sq += r * r;
+      ++ne.line_n;
     } else {
       const double w = d.norm() <= k ? 1.0 : k / d.norm();
       ne.add(Eigen::Vector3d(1.0, 0.0, dp_dth.x()), d.x(), w);
@@ -52,13 +75,11 @@ Normal linearize(const Points& scan, const PointMap& model, const Pose2& T, doub
   return ne;
 }
 
-}  // namespace
-
-IcpResult icp_point_to_line(const Points& scan, const PointMap& model, const Pose2& guess, const IcpOptions& o)
+IcpResult register_scan(const ScanSide& scan, const PointMap& model, const Pose2& guess, const IcpOptions& o)
 {
   IcpResult res;
   res.map_from_scan = guess;
-  if (scan.size() < 5 || model.size() < 5) return res;
+  if (scan.points.size() < 5 || model.size() < 5) return res;
   Pose2 T = guess;
   double max_dist = o.initial_max_distance_m;
   int it = 0;
@@ -86,10 +107,12 @@ IcpResult icp_point_to_line(const Points& scan, const PointMap& model, const Pos
   const Normal fin = linearize(scan, model, T, o.final_max_distance_m);
   res.correspondences = fin.n;
   res.rms_m = fin.n > 0 ? std::sqrt(fin.sq / fin.n) : 0.0;
+  res.surface_rms_m = fin.line_n > 0 ? std::sqrt(fin.line_sq / fin.line_n) : res.rms_m;
   int inliers = 0;
-  for (const auto& q : scan)
-    if (model.nearest(T * q, o.inlier_distance_m) >= 0) ++inliers;
-  res.inlier_ratio = static_cast<double>(inliers) / static_cast<double>(scan.size());
+  const double c = std::cos(T.theta()), s = std::sin(T.theta());
+  for (size_t i = 0; i < scan.points.size(); ++i)
+    if (scan.pair(model, i, T * scan.points[i], c, s, o.inlier_distance_m) >= 0) ++inliers;
+  res.inlier_ratio = static_cast<double>(inliers) / static_cast<double>(scan.points.size());
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(fin.H);
   if (fin.n >= 10 && es.eigenvalues()(0) > 1e-9) {
     const double sigma = std::max(o.point_sigma_m, res.rms_m);
@@ -104,6 +127,22 @@ IcpResult icp_point_to_line(const Points& scan, const PointMap& model, const Pos
     res.ok = true;
   }
   return res;
+}
+
+}  // namespace
+
+IcpResult icp_point_to_line(const Points& scan, const PointMap& model, const Pose2& guess, const IcpOptions& o)
+{
+  return register_scan(ScanSide{scan}, model, guess, o);
+}
+
+IcpResult icp_point_to_line(const Points& scan, const Points& scan_normals, const std::vector<char>& scan_has_normal,
+                            const PointMap& model, const Pose2& guess, const IcpOptions& o)
+{
+  if (scan_normals.size() != scan.size() || scan_has_normal.size() != scan.size() || o.max_normal_angle_deg >= 180.0)
+    return register_scan(ScanSide{scan}, model, guess, o);
+  return register_scan(ScanSide{scan, &scan_normals, &scan_has_normal, std::cos(o.max_normal_angle_deg * M_PI / 180.0)},
+                       model, guess, o);
 }
 
 }  // namespace rgnav::scan_mapper

@@ -105,4 +105,27 @@ int PointMap::nearest(const Eigen::Vector2d& q, double max_dist) const
   return best;
 }
 
+int PointMap::nearest(const Eigen::Vector2d& q, double max_dist, const Eigen::Vector2d& n, double min_cos) const
+{
+  if (points_.empty()) return -1;
+  int best = -1;
+  double best_d2 = max_dist * max_dist;
+  for_each_within(q, max_dist, [&](int j) {
+    if (has_normal_[static_cast<size_t>(j)] && n.dot(normals_[static_cast<size_t>(j)]) < min_cos) return;
+    const double d2 = (points_[static_cast<size_t>(j)] - q).squaredNorm();
+    if (d2 <= best_d2) {
+      best_d2 = d2;
+      best = j;
+    }
+  });
+  return best;
+}
+
+void orient_normals_toward(const Points& points, const Eigen::Vector2d& viewpoint, Points* normals,
+                           const std::vector<char>& has_normal)
+{
+  for (size_t i = 0; i < points.size() && i < normals->size() && i < has_normal.size(); ++i)
+    if (has_normal[i] && (*normals)[i].dot(viewpoint - points[i]) < 0.0) (*normals)[i] = -(*normals)[i];
+}
+
 }  // namespace rgnav::scan_mapper

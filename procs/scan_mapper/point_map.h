@@ -18,6 +18,11 @@ class PointMap
 
   // Index of the nearest point within max_dist, or -1.
   int nearest(const Eigen::Vector2d& q, double max_dist) const;
+  // ... among the points that may be the same surface as a point with oriented normal n:
+  // points with a normal must face the same way (n . normal >= min_cos). With normals oriented
+  // toward the sensor, this keeps the two faces of a thin wall apart (seen from a room and from
+  // the corridor they are 10-20 cm apart, close enough for a nearest-neighbour mix-up).
+  int nearest(const Eigen::Vector2d& q, double max_dist, const Eigen::Vector2d& n, double min_cos) const;
 
   const Points& points() const { return points_; }
   const Points& normals() const { return normals_; }
@@ -41,5 +46,10 @@ class PointMap
   std::vector<int> cell_start_;  // CSR: points of cell c are order_[cell_start_[c] .. cell_start_[c+1])
   std::vector<int> order_;
 };
+
+// Flips each normal to point from its point toward `viewpoint` (the sensor that saw it, same
+// frame), so that a surface's normal says from which side it was seen.
+void orient_normals_toward(const Points& points, const Eigen::Vector2d& viewpoint, Points* normals,
+                           const std::vector<char>& has_normal);
 
 }  // namespace rgnav::scan_mapper

@@ -45,11 +45,7 @@ ScanMapper::ScanMapper(ScanMapperOptions options, MapperState state)
     : options_(std::move(options)), nodes_(std::move(state.nodes))
 {
   for (auto& n : nodes_) {
-    if (n.normals.size() != n.points.size()) {
-      const PointMap own(n.points);
-      n.normals = own.normals();
-      n.has_normal = own.has_normals();
-    }
+    if (n.normals.size() != n.points.size()) compute_normals(&n);
     graph_.add_node(n.map_from_base);
   }
   for (const auto& e : state.edges)
@@ -145,7 +141,7 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
 
   Pose2 fused = u;
   Eigen::Matrix3d P = Q;
-  if (const auto icp = register_locally(node.points, guess, relocalize)) {
+  if (const auto icp = register_locally(node, guess, relocalize)) {
     // Both increments in the previous node's frame.
     const Pose2 z = between(prev.map_from_base, icp->map_from_scan);
     const Eigen::Matrix3d R = rot3(-prev.map_from_base.theta()) * icp->covariance * rot3(-prev.map_from_base.theta()).transpose();
@@ -195,13 +191,22 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
 void ScanMapper::prepare_points(ScanNode* node) const
 {
   node->points = scan_to_points(node->scan, options_.base_from_laser, options_.points);
+  compute_normals(node);
+}
+
+void ScanMapper::compute_normals(ScanNode* node) const
+{
   const PointMap own(node->points);
   node->normals = own.normals();
   node->has_normal = own.has_normals();
+  // Toward the laser: a normal then says from which side its surface was seen.
+  orient_normals_toward(node->points, Eigen::Vector2d(options_.base_from_laser.x(), options_.base_from_laser.y()),
+                        &node->normals, node->has_normal);
 }
 
-std::optional<IcpResult> ScanMapper::register_locally(const Points& points, const Pose2& guess, bool wide)
+std::optional<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const Pose2& guess, bool wide)
 {
+  const Points& points = scan.points;
   const int n = static_cast<int>(nodes_.size());
   Points model, normals;
   std::vector<char> has_normal;
@@ -215,7 +220,7 @@ std::optional<IcpResult> ScanMapper::register_locally(const Points& points, cons
   }
   if (model.size() < 10 || points.size() < 10) return std::nullopt;
   const PointMap map(std::move(model), std::move(normals), std::move(has_normal));
-  IcpResult best = icp_point_to_line(points, map, guess, options_.icp);
+  IcpResult best = icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, options_.icp);
   if (wide || !best.ok || best.inlier_ratio < options_.min_inlier_ratio) {
     ++stats_.correlative_retries;
     const LikelihoodGrid grid(map.points(), options_.correlative);
@@ -223,7 +228,7 @@ std::optional<IcpResult> ScanMapper::register_locally(const Points& points, cons
     if (wide) window = {options_.loop.window_max_m, options_.loop.angular_window_max_rad};
     const auto cor = correlative_match(thin_points(points, options_.loop.point_spacing_m), grid, guess, window,
                                        options_.correlative);
-    const IcpResult again = icp_point_to_line(points, map, cor.map_from_scan, options_.icp);
+    const IcpResult again = icp_point_to_line(points, scan.normals, scan.has_normal, map, cor.map_from_scan, options_.icp);
     if (again.ok && (!best.ok || again.inlier_ratio > best.inlier_ratio)) best = again;
   }
   if (!best.ok || best.inlier_ratio < options_.min_accept_inlier_ratio) return std::nullopt;
@@ -241,16 +246,27 @@ const ScanMapper::Submap& ScanMapper::submap_around(int anchor)
   const auto& l = options_.loop;
   const Pose2 anchor_from_map = nodes_[static_cast<size_t>(anchor)].map_from_base.inverse();
   const int last = static_cast<int>(nodes_.size()) - 1 - l.min_node_gap;
-  Points pts;
+  Points pts, normals;
+  std::vector<char> has_normal;
   const double r2 = l.submap_radius_m * l.submap_radius_m;
   for (int k = std::max(0, anchor - l.submap_half_nodes); k <= std::min(last, anchor + l.submap_half_nodes); ++k) {
     const auto& nk = nodes_[static_cast<size_t>(k)];
-    for (const auto& p : transform_points(anchor_from_map * nk.map_from_base, nk.points))
-      if (p.squaredNorm() <= r2) pts.push_back(p);
+    const Pose2 anchor_from_node = anchor_from_map * nk.map_from_base;
+    const double c = std::cos(anchor_from_node.theta()), s = std::sin(anchor_from_node.theta());
+    for (size_t i = 0; i < nk.points.size(); ++i) {
+      const Eigen::Vector2d p = anchor_from_node * nk.points[i];
+      if (p.squaredNorm() > r2) continue;
+      pts.push_back(p);
+      // Each scan's own oriented normals: a normal from the merged points would mix the two
+      // faces of a thin wall.
+      const auto& v = nk.normals[i];
+      normals.emplace_back(c * v.x() - s * v.y(), s * v.x() + c * v.y());
+      has_normal.push_back(nk.has_normal[i]);
+    }
   }
   Submap sm;
   sm.grid = std::make_unique<LikelihoodGrid>(pts, l.correlative);
-  sm.points = std::make_unique<PointMap>(std::move(pts));
+  sm.points = std::make_unique<PointMap>(std::move(pts), std::move(normals), std::move(has_normal));
   submap_lru_.push_front(anchor);
   if (submap_lru_.size() > kSubmapCacheSize) {
     submaps_.erase(submap_lru_.back());
@@ -299,14 +315,17 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
                                  std::clamp(l.gate_sigmas * sth, l.angular_window_base_rad, l.angular_window_max_rad)};
   const auto cor = correlative_match(thin_points(cur.points, l.point_spacing_m), *sm.grid, guess, window, l.correlative);
   if (cor.score < l.min_score) return std::nullopt;
-  IcpResult icp = icp_point_to_line(cur.points, *sm.points, cor.map_from_scan, options_.icp);
+  IcpResult icp = icp_point_to_line(cur.points, cur.normals, cur.has_normal, *sm.points, cor.map_from_scan, options_.icp);
   // The correlative optimum is only as good as its grid; where the graph already knows the
   // relative pose, ICP from there may find a better fit that the coarse search stepped over.
-  const IcpResult from_guess = icp_point_to_line(cur.points, *sm.points, guess, options_.icp);
+  const IcpResult from_guess = icp_point_to_line(cur.points, cur.normals, cur.has_normal, *sm.points, guess, options_.icp);
   if (from_guess.ok && (!icp.ok || from_guess.inlier_ratio > icp.inlier_ratio ||
                         (from_guess.inlier_ratio == icp.inlier_ratio && from_guess.rms_m < icp.rms_m)))
     icp = from_guess;
-  if (!icp.ok || icp.inlier_ratio < l.min_inlier_ratio) return std::nullopt;
+  // A fit whose surface residuals are well above the range noise explains the scan by the wrong
+  // structure (a wall face seen from the other side, a look-alike doorway): its Hessian-based
+  // covariance says nothing about how far off it is.
+  if (!icp.ok || icp.inlier_ratio < l.min_inlier_ratio || icp.surface_rms_m > l.max_rms_m) return std::nullopt;
   ClosureHypothesis h;
   h.node = n;
   h.anchor = anchor;

@@ -5,12 +5,16 @@
 //     min_rotation_rad since the last accepted scan (odometry interpolated at scan time).
 //  2. Local registration: point-to-line ICP with a decaying rejection threshold against a
 //     point map of the last local_map_scans accepted scans, started at the odometry guess;
-//     if it fits badly, a correlative search around the guess re-seeds ICP.
+//     if it fits badly, a correlative search around the guess re-seeds ICP. Every scan's
+//     surface normals are oriented toward its laser, and only points seen from the same side
+//     pair: the two faces of a thin wall (room side, corridor side) stay apart.
 //  3. Kalman fusion: the scan-matched increment and the odometry increment are combined
 //     weighted by their covariances (in a corridor ICP is weak along it; odometry is not).
 //  4. Global correlation: every few scans, an older scan whose relative uncertainty (read off
 //     the graph, loop_search.h) allows it to be here is searched with the correlative matcher
-//     over a window of that uncertainty (a submap around it) and verified with ICP. The
+//     over a window of that uncertainty (a submap around it) and verified with ICP (enough
+//     inliers, surface residuals near the range noise: a worse fit matched the wrong structure
+//     and its covariance would lie about it). The
 //     hypothesis is accepted alone only where the graph knows the relative pose well;
 //     elsewhere it waits for a hypothesis from a later scan that agrees with it (pairwise
 //     consistency). Accepted closures become robust edges of the pose graph, which is
@@ -57,7 +61,7 @@ struct ScanNode
   Pose2 published;           // estimate at the last (re)publication
   double path_m = 0.0;       // odometry path length from the first node
   Points points;             // thinned scan points in the base frame
-  Points normals;            // their surface normals (base frame), computed once
+  Points normals;            // their surface normals (base frame, toward the laser), computed once
   std::vector<char> has_normal;
 };
 
@@ -150,9 +154,11 @@ class ScanMapper
 
   MapperUpdate process(const Scan& scan, const Pose2& odom);
   void prepare_points(ScanNode* node) const;
+  // The node's surface normals, oriented toward its laser.
+  void compute_normals(ScanNode* node) const;
   Eigen::Matrix3d odometry_covariance(const Pose2& increment) const;
-  // Registers points (base frame) against the local map from guess; nullopt if it fails.
-  std::optional<IcpResult> register_locally(const Points& points, const Pose2& guess, bool wide);
+  // Registers the scan's points (base frame) against the local map from guess; nullopt if it fails.
+  std::optional<IcpResult> register_locally(const ScanNode& scan, const Pose2& guess, bool wide);
   // Searches one closure for `node`; nullopt when none is found.
   std::optional<ClosureHypothesis> find_closure(int node);
   bool try_loop_closure(int node, MapperUpdate* update);

@@ -39,6 +39,7 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   o.icp.inlier_distance_m = icp.number("inlier_distance_m", o.icp.inlier_distance_m, 0.005, 5.0);
   o.icp.point_sigma_m = icp.number("point_sigma_m", o.icp.point_sigma_m, 0.001, 1.0);
   o.icp.covariance_inflation = icp.number("covariance_inflation", o.icp.covariance_inflation, 1.0, 1e4);
+  o.icp.max_normal_angle_deg = icp.number("max_normal_angle_deg", o.icp.max_normal_angle_deg, 10.0, 180.0);
   if (o.icp.final_max_distance_m > o.icp.initial_max_distance_m)
     c.fail("registration.icp.final_max_distance_m", "must not exceed initial_max_distance_m");
   const auto cor = reg.section("correlative");
@@ -82,6 +83,7 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   l.consistency.rot_rad = lc.number("consistency_deg", l.consistency.rot_rad / kDeg, 0.01, 90.0) * kDeg;
   l.min_score = lc.number("min_score", l.min_score, 0.0, 1.0);
   l.min_inlier_ratio = lc.number("min_inlier_ratio", l.min_inlier_ratio, 0.0, 1.0);
+  l.max_rms_m = lc.number("max_rms_m", l.max_rms_m, 0.001, 1.0);
   l.max_residual_chi2 = lc.number("max_residual_chi2", l.max_residual_chi2, 0.1, 1e9);
   l.max_strain_chi2 = lc.number("max_strain_chi2", l.max_strain_chi2, 0.1, 1e9);
   l.covariance_scale = lc.number("covariance_scale", l.covariance_scale, 1.0, 1e6);

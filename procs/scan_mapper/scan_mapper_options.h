@@ -40,6 +40,7 @@ struct LoopClosureOptions
   double angular_window_max_rad = 0.5;
   double min_score = 0.6;          // correlative score needed to try ICP
   double min_inlier_ratio = 0.75;  // ICP agreement needed to accept
+  double max_rms_m = 0.02;         // ... and ICP rms surface residual allowed (about twice the range noise)
   // Verification: a hypothesis is accepted alone only where the graph already knows the
   // relative pose well (sigma below direct_max_sigma_m and innovation chi2 below
   // direct_max_chi2); otherwise it waits until a hypothesis from a later scan (within

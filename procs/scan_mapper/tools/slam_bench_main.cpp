@@ -1,16 +1,21 @@
 // rgnav_slam_bench: the SLAM benchmark (see deploy/bench/slam.sh).
 //   rgnav_slam_bench --json OUT.json --maps DIR [--config FILE]
 //     [--real NAME=LOG[@X,Y,THETA][#SECONDS]] ... [--sim NAME=WORLD ... --sim-config sim.yaml]
+//     [--sim-seeds 1,2,3]
 // Per real log: agreement with the log's REFERENCE_POSE poses (relations metric, when
 // present), map consistency, realtime factor (log duration / CPU time of the mapping on one
 // core; #SECONDS gives the true duration of a log whose timestamps are synthetic).
-// Per simulated world: the relations metric and ATE against the simulator's exact truth.
+// Per simulated world: the relations metric and ATE against the simulator's exact truth, for
+// the simulator config's seed (sim.<world>) and, with --sim-seeds, for each of those seeds
+// (sim_seeds.<world>: per seed, their mean and worst): one seed's odometry noise can happen
+// to hide or provoke an error, so robustness is judged over several.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <sstream>
 
 #include "importers/lcm_log_io.h"
 #include "offline_mapping.h"
@@ -119,7 +124,7 @@ nlohmann::json evaluate_real(const RealLog& spec, sm::ScanMapperOptions options,
 #ifdef RGNAV_SLAM_BENCH_SIM
 nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::SimulatorOptions& sim_options,
                             const sm::ScanMapperOptions& options, const sm::SimMappingOptions& sim_mapping,
-                            const std::string& maps_dir, std::string* name)
+                            const std::string& maps_dir, const std::string& suffix, std::string* name)
 {
   const auto eq = spec.find('=');
   if (eq == std::string::npos) throw std::invalid_argument("--sim wants NAME=WORLD: " + spec);
@@ -131,10 +136,12 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   written.base_from_laser = sm::Pose2{sim_options.laser.mount_x, sim_options.laser.mount_y, sim_options.laser.mount_yaw};
   nlohmann::json j;
   j["world"] = spec.substr(eq + 1);
-  j["consistency"] = sm::write_outputs(off, written, maps_dir + "/sim_" + *name);
+  j["seed"] = sim_options.seed;
+  const std::string dir = maps_dir + "/sim_" + *name + suffix;
+  j["consistency"] = sm::write_outputs(off, written, dir);
   {
     // Estimate next to truth at every accepted scan, for looking into where errors arise.
-    std::ofstream pairs(maps_dir + "/sim_" + *name + "/truth_pairs.txt");
+    std::ofstream pairs(dir + "/truth_pairs.txt");
     pairs << "# scan_id utime_us true_x true_y true_theta est_x est_y est_theta\n";
     for (size_t k = 0; k < r.nodes.size() && k < r.truth.size(); ++k) {
       const auto& n = r.nodes[k];
@@ -164,7 +171,54 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["loop_closures"] = r.stats.loop_closures;
   j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
   j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
+  j["correlative_retries"] = r.stats.correlative_retries;
+  j["loop_attempts"] = r.stats.loop_attempts;
   return j;
+}
+
+std::vector<uint64_t> parse_seeds(const std::string& list)
+{
+  std::vector<uint64_t> seeds;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item.empty()) continue;
+    size_t used = 0;
+    const unsigned long long v = std::stoull(item, &used);
+    if (used != item.size()) throw std::invalid_argument("--sim-seeds wants a comma-separated list of integers: " + list);
+    seeds.push_back(v);
+  }
+  return seeds;
+}
+
+// The figures of one world over several seeds: each seed's, their mean and the worst.
+nlohmann::json summarize_seeds(const std::vector<nlohmann::json>& runs)
+{
+  static const char* const kKeys[] = {"trans_mean_m", "rot_mean_deg", "ate_rmse_m", "realtime_factor"};
+  nlohmann::json out;
+  for (const auto& r : runs) {
+    nlohmann::json one;
+    for (const char* k : kKeys) one[k] = r[k];
+    one["capped"] = r["capped"];
+    one["loop_closures"] = r["loop_closures"];
+    out["per_seed"][std::to_string(r["seed"].get<uint64_t>())] = std::move(one);
+  }
+  for (const char* k : kKeys) {
+    double sum = 0.0, worst = 0.0;
+    bool first = true;
+    for (const auto& r : runs) {
+      const double v = r[k].get<double>();
+      sum += v;
+      // Worst: the largest error, the smallest realtime factor.
+      const bool higher_is_better = std::string(k) == "realtime_factor";
+      if (first || (higher_is_better ? v < worst : v > worst)) worst = v;
+      first = false;
+    }
+    out[std::string("mean_") + k] = runs.empty() ? 0.0 : sum / static_cast<double>(runs.size());
+    out[std::string("worst_") + k] = worst;
+  }
+  out["seeds"] = runs.size();
+  return out;
 }
 #endif
 
@@ -187,6 +241,8 @@ int main(int argc, char** argv)
   app.add_option("--sim-config", sim_config, "simulator config (robot, drive, odometry error, laser)");
   app.add_option("--sim-laps", sim_mapping.laps, "laps of the planned tour")->check(CLI::Range(1, 100));
   app.add_option("--sim-max-s", sim_mapping.max_sim_s, "cap on simulated seconds per world")->check(CLI::PositiveNumber);
+  std::string seed_list;
+  app.add_option("--sim-seeds", seed_list, "comma-separated simulator seeds: every world is also run with each");
 #endif
   CLI11_PARSE(app, argc, argv);
   try {
@@ -212,11 +268,28 @@ int main(int argc, char** argv)
                                    {"sigma_translation", e.sigma_translation},
                                    {"sigma_rotation", e.sigma_rotation},
                                    {"sigma_rotation_per_m", e.sigma_rotation_per_m}};
+      const auto seeds = parse_seeds(seed_list);
+      if (!seeds.empty()) out["sim_seed_list"] = seeds;
       for (const auto& spec : sims) {
         std::string name;
-        std::cerr << "simulated world " << spec << "\n";
-        auto j = evaluate_sim(spec, sim_options, options, sim_mapping, maps_dir, &name);
+        std::cerr << "simulated world " << spec << " (seed " << sim_options.seed << ")\n";
+        auto j = evaluate_sim(spec, sim_options, options, sim_mapping, maps_dir, "", &name);
         std::cerr << j.dump(2) << "\n";
+        if (!seeds.empty()) {
+          std::vector<nlohmann::json> runs;
+          for (const uint64_t seed : seeds) {
+            if (seed == sim_options.seed) {
+              runs.push_back(j);
+              continue;
+            }
+            auto seeded = sim_options;
+            seeded.seed = seed;
+            std::cerr << "simulated world " << spec << " (seed " << seed << ")\n";
+            runs.push_back(evaluate_sim(spec, seeded, options, sim_mapping, maps_dir, "_seed" + std::to_string(seed), &name));
+            std::cerr << runs.back().dump(2) << "\n";
+          }
+          out["sim_seeds"][name] = summarize_seeds(runs);
+        }
         out["sim"][name] = std::move(j);
       }
     }

@@ -64,12 +64,14 @@ struct NodeHarness
   std::unique_ptr<ScanMapperNode> adapter;
 };
 
-// True pose at step i of the drive: out along the corridor and back, 0.05 m steps.
+// True pose at step i of the drive: out along the corridor and back, 0.05 m steps, through
+// the doorway in the wall at x = 3 (driving through the wall itself would show the mapper one
+// zero-thickness wall from both sides, which oriented normals rightly keep apart).
 inline Pose2 drive_truth(int i)
 {
   const int leg = i % 300;
   const double s = leg < 150 ? leg * 0.05 : (300 - leg) * 0.05;
-  return leg < 150 ? Pose2{1 + s, 0.5, 0} : Pose2{1 + s, 0.5, M_PI};
+  return leg < 150 ? Pose2{1 + s, 4.5, 0} : Pose2{1 + s, 4.5, M_PI};
 }
 
 inline odometry_t drive_odometry(int i, int64_t seq0 = 0)

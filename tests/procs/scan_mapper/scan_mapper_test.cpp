@@ -89,6 +89,13 @@ TEST(ScanMapperOptions, LoadsAndRejectsBadValues)
   EXPECT_DOUBLE_EQ(sm::load_scan_mapper_options(ok.section("scan_mapper")).min_travel_m, 0.3);
   const auto bad = rgnav::config::Config::parse("scan_mapper:\n  gating:\n    min_travel_m: -1\n", "test");
   EXPECT_THROW(sm::load_scan_mapper_options(bad.section("scan_mapper")), rgnav::config::ConfigError);
+  const auto sided = rgnav::config::Config::parse(
+      "scan_mapper:\n  registration:\n    icp:\n      max_normal_angle_deg: 90\n  loop_closure:\n    max_rms_m: 0.03\n", "test");
+  const auto so = sm::load_scan_mapper_options(sided.section("scan_mapper"));
+  EXPECT_DOUBLE_EQ(so.icp.max_normal_angle_deg, 90.0);
+  EXPECT_DOUBLE_EQ(so.loop.max_rms_m, 0.03);
+  const auto blunt = rgnav::config::Config::parse("scan_mapper:\n  registration:\n    icp:\n      max_normal_angle_deg: 200\n", "test");
+  EXPECT_THROW(sm::load_scan_mapper_options(blunt.section("scan_mapper")), rgnav::config::ConfigError);
   const auto typo = rgnav::config::Config::parse("scan_mapper:\n  gating:\n    min_travle_m: 0.3\n", "test");
   sm::load_scan_mapper_options(typo.section("scan_mapper"));
   EXPECT_THROW(typo.finish(), rgnav::config::ConfigError);
