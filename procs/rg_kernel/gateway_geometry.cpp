@@ -52,9 +52,20 @@ std::vector<EdgeFrame> edge_frames(const std::vector<Vector2d>& points)
   return out;
 }
 
-std::vector<Line> clip_lines(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach)
+std::vector<Line> clip_lines(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach,
+                             double line_extension)
 {
-  if (points.size() != 4) return gateway_edges(points);
+  if (points.size() != 4) {
+    std::vector<Line> lines = gateway_edges(points);
+    for (auto& [a, b] : lines) {
+      const double len = (b - a).norm();
+      if (len < 1e-6) continue;
+      const Vector2d d = (b - a) / len * line_extension;
+      a -= d;
+      b += d;
+    }
+    return lines;
+  }
   std::vector<Line> out;
   for (const EdgeFrame& e : edge_frames(points)) {
     const bool open = std::any_of(origins.begin(), origins.end(), [&](const Vector2d& o) { return e.just_beyond(o, side_reach); });

@@ -39,7 +39,9 @@ std::vector<EdgeFrame> edge_frames(const std::vector<Eigen::Vector2d>& points);
 // robot stood at `origins` (region frame): all its edges, except for an outline the sides with
 // one of the origins just outside them (less than `side_reach` beyond the side, not beside it):
 // the region lies beyond those.
+// A line (not an outline) is lengthened by `line_extension` at both ends: the detector's door
+// points lie on the jambs' visible edges, and beams grazing past them still went through the door.
 std::vector<Line> clip_lines(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& origins,
-                             double side_reach);
+                             double side_reach, double line_extension = 0.0);
 
 }  // namespace rgnav::rg_kernel

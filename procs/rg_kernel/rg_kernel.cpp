@@ -160,7 +160,7 @@ std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t regio
     const geometry::Pose2 r_from_a = r->map_from_region.inverse() * a->map_from_region;
     std::vector<Vector2d> points;
     for (const auto& p : g.gateway_points) points.push_back(r_from_a * p);
-    for (const auto& l : clip_lines(points, origins, options_.junction_side_reach)) lines.push_back(l);
+    for (const auto& l : clip_lines(points, origins, options_.junction_side_reach, options_.gateway_line_extension)) lines.push_back(l);
   }
   return lines;
 }

@@ -30,6 +30,10 @@ struct KernelOptions
   double late_scan_reach = 3.0;          // [m] scans this far past a crossed gateway belong beyond it
   double junction_side_reach = 2.0;      // [m] robot this near outside a crossing's side: its region lies beyond
   bool doorway_gateways = true;          // a doorway of the line map (build.doorways) the robot goes through is a gateway
+  // [m] a gateway line (not an outline) ends beams this far beyond its points too: the detector's
+  // and the line map's door points lie on the jambs' visible edges, and beams grazing past them
+  // into the room behind carved it into the region in front (issue 8: seen-through losses).
+  double gateway_line_extension = 0.5;
 };
 
 struct ScanInput

@@ -76,6 +76,12 @@ TEST(GatewayGeometry, OutlineHasFourSidesOpenWhereTheRegionLies)
   EXPECT_EQ(clip_lines(box, {Vector2d(5, 1)}, 2.0).size(), 4u);
   // A line gateway ends beams whichever side the robot is on.
   EXPECT_EQ(clip_lines({Vector2d(4, 1), Vector2d(4, 2)}, {Vector2d(3, 1.5)}, 2.0).size(), 1u);
+  // A door line lengthened at both ends: beams grazing past the jambs' visible edges end too.
+  const auto longer = clip_lines({Vector2d(4, 1), Vector2d(4, 2)}, {Vector2d(3, 1.5)}, 2.0, 0.5);
+  ASSERT_EQ(longer.size(), 1u);
+  EXPECT_NEAR(longer[0].first.y(), 0.5, 1e-12);
+  EXPECT_NEAR(longer[0].second.y(), 2.5, 1e-12);
+  EXPECT_NEAR(longer[0].first.x(), 4.0, 1e-12);
 }
 
 // Room A [0,4]x[0,3] with an open door (x = 4, y in [1, 2]) into room B; A's robot looks

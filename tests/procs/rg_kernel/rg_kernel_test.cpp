@@ -179,6 +179,43 @@ TEST(KnownPlaces, NeedsTheRegionsOwnRobotToHaveSeenThePlaceInRegion)
   EXPECT_EQ(known.region_holding(Vector2d(3.5, 1.5)), a.id);
 }
 
+// Free cells of region 1 (frame: the first pose (1, 1.5)) in room B, x > 4.3.
+int room_b_cells_of_region_1(const RgKernel& kernel)
+{
+  const auto r1 = kernel.describe_region(1);
+  int n = 0;
+  for (double x = 4.35; x < 8.0; x += 0.1)
+    for (double y = 0.05; y < 3.0; y += 0.1) n += r1.freespace.is_free(Vector2d(x - 1.0, y - 1.5)) ? 1 : 0;
+  return n;
+}
+
+TEST(RgKernel, BeamsGrazingPastTheDoorPointsEndAtTheDoor)
+{
+  // The detector's door points lie on the jambs' visible edges, a little inside the opening
+  // (here 0.2 m each side): beams through the rest of the opening carved room B into room A.
+  auto run = [](double extension) {
+    KernelOptions o;
+    o.gateway_line_extension = extension;
+    o.doorway_gateways = false;
+    o.build.doorways.enabled = false;   // only the gateway ends beams
+    Drive d(o);
+    for (double x = 1.0; x < 3.9; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
+    GatewayEventInput e;
+    e.utime = (d.t += 1000);
+    e.kind = GatewayEventInput::Kind::kTraversed;
+    e.track_id = 1;
+    e.cls = rgmap::GatewayClass::kDoor;
+    e.map_from_base = geometry::Pose2(4.3, 1.5, 0);
+    e.gateway_points = {Vector2d(4, 1.2), Vector2d(4, 1.8)};
+    e.direction = 0;
+    d.kernel.add_gateway_event(e);
+    for (double x = 4.5; x < 7.5; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
+    return room_b_cells_of_region_1(d.kernel);
+  };
+  EXPECT_GT(run(0.0), 0);
+  EXPECT_EQ(run(0.5), 0);
+}
+
 // A straight hallway y in [0, 2] from x = 0 to 12 with an X-crossing at x in [4, 6] (branches
 // north and south).
 std::vector<testing::Wall> hallway_with_crossing()
