@@ -29,18 +29,15 @@ void LocalMap::add_scan(ScanPoints scan)
     else if (memory)
       remembered_[memory_key(p)] = {p, scan.stamp};
   }
-  if (view.empty())
-    tracker_.update(scan.stamp, young);
-  else
-    tracker_.update(scan.stamp, young, [&view](const Eigen::Vector2d& p) { return view.look(p); });
+  tracker_.update(scan.stamp, young, [&view](const Eigen::Vector2d& p) { return view.look(p); });
   if (memory && !scan.outline.empty() &&
       (views_.empty() || time::to_seconds(scan.stamp - views_.back().stamp) >= options_.view_interval)) {
-    ScanPoints view;
-    view.stamp = scan.stamp;
-    view.odom_from_base = scan.odom_from_base;
-    view.laser_origin = scan.laser_origin;
-    view.outline = scan.outline;
-    views_.push_back(std::move(view));
+    ScanPoints field_of_view;
+    field_of_view.stamp = scan.stamp;
+    field_of_view.odom_from_base = scan.odom_from_base;
+    field_of_view.laser_origin = scan.laser_origin;
+    field_of_view.outline = scan.outline;
+    views_.push_back(std::move(field_of_view));
   }
   scans_.push_back(std::move(scan));
   while (static_cast<int>(scans_.size()) > options_.max_scans) scans_.pop_front();

@@ -27,17 +27,24 @@ struct Drive
     s.laser_points = testing::cast(walls, pose);
     kernel.add_scan(s);
   }
-  void traverse_door(double x, double heading)
+  // The detector reports the robot traversed a gateway with these points, now at `robot`.
+  bool traverse(rgmap::GatewayClass cls, int64_t track_id, const geometry::Pose2& robot,
+                std::vector<Vector2d> gateway_points)
   {
     GatewayEventInput e;
     e.utime = (t += 1000);
     e.kind = GatewayEventInput::Kind::kTraversed;
-    e.track_id = 1;
-    e.cls = rgmap::GatewayClass::kDoor;
-    e.map_from_base = geometry::Pose2(x, 1.5, heading);
-    e.gateway_points = {Vector2d(4, 1), Vector2d(4, 2)};
-    e.direction = heading;
-    kernel.add_gateway_event(e);
+    e.track_id = track_id;
+    e.cls = cls;
+    e.map_from_base = robot;
+    e.gateway_points = std::move(gateway_points);
+    e.direction = robot.theta();
+    return kernel.add_gateway_event(e);
+  }
+  // The door of testing::two_rooms() at x = 4, y in [1, 2].
+  void traverse_door(double x, double heading)
+  {
+    traverse(rgmap::GatewayClass::kDoor, 1, geometry::Pose2(x, 1.5, heading), {Vector2d(4, 1), Vector2d(4, 2)});
   }
 };
 
@@ -200,15 +207,7 @@ TEST(RgKernel, BeamsGrazingPastTheDoorPointsEndAtTheDoor)
     o.build.doorways.enabled = false;   // only the gateway ends beams
     Drive d(o);
     for (double x = 1.0; x < 3.9; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
-    GatewayEventInput e;
-    e.utime = (d.t += 1000);
-    e.kind = GatewayEventInput::Kind::kTraversed;
-    e.track_id = 1;
-    e.cls = rgmap::GatewayClass::kDoor;
-    e.map_from_base = geometry::Pose2(4.3, 1.5, 0);
-    e.gateway_points = {Vector2d(4, 1.2), Vector2d(4, 1.8)};
-    e.direction = 0;
-    d.kernel.add_gateway_event(e);
+    d.traverse(rgmap::GatewayClass::kDoor, 1, geometry::Pose2(4.3, 1.5, 0), {Vector2d(4, 1.2), Vector2d(4, 1.8)});
     for (double x = 4.5; x < 7.5; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
     return room_b_cells_of_region_1(d.kernel);
   };
@@ -235,15 +234,8 @@ TEST(RgKernel, RegionEndsWhereItsBeamsLeaveACrossing)
   Drive d;
   d.walls = hallway_with_crossing();
   for (double x = 0.5; x < 6.6; x += 0.2) d.scan_at(geometry::Pose2(x, 1.0, 0));   // the last ones past it
-  GatewayEventInput e;
-  e.utime = (d.t += 1000);
-  e.kind = GatewayEventInput::Kind::kTraversed;
-  e.track_id = 7;
-  e.cls = rgmap::GatewayClass::kXCrossing;
-  e.map_from_base = geometry::Pose2(6.6, 1.0, 0);
-  e.gateway_points = {Vector2d(4, 2), Vector2d(6, 2), Vector2d(6, 0), Vector2d(4, 0)};
-  e.direction = 0;
-  ASSERT_TRUE(d.kernel.add_gateway_event(e));
+  ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kXCrossing, 7, geometry::Pose2(6.6, 1.0, 0),
+                         {Vector2d(4, 2), Vector2d(6, 2), Vector2d(6, 0), Vector2d(4, 0)}));
   for (double x = 6.8; x < 10.0; x += 0.2) d.scan_at(geometry::Pose2(x, 1.0, 0));
   d.scan_at(geometry::Pose2(10.0, 1.0, M_PI));   // looking back along the hallway
 
