@@ -89,6 +89,9 @@ CaNodeOptions load_ca_options(const config::Config& root)
   const auto be = root.section("behaviour");
   c.fallback_wait = be.number("fallback_wait_s", c.fallback_wait, 0.0, 30.0);
   c.backoff_length = be.number("backoff_length_m", c.backoff_length, 0.05, 2.0);
+  c.headway = be.number("headway_m", c.headway, 0.01, 5.0);
+  c.yield_after = be.number("yield_after_s", c.yield_after, 0.5, 600.0);
+  c.yield_reach = be.number("yield_reach_m", c.yield_reach, 0.0, 3.0);
   c.backoff_speed = be.number("backoff_speed_mps", c.backoff_speed, 0.02, 0.5);
   c.reach_radius = be.number("reach_radius_m", c.reach_radius, 0.05, 2.0);
   c.goal_tolerance = be.number("goal_tolerance_m", c.goal_tolerance, 0.01, 1.0);

@@ -152,6 +152,11 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   updated_once_ = true;
   last_update_ = now;
   map_.rebuild(now);
+  if (!has_progress_pose_ || (pose_.translation() - progress_pose_).norm() > options_.headway) {
+    has_progress_pose_ = true;
+    progress_pose_ = pose_.translation();
+    progress_since_ = now;
+  }
 
   if (!has_targets_) {
     const bool was_moving = active_ && !stopped_;
@@ -257,16 +262,16 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   return reactive(now);
 }
 
-std::optional<trajectory::Trajectory> CollisionAvoidance::backing_off(time::Time now)
+std::optional<trajectory::Trajectory> CollisionAvoidance::backing_off(time::Time now, double radius)
 {
   const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
   const Eigen::Vector2d here = pose_.translation();
-  if (map_.clearance(here, clearance) >= clearance) return std::nullopt;
+  if (map_.clearance(here, radius) >= radius) return std::nullopt;
   Eigen::Vector2d away = Eigen::Vector2d::Zero();
   for (const auto& p : map_.points()) {
     const Eigen::Vector2d d = here - p;
     const double n = d.norm();
-    if (n < clearance + 0.1 && n > 1e-6) away += d / n;
+    if (n < radius + 0.1 && n > 1e-6) away += d / n;
   }
   if (away.norm() < 1e-6) return std::nullopt;  // surrounded evenly: nothing better than waiting
   const double heading = std::atan2(away.y(), away.x());
@@ -317,6 +322,17 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time no
     blocked_since_set_ = true;
     blocked_since_ = now;
   }
+  // No headway for a long time: whoever waits with the robot (a person at their personal
+  // space, who will not walk on while the robot stands in their way) gets room. Back away
+  // from what is near, farther out than the plain back-off looks.
+  if (time::to_seconds(now - progress_since_) > options_.yield_after) {
+    progress_since_ = now;
+    const double reach = options_.planner.robot_radius + options_.planner.safety_margin + options_.yield_reach;
+    if (auto away = backing_off(now, reach)) {
+      status_ = "reactive fallback: no headway, yielding";
+      return away;
+    }
+  }
   // First behaviour: stop and wait a moment (a person crossing clears the way by itself),
   // but not where a person is about to walk: they would walk into the robot.
   const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
@@ -327,7 +343,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time no
   // move, a box seen late): nothing that keeps the full clearance starts here. Back off:
   // face away from what is close (a turn on the spot is always safe for the round B21r,
   // and brings the space there into the laser's view), then drive out along that heading.
-  if (auto away = backing_off(now)) return away;
+  if (auto away = backing_off(now, clearance)) return away;
   // Readings: the newest scan plus the map's other obstacles (3D grid, older scans) near by.
   std::vector<PolarReading> readings = last_readings_;
   const Pose2 base_from_odom = pose_.inverse();

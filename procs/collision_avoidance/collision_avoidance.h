@@ -40,6 +40,9 @@ struct CaOptions
   double fallback_wait = 1.5;      // [s] blocked: stand this long (people pass) before turning away
   double backoff_length = 0.4;     // [m] too close to something: drive away this far
   double backoff_speed = 0.15;     // [m/s]
+  double headway = 0.3;            // [m] moving this far counts as headway ...
+  double yield_after = 8.0;        // [s] ... none for this long: back away (yield) ...
+  double yield_reach = 0.5;        // [m] ... from what is this much farther than the clearance
   double a_max = 0.4;              // [m/s^2] sent with every trajectory
   double omega_max = 1.0;          // [rad/s]
 };
@@ -102,7 +105,8 @@ class CollisionAvoidance
   std::optional<trajectory::Trajectory> send_new(trajectory::Chain chain, time::Time now, double predicted, Mode mode);
   std::optional<trajectory::Trajectory> stop(time::Time now, Mode mode, const std::string& why);
   std::optional<trajectory::Trajectory> reactive(time::Time now);
-  std::optional<trajectory::Trajectory> backing_off(time::Time now);
+  // Backs away from obstacle points closer than `radius` (none: nullopt).
+  std::optional<trajectory::Trajectory> backing_off(time::Time now, double radius);
   std::optional<trajectory::Trajectory> commit_backoff(std::optional<trajectory::Trajectory> t, time::Time now,
                                                        double duration);
   std::vector<Pose2> goals() const;
@@ -134,6 +138,9 @@ class CollisionAvoidance
   int64_t detours_ = 0;
   std::optional<int64_t> backoff_id_;  // the back-off manoeuvre under way, run to its end
   time::Time backoff_until_{};
+  bool has_progress_pose_ = false;
+  Eigen::Vector2d progress_pose_ = Eigen::Vector2d::Zero();
+  time::Time progress_since_{};
   bool blocked_since_set_ = false;
   time::Time blocked_since_{};
   Mode mode_ = Mode::kIdle;
