@@ -159,6 +159,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   }
 
   if (!has_targets_) {
+    has_progress_pose_ = false;  // idle is no lack of headway: the clock starts with the next targets
     const bool was_moving = active_ && !stopped_;
     if (targets_changed_ || was_moving) {
       targets_changed_ = false;

@@ -94,12 +94,11 @@ void PeopleTracker::update(time::Time stamp, const std::vector<Eigen::Vector2d>&
     Track& t = tracks_[static_cast<size_t>(best)];
     continued[static_cast<size_t>(best)] = 1;
     t.centroids.emplace_back(stamp, c);
-    t.clusters.push_back(cluster);
+    t.clusters.push_back(std::move(cluster));
     while (time::to_seconds(stamp - t.centroids.front().first) > options_.history) {
       t.centroids.pop_front();
       t.clusters.pop_front();
     }
-    t.points = std::move(cluster);
     t.last_seen = stamp;
     fit_velocity(t);
     t.left_its_place = left_its_place(t, seen_now);
@@ -122,7 +121,7 @@ std::vector<Eigen::Vector2d> PeopleTracker::predicted(time::Time now) const
     const double since = time::to_seconds(now - t.last_seen);
     for (double dt = options_.step; dt <= options_.horizon + 1e-9; dt += options_.step) {
       const Eigen::Vector2d shift = t.velocity * (since + dt);
-      for (const auto& p : t.points) out.push_back(p + shift);
+      for (const auto& p : t.clusters.back()) out.push_back(p + shift);
     }
   }
   return out;

@@ -55,8 +55,7 @@ struct Track
 {
   int id = 0;
   std::deque<std::pair<time::Time, Eigen::Vector2d>> centroids;  // oldest first
-  std::deque<std::vector<Eigen::Vector2d>> clusters;             // the clusters of `centroids`
-  std::vector<Eigen::Vector2d> points;                           // newest cluster
+  std::deque<std::vector<Eigen::Vector2d>> clusters;             // the clusters of `centroids` (newest last)
   bool left_its_place = true;  // the newest scan no longer sees it where it was (or cannot tell)
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();           // [m/s]
   time::Time last_seen{};

@@ -68,20 +68,27 @@ TEST(BackOff, TurnsAwayThenDrivesOut)
 // Someone stands 0.6 m ahead across the whole view (a person waiting at their personal space in
 // a narrow passage): nothing is within the clearance, so the plain back-off never starts, and
 // the person will not walk on while the robot stands there. Without headway for yield_after,
-// the robot backs away.
+// the robot backs away; the time it stood idle before it had targets does not count.
 TEST(BackOff, YieldsAfterNoHeadway)
 {
   CaOptions o;
   CollisionAvoidance ca(o);
-  Targets t;
-  t.poses = {Pose2(3.0, 0.0, 0.0)};
-  ca.set_targets(t);
   std::vector<PolarReading> wall_ahead;
   for (int i = -90; i <= 90; ++i) {
     const double b = i * M_PI / 180.0;
     wall_ahead.push_back({b, std::min(8.0, 0.6 / std::max(0.05, std::cos(b)))});
   }
   int64_t us = 1'000'000;
+  // Standing idle first, without targets, longer than yield_after: no lack of headway.
+  for (int i = 0; i < 120; ++i) {
+    us += 100'000;
+    ca.on_odometry(time::from_utime(us), Pose2(), 0.0);
+    ca.on_scan(time::from_utime(us), wall_ahead, 8.0);
+    ca.update(time::from_utime(us));
+  }
+  Targets t;
+  t.poses = {Pose2(3.0, 0.0, 0.0)};
+  ca.set_targets(t);
   bool yielded_early = false, yielded = false;
   for (int i = 0; i < 120 && !yielded; ++i) {
     us += 100'000;
