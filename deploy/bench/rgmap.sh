@@ -8,9 +8,14 @@
 #   tour follower does not avoid them): office.yaml and IPA building maps (plain and furnished),
 #   exact ground truth. The map
 #   is placed in the world by the rigid fit of the accepted scans' estimates to their true poses.
-#   seg_precision / seg_recall: Bormann et al. 2016 — per region the share of its freespace cells
-#     (0.05 m) in its best-overlapping room, per room the share of its explored cells covered by
-#     its best region, unweighted means; seg_recall_full: over whole rooms (unexplored = missed);
+#   seg_precision / seg_recall: Bormann et al. 2016 as their evaluation code computes the paper's
+#     figures (ipa_room_segmentation EvaluationSegmentation, "micro" values) — per region the share
+#     of its freespace cells (0.05 m) in its best-overlapping room, per room the share of its
+#     explored cells covered by its best region, unweighted means over regions / rooms; regions
+#     and rooms of <= 0.25 m^2 (100 pixels at 0.05 m) left out, as there. Differences left (an RG
+#     map is no partition): regions overlap, and cells outside every room are not counted in a
+#     region's size (procs/rg_kernel/tools/rgmap_metrics.h); seg_recall_full: over whole rooms
+#     (unexplored = missed);
 #     seg_jaccard: mean best IoU per room; seg_coverage: share of room cells in some region.
 #   seg_loss_seen_through / seg_loss_driven_through: 1 - seg_precision split by cause (they add up to
 #     it): region cells outside the region's best room in rooms its robot never stood in (seen
@@ -18,7 +23,8 @@
 #     Per region with rgnav_rgmap_bench --diagnose (procs/rg_kernel/tools/segmentation_diagnosis.h).
 #   over_segmented_rooms / under_segmented_regions: rooms split by >= 2 regions each holding
 #     >= 20 % of the room / regions spanning >= 2 rooms each >= 20 % of the region.
-#   gateways_truth / _matched / _missed / _false: RG map gateways (not neutralized) matched one to
+#   gateways_truth / _matched / _missed / _false: RG map gateways (not neutralized; a crossing that
+#     joins more than two regions is one gateway object per pair with the same outline, counted once) matched one to
 #     one, nearest first, within gateway_match_m to ground-truth gateways between explored rooms
 #     (world files: labelled gateways incl. hallway junctions; IPA maps: doorway runs closed in
 #     *_gt_segmentation.png); gateways_crossed(_matched): only those the true path went through.
@@ -31,14 +37,23 @@
 #   the dissertation did); no ground truth: counts only (false_positives is null).
 #   gateways, doors, neutralized, not_traversed (Table 6.1 columns), regions, merged_regions,
 #   segments, scan_points, compression, mean_region_bytes, consistency_problems.
-# Env: RGMAP_SIM_MAX_S caps simulated seconds per world (default 1200).
+# worlds_true_poses.<name> — the same keys, the same tour mapped on the simulator's true poses
+#   instead of the scan mapper's (poses: "true"): segmentation errors apart from SLAM errors.
+#   Diagnostic only; the headline (worlds.<name>) is on the scan mapper's poses. Pictures under
+#   logs/bench/rgmap/<name>/true_poses/.
+# Env: RGMAP_SIM_MAX_S caps simulated seconds per world (default 1200); RGMAP_JSON and
+#   RGMAP_WORK write elsewhere (default logs/bench/rgmap.json, logs/bench/rgmap/); RGMAP_ONLY
+#   (space-separated names, e.g. "office lab_ipa") runs only those worlds and no real log unless
+#   named; RGMAP_TRUE_POSES=0 leaves out the true-pose runs.
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"
 SHARED="${RGNAV_DATA:-$ROOT/../shared/data}"
 IPA="$SHARED/maps/ipa"
-OUT="$ROOT/logs/bench"
-WORK="$OUT/rgmap"
+JSON="${RGMAP_JSON:-$ROOT/logs/bench/rgmap.json}"
+WORK="${RGMAP_WORK:-$ROOT/logs/bench/rgmap}"
+ONLY="${RGMAP_ONLY:-}"
+wanted() { [ -z "$ONLY" ] || [[ " $ONLY " == *" $1 "* ]]; }
 bin="$BUILD/bin/rgnav_rgmap_bench"
 if [ ! -x "$bin" ]; then
   echo "bench rgmap: $bin is not built (it needs drivers/sim, scan_mapper, gateway_detector)" >&2
@@ -48,17 +63,19 @@ mkdir -p "$WORK"
 reals=()
 for name in intel freiburg-079 belgioioso aces; do
   log="$SHARED/laser/corrected/$name-corrected.log.gz"
-  [ -f "$log" ] || continue
+  [ -f "$log" ] && wanted "$name" || continue
   "$BUILD/bin/rgnav_import" "$log" "$WORK/$name.lcmlog" >/dev/null
   reals+=(--real "$name=$WORK/$name.lcmlog")
 done
+sims=()
+for spec in "office=$ROOT/config/worlds/office.yaml" "lab_ipa=$IPA/lab_ipa.png" "office_e=$IPA/office_e.png" \
+  "lab_intel=$IPA/lab_intel.png" "lab_intel_furnished=$IPA/lab_intel_furnitures.png" \
+  "office_e_furnished=$IPA/office_e_furnitures.png"; do
+  wanted "${spec%%=*}" && sims+=(--sim "$spec")
+done
+flags=()
+[ "${RGMAP_TRUE_POSES:-1}" = 0 ] || flags+=(--true-poses)
 exec "$bin" --config "$ROOT/config/scan_mapper.yaml" --gateway-config "$ROOT/config/gateway_detector_aligned.yaml" \
   --rg-config "$ROOT/config/rg_kernel.yaml" --sim-config "$ROOT/config/sim.yaml" \
-  --json "$OUT/rgmap.json" --out "$WORK" --laps 1 --max-sim-s "${RGMAP_SIM_MAX_S:-1200}" \
-  --sim "office=$ROOT/config/worlds/office.yaml" \
-  --sim "lab_ipa=$IPA/lab_ipa.png" \
-  --sim "office_e=$IPA/office_e.png" \
-  --sim "lab_intel=$IPA/lab_intel.png" \
-  --sim "lab_intel_furnished=$IPA/lab_intel_furnitures.png" \
-  --sim "office_e_furnished=$IPA/office_e_furnitures.png" \
-  "${reals[@]}"
+  --json "$JSON" --out "$WORK" --laps 1 --max-sim-s "${RGMAP_SIM_MAX_S:-1200}" \
+  "${flags[@]}" "${sims[@]}" "${reals[@]}"

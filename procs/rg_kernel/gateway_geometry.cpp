@@ -52,6 +52,25 @@ std::vector<EdgeFrame> edge_frames(const std::vector<Vector2d>& points)
   return out;
 }
 
+bool line_on_crossed_side(const std::vector<Vector2d>& outline, const Vector2d& p, const Vector2d& q, double heading,
+                          double tolerance)
+{
+  if (outline.size() != 4) return false;
+  const double len = (q - p).norm();
+  if (len < 1e-6) return false;
+  const Vector2d dir(std::cos(heading), std::sin(heading));
+  const Vector2d mid = 0.5 * (p + q), line_along = (q - p) / len;
+  const double min_cos_parallel = std::cos(20.0 * M_PI / 180.0);
+  for (const EdgeFrame& e : edge_frames(outline)) {
+    if (std::fabs(e.normal.dot(dir)) < 0.5) continue;   // the crossing goes along this side, not through it
+    if (std::fabs(e.along.dot(line_along)) < min_cos_parallel) continue;
+    if (std::fabs(e.normal.dot(mid - e.mid)) > tolerance) continue;
+    if (std::fabs(e.along.dot(mid - e.mid)) >= 0.5 * e.length) continue;   // its middle beside the side
+    return true;
+  }
+  return false;
+}
+
 std::vector<Line> clip_lines(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach,
                              double line_extension)
 {

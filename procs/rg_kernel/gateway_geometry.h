@@ -35,6 +35,14 @@ struct EdgeFrame
 // gateway_edges with their frames; zero-length lines are left out.
 std::vector<EdgeFrame> edge_frames(const std::vector<Eigen::Vector2d>& points);
 
+// Whether the line p-q (a door or narrow passage) lies along a side of `outline` (a crossing's
+// four points) that a crossing with `heading` [rad] goes in or out through: parallel to the side
+// (within 20 deg), its midpoint within `tolerance` of the side's line and between its ends. The gateway detector sees a door in a hallway wall as
+// the branch of a junction (diss. 4.1: the VLM hypotheses look alike), and reports the one
+// crossing through it twice: as the door and as the junction left or entered through the door.
+bool line_on_crossed_side(const std::vector<Eigen::Vector2d>& outline, const Eigen::Vector2d& p, const Eigen::Vector2d& q,
+                          double heading, double tolerance);
+
 // The lines of one gateway (points in the region frame) that end the beams of a region whose
 // robot stood at `origins` (region frame): all its edges, except for an outline the sides with
 // one of the origins just outside them (less than `side_reach` beyond the side, not beside it):

@@ -180,7 +180,8 @@ std::vector<Vector2d> RegionBuilder::laser_origins() const
   return out;
 }
 
-void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_lines, bool exact) const
+void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_lines, bool exact,
+                             const std::vector<ForeignSide>& foreign) const
 {
   refresh();
   region->segments = segments_;
@@ -200,7 +201,14 @@ void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_
   for (const auto& l : doorways_not_crossed(find_doorways(segments_, options_.doorways), laser_origins())) lines.push_back(l);
   std::unordered_set<uint64_t> cells_set;
   Vector2d lo = Vector2d::Constant(std::numeric_limits<double>::max()), hi = -lo;
+  auto on_foreign_side = [&](const StoredScan& s) {
+    const Vector2d o = s.region_from_laser.translation();
+    return std::any_of(foreign.begin(), foreign.end(), [&](const ForeignSide& f) { return f.edge.just_beyond(o, f.reach); });
+  };
+  // A region has its own space: if every scan stood beyond its gateways, the sides are wrong.
+  const bool filter = std::any_of(scans_.begin(), scans_.end(), [&](const auto& kv) { return !on_foreign_side(kv.second); });
   for (const auto& [id, s] : scans_) {
+    if (filter && on_foreign_side(s)) continue;
     const Vector2d o = s.region_from_laser.translation();
     lo = lo.cwiseMin(o);
     hi = hi.cwiseMax(o);

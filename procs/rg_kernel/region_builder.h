@@ -17,6 +17,7 @@
 
 #include "geometry/pose2.h"
 #include "procs/rg_kernel/doorways.h"
+#include "procs/rg_kernel/gateway_geometry.h"
 #include "procs/rg_kernel/line_alignment.h"
 #include "procs/rg_kernel/line_map.h"
 #include "procs/rg_kernel/line_map_fidelity.h"
@@ -46,6 +47,18 @@ struct RegionBuildOptions
   DoorwayOptions doorways;             // the exact freespace also ends at doorways of the line map never crossed
 };
 
+// The far side of one of the region's own gateway lines: the region beyond it. A scan taken
+// there (its laser origin just beyond the line, less than `reach` from it and not beside its
+// ends) is no in-region measurement (diss. 5.2): it keeps its line segments (localization uses
+// them) but carves no freespace, or its beams would put the room beyond into this region. Such
+// scans stay behind when the crossing is reported late, at a pose a loop closure moved later,
+// or when the robot turns back in a doorway.
+struct ForeignSide
+{
+  EdgeFrame edge;       // region frame; normal pointing into the region beyond
+  double reach = 3.0;   // [m]
+};
+
 class RegionBuilder
 {
  public:
@@ -71,7 +84,9 @@ class RegionBuilder
   // lines (points in the region frame) or a doorway of the line map the robot did not go through
   // (doorways.h). Otherwise (the open region, published often): from the cells carved as scans
   // arrived, which end only at the gateways known then.
-  void describe(rgmap::Region* region, const GatewayLines& gateway_lines, bool exact) const;
+  // Exact descriptions also leave out the freespace of scans taken on a `foreign` side.
+  void describe(rgmap::Region* region, const GatewayLines& gateway_lines, bool exact,
+                const std::vector<ForeignSide>& foreign = {}) const;
   // Gateways of the region known when later scans are carved (beams crossing them are skipped).
   void set_gateway_lines(GatewayLines lines) { gateway_lines_ = std::move(lines); }
 

@@ -14,25 +14,6 @@ using Eigen::Vector2d;
 using rgmap::Gateway;
 using rgmap::Region;
 
-namespace {
-
-// True if the robot position p is through the gateway crossed with heading `heading`: beyond
-// one of its lines that the crossing goes through (for a crossing's outline, a side whose
-// outward normal points along the heading: the side it left by), less than `reach` from it and
-// not beside its ends.
-bool past_gateway(const Vector2d& p, const std::vector<Vector2d>& points, double heading, double reach)
-{
-  const Vector2d dir(std::cos(heading), std::sin(heading));
-  for (EdgeFrame e : edge_frames(points)) {
-    if (points.size() != 4 && e.normal.dot(dir) < 0) e.normal = -e.normal;  // a line: its side the crossing went to
-    if (e.normal.dot(dir) < 0.5) continue;  // the crossing does not go out through this line
-    if (e.just_beyond(p, reach)) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
 RgKernel::RgKernel(KernelOptions options) : options_(std::move(options)) {}
 
 StoredScan RgKernel::to_stored(const ScanInput& s, int64_t region_id) const
@@ -105,36 +86,6 @@ bool RgKernel::add_scan(const ScanInput& s)
   return true;
 }
 
-void RgKernel::walk_through_doorway(const Vector2d& from, const ScanInput& s)
-{
-  // A doorway of the current region's line map that the robot's last step went through and that
-  // no gateway stands in yet: a door the gateway detector missed (issue 8: missed gateways merge
-  // rooms). The kernel crosses it as the detector would have reported it.
-  if (!options_.doorway_gateways) return;
-  const int64_t rid = map_.current_region;
-  const Region* r = map_.region(rid);
-  const geometry::Pose2 region_from_map = r->map_from_region.inverse();
-  const Vector2d to = (s.map_from_base * s.base_from_laser).translation();
-  const auto door =
-      doorway_stepped_through(builders_.at(rid).segments(), region_from_map * from, region_from_map * to, options_.build.doorways);
-  if (!door) return;
-  const Vector2d p = r->map_from_region * door->first, q = r->map_from_region * door->second;
-  for (const auto& [id, g] : map_.gateways())
-    if (!g.neutralized && (crossing_in_map(g) - 0.5 * (p + q)).norm() < options_.gateway_match_distance) return;
-  GatewayEventInput e;
-  e.utime = s.utime;
-  e.scan_id = s.scan_id;
-  e.kind = GatewayEventInput::Kind::kTraversed;
-  e.track_id = -s.scan_id;   // no detector track: never matches an ENTERED time
-  e.cls = rgmap::GatewayClass::kNarrowPassage;
-  e.map_from_base = s.map_from_base;
-  e.gateway_points = {p, q};
-  e.direction = std::atan2(to.y() - from.y(), to.x() - from.x());
-  spdlog::info("region {}: the robot went through a doorway of its line map at ({:.2f}, {:.2f})", rid, 0.5 * (p.x() + q.x()),
-               0.5 * (p.y() + q.y()));
-  add_gateway_event(e);
-}
-
 Vector2d RgKernel::crossing_in_map(const Gateway& g) const
 {
   const Region* a = map_.region(g.region_a);
@@ -165,6 +116,29 @@ std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t regio
   return lines;
 }
 
+std::vector<ForeignSide> RgKernel::foreign_sides(int64_t region_id) const
+{
+  // The region's own traversed lines (doors, narrow passages): the side its first traversal
+  // headed to from region_a is region_b's (also while region_b is being opened), the other
+  // region_a's.
+  std::vector<ForeignSide> out;
+  const Region* r = map_.region(region_id);
+  for (const auto& [id, g] : map_.gateways()) {
+    if (g.neutralized || g.gateway_points.size() != 2 || g.traversal_directions.empty()) continue;
+    const int64_t a = map_.resolve(g.region_a), b = g.region_b ? map_.resolve(g.region_b) : 0;
+    if (a == b || (a != region_id && b != region_id)) continue;
+    const Region* ra = map_.region(g.region_a);
+    const geometry::Pose2 r_from_a = r->map_from_region.inverse() * ra->map_from_region;
+    const double a_to_b = g.traversal_directions.front() + r_from_a.theta();
+    const Vector2d beyond = (region_id == a ? 1.0 : -1.0) * Vector2d(std::cos(a_to_b), std::sin(a_to_b));
+    for (EdgeFrame e : edge_frames({r_from_a * g.gateway_points[0], r_from_a * g.gateway_points[1]})) {
+      if (e.normal.dot(beyond) < 0) e.normal = -e.normal;
+      out.push_back({e, options_.late_scan_reach});
+    }
+  }
+  return out;
+}
+
 void RgKernel::mark_regions_behind(const Gateway& g)
 {
   // A new gateway clips the beams of every region that saw past it: those whose freespace
@@ -182,126 +156,6 @@ void RgKernel::mark_regions_behind(const Gateway& g)
       }
     }
   }
-}
-
-bool RgKernel::repeats_entry(const Gateway& g, int64_t current, double direction) const
-{
-  // A door (a single line) crossed in the direction that leads into the current region does not
-  // lead out of it: the same crossing reported a second time (the kernel's doorway and then the
-  // detector's late event). Crossings (outlines) are left alone: they are left in many headings.
-  if (g.gateway_points.size() != 2 || g.traversal_directions.empty() || g.region_b == 0) return false;
-  const int64_t a = map_.resolve(g.region_a), b = map_.resolve(g.region_b);
-  if (a == b || (current != a && current != b)) return false;
-  const double a_to_b = g.traversal_directions.front() + map_.region(g.region_a)->map_from_region.theta();
-  const double into_current = current == b ? a_to_b : a_to_b + M_PI;
-  return std::cos(direction - into_current) > 0.5;
-}
-
-std::vector<int64_t> RgKernel::scans_past_gateway(int64_t region_id, const GatewayEventInput& e) const
-{
-  // The detector reports a traversal once the robot is through (0.3-1.6 m in the simulated
-  // worlds), so the region's newest scans were taken beyond the gateway. Left here, their
-  // beams (not crossing the gateway line: they start beyond it) would carve the next room
-  // into this region's freespace. The trailing run of such scans is handed on; the region
-  // keeps at least its oldest scan.
-  std::vector<std::pair<int64_t, int64_t>> by_time;   // (utime, scan id), newest first
-  for (const auto& [id, s] : builders_.at(region_id).scans()) by_time.push_back({s.utime, id});
-  std::sort(by_time.rbegin(), by_time.rend());
-  std::vector<int64_t> late;
-  for (size_t i = 0; i + 1 < by_time.size(); ++i) {
-    const ScanInput& s = scan_inputs_.at(by_time[i].second);
-    const Vector2d p = (s.map_from_base * s.base_from_laser).translation();
-    if (!past_gateway(p, e.gateway_points, e.direction, options_.late_scan_reach)) break;
-    late.push_back(by_time[i].second);
-  }
-  return late;
-}
-
-bool RgKernel::add_gateway_event(const GatewayEventInput& e)
-{
-  map_.utime = std::max(map_.utime, e.utime);
-  if (e.kind == GatewayEventInput::Kind::kEntered) {
-    entered_utime_[e.track_id] = e.utime;
-    return false;
-  }
-  if (e.kind != GatewayEventInput::Kind::kTraversed || map_.current_region == 0 || e.gateway_points.empty()) return false;
-
-  const int64_t from = map_.current_region;
-  Region* cur = map_.region(from);
-  Vector2d c_map = Vector2d::Zero();
-  for (const auto& p : e.gateway_points) c_map += p;
-  c_map /= static_cast<double>(e.gateway_points.size());
-
-  // A gateway we know already (crossed before, from either side)?
-  Gateway* g = nullptr;
-  for (const auto& [id, known] : map_.gateways()) {
-    if (!known.neutralized && (crossing_in_map(known) - c_map).norm() < options_.gateway_match_distance) {
-      g = map_.gateway(id);
-      break;
-    }
-  }
-  int64_t next = 0;
-  if (g && repeats_entry(*g, from, e.direction)) {
-    spdlog::info("gateway {}: traversal into region {} reported again, ignored", g->id, from);
-    return false;
-  }
-  if (g) {
-    const int64_t a = map_.resolve(g->region_a), b = g->region_b ? map_.resolve(g->region_b) : 0;
-    if (a == from) next = b;
-    else if (b == from) next = a;
-    else if (b == 0) {
-      // Crossing a dangling gateway of another region from its far side: we are its region_b.
-      map_.connect(g->id, from, map_.region(a)->map_from_region.inverse() * cur->map_from_region);
-      next = a;
-    } else {
-      next = a;  // neither side is where we are: trust the gateway's geometry
-    }
-  } else {
-    Gateway& fresh = map_.add_gateway(e.cls, from, e.utime);
-    const geometry::Pose2 region_from_map = cur->map_from_region.inverse();
-    for (const auto& p : e.gateway_points) fresh.gateway_points.push_back(region_from_map * p);
-    fresh.crossing_points.push_back(region_from_map * c_map);
-    fresh.traversal_directions.push_back(geometry::normalize_angle(e.direction - cur->map_from_region.theta()));
-    g = &fresh;
-    spdlog::info("gateway {} ({}) found leaving region {}", fresh.id, rgmap::to_string(e.cls), from);
-    mark_regions_behind(fresh);
-  }
-  const std::vector<int64_t> late = scans_past_gateway(from, e);
-  for (const int64_t id : late) builders_.at(from).remove_scan(id);
-  // Finalise the region we leave, now that its gateways (the new one too) filter its beams.
-  builders_.at(from).describe(cur, gateway_lines(from), true);
-  dirty_.erase(from);
-  cur->state = Region::State::kFinalised;
-  cur->utime = e.utime;
-
-  if (next == 0) {
-    next = KnownPlaces(map_, builders_, from, options_.known_place).region_holding(e.map_from_base.translation());
-    if (next) spdlog::info("gateway {} leads from region {} into known region {}", g->id, from, next);
-  }
-  if (next == 0) next = open_region(e.map_from_base, e.utime);
-  if (g->region_b == 0 && map_.resolve(g->region_a) == from)
-    map_.connect(g->id, next, map_.region(from)->map_from_region.inverse() * map_.region(next)->map_from_region);
-
-  // Traversal statistics: the learned cost of this gateway (diss. 5.4).
-  auto it = entered_utime_.find(e.track_id);
-  if (it != entered_utime_.end() && e.utime > it->second) {
-    const double t = (e.utime - it->second) * 1e-6;
-    g->mean_traversal_time = (g->mean_traversal_time * g->traversals + t) / (g->traversals + 1);
-    entered_utime_.erase(it);
-  }
-  ++g->traversals;
-  enter(next, e.utime, e.map_from_base.translation());
-  for (auto id = late.rbegin(); id != late.rend(); ++id) {
-    builders_.at(next).add_scan(to_stored(scan_inputs_.at(*id), next));
-    region_of_scan_[*id] = next;
-  }
-  if (!late.empty()) {
-    scans_since_entering_ = static_cast<int>(late.size());
-    dirty_.insert(next);
-    spdlog::info("{} scan(s) taken past gateway {} moved from region {} to region {}", late.size(), g->id, from, next);
-  }
-  ++map_.version;
-  return true;
 }
 
 void RgKernel::maybe_merge_current(int64_t utime)
@@ -341,7 +195,7 @@ rgmap::Region RgKernel::describe_region(int64_t id) const
 {
   Region r = *map_.region(id);
   auto it = builders_.find(id);
-  if (it != builders_.end()) it->second.describe(&r, gateway_lines(id), r.state == Region::State::kFinalised);
+  if (it != builders_.end()) it->second.describe(&r, gateway_lines(id), r.state == Region::State::kFinalised, foreign_sides(id));
   return r;
 }
 

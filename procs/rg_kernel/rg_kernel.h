@@ -7,6 +7,11 @@
 // region that turns out to be a known place (the robot's positions lie in a finalised
 // region's own space, seen by that region's robot: known_place.h) is merged into it and gateways with one region on both sides are
 // neutralized (diss. 6.1.1); republished scans (loop-closure corrections) update their region.
+// Traversals (gateway_traversal.cpp): a crossing (junction outline) joins one pair of regions
+// per gateway, the branches its first traversal took; left into another branch it gets a
+// gateway of its own with the same outline. A junction entered or left through a door just
+// crossed is that door's crossing reported again. Scans taken beyond one of the region's own
+// doors carve no freespace into it (region_builder.h, ForeignSide).
 // Inputs are applied in the order given; with the same inputs the map is the same.
 #pragma once
 
@@ -110,9 +115,20 @@ class RgKernel
   // positions (the region just entered has none yet).
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> gateway_lines(int64_t region_id,
                                                                          const Eigen::Vector2d* robot = nullptr) const;
+  // The far sides of the region's own traversed gateway lines, in its frame (region_builder.h).
+  std::vector<ForeignSide> foreign_sides(int64_t region_id) const;
   void mark_regions_behind(const rgmap::Gateway& g);
   void walk_through_doorway(const Eigen::Vector2d& from, const ScanInput& s);
   bool repeats_entry(const rgmap::Gateway& g, int64_t current, double direction) const;
+  // A traversed line gateway's unit normal (map frame) pointing to region_b's side: the side its
+  // first traversal headed to.
+  Eigen::Vector2d line_normal_to_b(const rgmap::Gateway& g) const;
+  // The region a traversal of the known gateway g from `current` with `direction` [rad, map]
+  // leads to, 0 if g does not join `current` to the region ahead.
+  int64_t leads_to(const rgmap::Gateway& g, int64_t current, double direction) const;
+  // The door of the current region just crossed that lies in a side of the junction traversal
+  // `e` went through (the same crossing reported again), 0 if none.
+  int64_t door_on_junction_side(const GatewayEventInput& e, int64_t current) const;
   Eigen::Vector2d crossing_in_map(const rgmap::Gateway& g) const;
   std::vector<int64_t> scans_past_gateway(int64_t region_id, const GatewayEventInput& e) const;
   StoredScan to_stored(const ScanInput& s, int64_t region_id) const;

@@ -49,11 +49,15 @@ int main(int argc, char** argv)
   app.add_option("--gateway-match-m", match_m, "gateway positions closer than this match ground truth [m]")->check(CLI::Range(0.1, 5.0));
   app.add_option("--json", json_path, "output JSON")->required();
   app.add_option("--out", out_dir, "folder for the maps and pictures of every run")->required();
-  bool verbose = false, diagnose = false;
+  bool verbose = false, diagnose = false, true_poses = false;
+  app.add_flag("--true-poses", true_poses,
+               "also map every world on the simulator's true poses (worlds_true_poses: segmentation without SLAM errors)");
   app.add_flag("--diagnose", diagnose, "print per region where its freespace falls outside its best room (and why)");
   app.add_flag("--verbose", verbose, "log the libraries' progress messages (regions opened, merged, ...)");
+  bool debug = false;
+  app.add_flag("--debug", debug, "log the libraries' debug messages too (every gateway event the RG kernel gets, ...)");
   CLI11_PARSE(app, argc, argv);
-  spdlog::set_level(verbose ? spdlog::level::info : spdlog::level::warn);
+  spdlog::set_level(debug ? spdlog::level::debug : verbose ? spdlog::level::info : spdlog::level::warn);
   try {
     const rp::LoadedPipeline loaded = rp::load_pipeline(paths);
     nlohmann::json j;
@@ -64,29 +68,40 @@ int main(int argc, char** argv)
     j["laps"] = tour.laps;
     j["people"] = tour.people;
     j["worlds"] = nlohmann::json::object();
+    if (true_poses) j["worlds_true_poses"] = nlohmann::json::object();
     j["logs"] = nlohmann::json::object();
     if (!sims.empty()) {
       const auto sim_options = rgnav::sim::load_simulator_options(rgnav::config::Config::load(sim_config));
       for (const auto& spec : sims) {
         const auto [name, path] = split_spec(spec);
-        try {
-          const auto world = rgnav::sim::load_world(path);
-          const auto truth = rp::ground_truth_of(world);
-          const auto run = rp::run_sim_rgmap(world, sim_options, loaded, tour);
-          const auto score = rp::score_world(run, truth, match_m);
-          auto w = rp::to_json(run, score);
-          w["world"] = path;
-          const std::string dir = out_dir + "/" + name;
-          rp::write_run_outputs(run.run, loaded.options, dir);
-          w["pictures"] = {dir + "/rgmap.svg", dir + "/rgmap.png"};
-          j["worlds"][name] = w;
-          if (diagnose) std::cerr << name << ":\n" << rp::to_text(score.segmentation_diagnosis, truth.room_names);
-          std::cerr << name << ": precision " << w["seg_precision"] << " recall " << w["seg_recall"] << " gateways "
-                    << w["gateways_matched"] << "/" << w["gateways_truth"] << " isomorphic " << w["graph_isomorphic"] << "\n";
-        } catch (const std::exception& e) {
-          // One world that cannot be run (no tour through it, unreadable) does not sink the rest.
-          j["worlds"][name] = {{"world", path}, {"error", e.what()}};
-          std::cerr << name << ": " << e.what() << "\n";
+        // The headline on the scan mapper's poses; on request again on the true poses.
+        for (const bool on_truth : {false, true}) {
+          if (on_truth && !true_poses) break;
+          const char* section = on_truth ? "worlds_true_poses" : "worlds";
+          const std::string label = on_truth ? name + " (true poses)" : name;
+          try {
+            const auto world = rgnav::sim::load_world(path);
+            const auto truth = rp::ground_truth_of(world);
+            auto options = tour;
+            options.true_poses = on_truth;
+            const auto run = rp::run_sim_rgmap(world, sim_options, loaded, options);
+            const auto score = rp::score_world(run, truth, match_m);
+            auto w = rp::to_json(run, score);
+            w["world"] = path;
+            w["poses"] = on_truth ? "true" : "scan_mapper";
+            const std::string dir = out_dir + "/" + name + (on_truth ? "/true_poses" : "");
+            rp::write_run_outputs(run.run, loaded.options, dir);
+            w["pictures"] = {dir + "/rgmap.svg", dir + "/rgmap.png"};
+            j[section][name] = w;
+            if (diagnose) std::cerr << label << ":\n" << rp::to_text(score.segmentation_diagnosis, truth.room_names);
+            std::cerr << label << ": precision " << w["seg_precision"] << " recall " << w["seg_recall"] << " gateways "
+                      << w["gateways_matched"] << "/" << w["gateways_truth"] << " false " << w["gateways_false"]
+                      << " isomorphic " << w["graph_isomorphic"] << "\n";
+          } catch (const std::exception& e) {
+            // One world that cannot be run (no tour through it, unreadable) does not sink the rest.
+            j[section][name] = {{"world", path}, {"error", e.what()}};
+            std::cerr << label << ": " << e.what() << "\n";
+          }
         }
       }
     }

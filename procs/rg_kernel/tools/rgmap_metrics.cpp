@@ -8,6 +8,29 @@ namespace rgnav::rgmap_pipeline {
 
 using Eigen::Vector2d;
 
+int64_t min_segment_cells(const LabelGrid& grid)
+{
+  return std::max<int64_t>(1, std::llround(kMinSegmentArea / (grid.resolution * grid.resolution)));
+}
+
+RegionCells without_small_regions(const RegionCells& found, int64_t min_cells)
+{
+  RegionCells out;
+  for (const auto& [id, cells] : found)
+    if (static_cast<int64_t>(cells.size()) > min_cells) out.emplace(id, cells);
+  return out;
+}
+
+LabelGrid without_small_rooms(LabelGrid grid, int64_t min_cells)
+{
+  std::map<int32_t, int64_t> size;
+  for (int32_t l : grid.labels)
+    if (l > 0) ++size[l];
+  for (int32_t& l : grid.labels)
+    if (l > 0 && size[l] <= min_cells) l = 0;
+  return grid;
+}
+
 SegmentationScore score_segmentation(const LabelGrid& truth, const RegionCells& found, double split_share)
 {
   SegmentationScore s;
@@ -129,146 +152,6 @@ GatewayMatch match_gateways(const std::vector<Vector2d>& truth, const std::vecto
   return m;
 }
 
-void Graph::add_edge(int64_t a, int64_t b)
-{
-  nodes.insert(a);
-  nodes.insert(b);
-  if (a != b) edges.insert({std::min(a, b), std::max(a, b)});
-}
-
-namespace {
-
-struct Dense
-{
-  int n = 0;
-  std::vector<std::vector<char>> adj;
-  std::vector<std::vector<int>> nbr;
-};
-
-Dense dense_of(const Graph& g)
-{
-  Dense d;
-  std::map<int64_t, int> index;
-  for (int64_t v : g.nodes) index[v] = d.n++;
-  d.adj.assign(static_cast<size_t>(d.n), std::vector<char>(static_cast<size_t>(d.n), 0));
-  d.nbr.resize(static_cast<size_t>(d.n));
-  for (const auto& [a, b] : g.edges) {
-    const int i = index.at(a), j = index.at(b);
-    d.adj[i][j] = d.adj[j][i] = 1;
-    d.nbr[i].push_back(j);
-    d.nbr[j].push_back(i);
-  }
-  return d;
-}
-
-// Colour refinement (1-dimensional Weisfeiler-Leman) on both graphs together, so colours are
-// comparable: isomorphic graphs end with the same colour histogram, and an isomorphism maps
-// every node to a node of its own colour.
-void refine(const Dense& a, const Dense& b, std::vector<int>* ca, std::vector<int>* cb)
-{
-  ca->assign(static_cast<size_t>(a.n), 0);
-  cb->assign(static_cast<size_t>(b.n), 0);
-  for (int round = 0; round < a.n + b.n + 1; ++round) {
-    std::map<std::pair<int, std::vector<int>>, int> palette;
-    auto signature = [](const Dense& g, const std::vector<int>& c, int v) {
-      std::vector<int> s;
-      for (int u : g.nbr[static_cast<size_t>(v)]) s.push_back(c[static_cast<size_t>(u)]);
-      std::sort(s.begin(), s.end());
-      return std::make_pair(c[static_cast<size_t>(v)], s);
-    };
-    std::vector<std::pair<int, std::vector<int>>> sa, sb;
-    for (int v = 0; v < a.n; ++v) sa.push_back(signature(a, *ca, v));
-    for (int v = 0; v < b.n; ++v) sb.push_back(signature(b, *cb, v));
-    for (const auto& s : sa) palette.emplace(s, 0);
-    for (const auto& s : sb) palette.emplace(s, 0);
-    int next = 0;
-    for (auto& [k, c] : palette) c = next++;
-    std::vector<int> na, nb;
-    for (const auto& s : sa) na.push_back(palette.at(s));
-    for (const auto& s : sb) nb.push_back(palette.at(s));
-    const bool stable = std::set<int>(na.begin(), na.end()).size() + std::set<int>(nb.begin(), nb.end()).size() ==
-                        std::set<int>(ca->begin(), ca->end()).size() + std::set<int>(cb->begin(), cb->end()).size();
-    *ca = std::move(na);
-    *cb = std::move(nb);
-    if (stable && round > 0) break;
-  }
-}
-
-}  // namespace
-
-bool isomorphic(const Graph& ga, const Graph& gb)
-{
-  if (ga.nodes.size() != gb.nodes.size() || ga.edges.size() != gb.edges.size()) return false;
-  const Dense a = dense_of(ga), b = dense_of(gb);
-  std::vector<int> ca, cb;
-  refine(a, b, &ca, &cb);
-  std::vector<int> ha = ca, hb = cb;
-  std::sort(ha.begin(), ha.end());
-  std::sort(hb.begin(), hb.end());
-  if (ha != hb) return false;
-  // Backtracking: nodes of a in order of rarest colour first; candidates of the same colour
-  // whose adjacency to every node mapped so far agrees.
-  std::map<int, int> freq;
-  for (int c : ca) ++freq[c];
-  std::vector<int> order(static_cast<size_t>(a.n));
-  for (int v = 0; v < a.n; ++v) order[static_cast<size_t>(v)] = v;
-  std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return freq[ca[x]] < freq[ca[y]]; });
-  std::vector<int> to(static_cast<size_t>(a.n), -1);
-  std::vector<char> used(static_cast<size_t>(b.n), 0);
-  std::function<bool(size_t)> extend = [&](size_t k) -> bool {
-    if (k == order.size()) return true;
-    const int v = order[k];
-    for (int w = 0; w < b.n; ++w) {
-      if (used[static_cast<size_t>(w)] || cb[static_cast<size_t>(w)] != ca[static_cast<size_t>(v)]) continue;
-      bool ok = true;
-      for (size_t j = 0; j < k && ok; ++j) {
-        const int u = order[j];
-        ok = a.adj[v][u] == b.adj[w][to[static_cast<size_t>(u)]];
-      }
-      if (!ok) continue;
-      to[static_cast<size_t>(v)] = w;
-      used[static_cast<size_t>(w)] = 1;
-      if (extend(k + 1)) return true;
-      used[static_cast<size_t>(w)] = 0;
-    }
-    to[static_cast<size_t>(v)] = -1;
-    return false;
-  };
-  return extend(0);
-}
-
-GraphComparison compare_graphs(const Graph& truth, const Graph& map, const std::map<int64_t, int64_t>& map_to_truth)
-{
-  GraphComparison c;
-  c.isomorphic = isomorphic(truth, map);
-  c.truth_nodes = static_cast<int>(truth.nodes.size());
-  c.map_nodes = static_cast<int>(map.nodes.size());
-  c.truth_edges = static_cast<int>(truth.edges.size());
-  c.map_edges = static_cast<int>(map.edges.size());
-  std::set<std::pair<int64_t, int64_t>> hit;
-  for (const auto& [u, v] : map.edges) {
-    const auto mu = map_to_truth.find(u), mv = map_to_truth.find(v);
-    if (mu == map_to_truth.end() || mv == map_to_truth.end()) {
-      ++c.edges_extra;
-      continue;
-    }
-    if (mu->second == mv->second) {
-      ++c.edges_internal;
-      continue;
-    }
-    const std::pair<int64_t, int64_t> e{std::min(mu->second, mv->second), std::max(mu->second, mv->second)};
-    if (truth.edges.count(e)) hit.insert(e);
-    else ++c.edges_extra;
-  }
-  c.edges_matched = static_cast<int>(hit.size());
-  c.edges_missing = c.truth_edges - c.edges_matched;
-  std::set<int64_t> reached;
-  for (const auto& [r, t] : map_to_truth) reached.insert(t);
-  for (int64_t t : truth.nodes)
-    if (!reached.count(t)) ++c.rooms_unmatched;
-  return c;
-}
-
 Graph region_graph(const rgmap::RgMap& map)
 {
   Graph g;
@@ -280,6 +163,26 @@ Graph region_graph(const rgmap::RgMap& map)
     if (g.nodes.count(a) && g.nodes.count(b)) g.add_edge(a, b);
   }
   return g;
+}
+
+std::set<int64_t> repeated_crossings(const rgmap::RgMap& map)
+{
+  std::vector<std::pair<int64_t, std::vector<Vector2d>>> seen;   // outlines in the map frame
+  std::set<int64_t> out;
+  for (const auto& [id, g] : map.gateways()) {
+    const rgmap::Region* a = map.region(g.region_a);
+    if (g.neutralized || g.gateway_points.size() != 4 || !a) continue;
+    std::vector<Vector2d> pts;
+    for (const auto& p : g.gateway_points) pts.push_back(a->map_from_region * p);
+    const bool repeat = std::any_of(seen.begin(), seen.end(), [&](const auto& s) {
+      for (size_t k = 0; k < 4; ++k)
+        if ((s.second[k] - pts[k]).norm() > 0.01) return false;
+      return true;
+    });
+    if (repeat) out.insert(id);
+    else seen.push_back({id, std::move(pts)});
+  }
+  return out;
 }
 
 MapCounts count_map(const rgmap::RgMap& map, int64_t scan_points)
@@ -296,11 +199,13 @@ MapCounts count_map(const rgmap::RgMap& map, int64_t scan_points)
     bytes += static_cast<double>(r.freespace.bytes().size() + r.segments.size() * 4 * sizeof(float));
     area += r.freespace.features().area;
   }
+  const std::set<int64_t> repeats = repeated_crossings(map);
   for (const auto& [id, g] : map.gateways()) {
     if (g.neutralized) {
       ++c.neutralized;
       continue;
     }
+    if (repeats.count(id)) continue;
     ++c.gateways;
     if (g.cls == rgmap::GatewayClass::kDoor || g.cls == rgmap::GatewayClass::kNarrowPassage) ++c.doors;
     if (g.region_b == 0) ++c.not_traversed;
@@ -364,8 +269,9 @@ geometry::Pose2 fit_rigid(const std::vector<Vector2d>& a, const std::vector<Vect
 std::vector<Vector2d> gateway_positions(const rgmap::RgMap& map)
 {
   std::vector<Vector2d> out;
+  const std::set<int64_t> repeats = repeated_crossings(map);
   for (const auto& [id, g] : map.gateways()) {
-    if (g.neutralized) continue;
+    if (g.neutralized || repeats.count(id)) continue;
     const auto& pts = g.gateway_points.empty() ? g.crossing_points : g.gateway_points;
     const rgmap::Region* a = map.region(map.resolve(g.region_a));
     if (pts.empty() || !a) continue;

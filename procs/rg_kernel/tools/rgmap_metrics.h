@@ -1,9 +1,17 @@
 // Evaluation of RG maps against ground truth (./rgnav bench rgmap), plain geometry and graphs:
 //  - segmentation: the map's regions (freespace cells) against the ground-truth rooms of a label
-//    grid, after Bormann et al. 2016: precision = per region, the share of its cells that lie in
-//    its best-overlapping room; recall = per room, the share of its cells covered by its
-//    best-overlapping region; both averaged unweighted. Recall is taken over the cells of the
-//    room that some region covers (what the robot explored) and, separately, over all its cells.
+//    grid, after Bormann et al. 2016 as their evaluation code computes the paper's figures
+//    (ipa_room_segmentation, EvaluationSegmentation::computePrecisionRecall, the "micro" values):
+//    precision = per region, the share of its cells that lie in its best-overlapping room;
+//    recall = per room, the share of its cells covered by its best-overlapping region; both
+//    averaged unweighted (each region / room counts once, whatever its size). Segments and rooms
+//    of at most 100 pixels (0.25 m^2 at the maps' 0.05 m) are left out there, as here
+//    (kMinSegmentArea). Recall is taken over the cells of the room that some region covers (what
+//    the robot explored) and, separately, over all its cells (recall_full: the paper's, whose
+//    segmentations cover the whole map). Two differences remain, both from an RG map being no
+//    partition: regions overlap (a cell seen from two regions counts in both), and a region's
+//    cells outside every room (walls, door-closing lines of the ground truth) are left out of
+//    its size, where the paper's segment size counts every pixel of the segment.
 //  - gateways: gateway positions matched one-to-one to ground-truth gateways, nearest pairs first.
 //  - graphs: the region adjacency graph against the ground-truth room graph, by isomorphism and,
 //    through the region -> best room correspondence, edge by edge.
@@ -56,6 +64,17 @@ struct SegmentationScore
   std::map<int64_t, int32_t> region_to_room;  // best-overlapping room of each region
 };
 
+// [m^2] Bormann et al.'s evaluation leaves out segments and rooms of <= 100 pixels at 0.05 m.
+constexpr double kMinSegmentArea = 0.25;
+// Cells of kMinSegmentArea in `grid` (at least 1).
+int64_t min_segment_cells(const LabelGrid& grid);
+
+// Regions of `found` with more than min_cells cells.
+RegionCells without_small_regions(const RegionCells& found, int64_t min_cells);
+
+// The grid with rooms of at most min_cells cells unlabelled (0).
+LabelGrid without_small_rooms(LabelGrid grid, int64_t min_cells);
+
 SegmentationScore score_segmentation(const LabelGrid& truth, const RegionCells& found, double split_share = 0.2);
 
 struct GatewayMatch
@@ -98,7 +117,13 @@ GraphComparison compare_graphs(const Graph& truth, const Graph& map, const std::
 // by a gateway that is traversed (both sides known) and not neutralized.
 Graph region_graph(const rgmap::RgMap& map);
 
-// Table 6.1 of the dissertation plus structure and compactness.
+// A crossing joining more than two regions is one gateway per pair of them in an RG map (a
+// gateway has two sides), all with the crossing's outline: the ids of those repeating the
+// outline of a lower-id gateway (within 1 cm). They are edges of the region graph, but one
+// gateway for counting and matching.
+std::set<int64_t> repeated_crossings(const rgmap::RgMap& map);
+
+// Table 6.1 of the dissertation plus structure and compactness; a crossing counts once.
 struct MapCounts
 {
   int regions = 0;             // live
@@ -124,7 +149,7 @@ RegionCells region_cells(const rgmap::RgMap& map, const geometry::Pose2& world_f
 geometry::Pose2 fit_rigid(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b);
 
 // Gateway positions of an RG map (mean of the gateway points, else the crossing points) in the
-// map frame, for the gateways count_map counts (not neutralized).
+// map frame, for the gateways count_map counts (not neutralized, a crossing once).
 std::vector<Eigen::Vector2d> gateway_positions(const rgmap::RgMap& map);
 
 }  // namespace rgnav::rgmap_pipeline

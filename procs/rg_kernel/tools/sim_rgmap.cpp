@@ -65,6 +65,7 @@ SimRgMapRun run_sim_rgmap(sim::World world, const sim::SimulatorOptions& sim_opt
 
   const auto& l = sim_options.laser;
   loaded.options.mapper.base_from_laser = geometry::Pose2(l.mount_x, l.mount_y, l.mount_yaw);
+  if (options.true_poses) loaded.options.poses_as_given = true;
   const double cpu0 = thread_cpu_seconds();
   RgMapPipeline pipeline(loaded.options, loaded.classifier);
   sim::Simulator simulator(world, sim_options);
@@ -86,6 +87,16 @@ SimRgMapRun run_sim_rgmap(sim::World world, const sim::SimulatorOptions& sim_opt
       res.driven_m = o.true_distance;
       const Vector2d p(o.world_from_base.x, o.world_from_base.y);
       if (res.true_path.empty() || (p - res.true_path.back()).norm() >= 0.05) res.true_path.push_back(p);
+    }
+    if (options.true_poses) {
+      // The true pose at each scan's time (the chunk's odometry samples, which carry it, are
+      // in the track already), handed over as the given pose right before the scan.
+      for (const auto& s : out.scans) {
+        if (track.empty()) continue;   // no pose before the first odometry sample
+        pipeline.add_odometry({s.utime, truth_at(track, s.utime)});
+        pipeline.add_scan(to_scan(s));
+      }
+      continue;
     }
     // Odometry before the scans of the same chunk, as a bus would deliver them by time.
     size_t oi = 0;
@@ -120,12 +131,15 @@ WorldScore score_world(const SimRgMapRun& run, const GroundTruth& truth, double 
   s.alignment_rmse_m = est.empty() ? 0.0 : std::sqrt(se / static_cast<double>(est.size()));
 
   s.counts = count_map(run.run.map, run.run.kernel_stats.raw_points);
-  const RegionCells cells = region_cells(run.run.map, s.world_from_map, truth.rooms);
-  s.segmentation = score_segmentation(truth.rooms, cells);
+  // As Bormann et al.'s evaluation: segments and rooms of <= 0.25 m^2 left out (rgmap_metrics.h).
+  const int64_t min_cells = min_segment_cells(truth.rooms);
+  const LabelGrid room_grid = without_small_rooms(truth.rooms, min_cells);
+  const RegionCells cells = without_small_regions(region_cells(run.run.map, s.world_from_map, room_grid), min_cells);
+  s.segmentation = score_segmentation(room_grid, cells);
   std::map<int64_t, std::vector<Vector2d>> positions;
   for (const auto& [id, ps] : run.run.robot_positions)
     for (const auto& p : ps) positions[id].push_back(s.world_from_map * p);
-  s.segmentation_diagnosis = diagnose_segmentation(truth.rooms, cells, positions);
+  s.segmentation_diagnosis = diagnose_segmentation(room_grid, cells, positions);
 
   // Rooms the tour explored: the planned tour's rooms.
   std::vector<int32_t> rooms;

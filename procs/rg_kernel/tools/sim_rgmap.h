@@ -24,6 +24,9 @@ struct SimTourOptions
   // The tour follower has no obstacle avoidance: a walking person in its way stops the tour
   // for good. People are left out unless asked for (they are no part of the ground truth).
   bool people = false;
+  // The scans go to the RG kernel at the simulator's true poses (the scan mapper is not used):
+  // separates segmentation errors from SLAM errors. Not the headline: the robot has no true poses.
+  bool true_poses = false;
 };
 
 struct SimRgMapRun

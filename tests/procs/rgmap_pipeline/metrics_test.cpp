@@ -77,6 +77,29 @@ TEST(Segmentation, RegionOutsideRoomsIsCountedNotScored)
   EXPECT_EQ(s.rooms_explored, 1);
 }
 
+TEST(Segmentation, SliversOfAtMostAQuarterSquareMetreAreLeftOutAsByBormann)
+{
+  // At 0.05 m a quarter square metre is 100 cells, the evaluation's limit for segments and rooms.
+  LabelGrid g(40, 20, 0.05, Vector2d(0, 0));
+  for (int y = 0; y < 20; ++y)
+    for (int x = 0; x < 40; ++x) g.at(x, y) = x < 30 ? 1 : 2;   // room 2: 10 x 20 = 200 cells
+  for (int y = 0; y < 10; ++y) g.at(39, y) = 3;                  // room 3: 10 cells
+  ASSERT_EQ(min_segment_cells(g), 100);
+  RegionCells found{{1, cells(g, 0, 29, 0, 19)}, {2, cells(g, 28, 32, 0, 19)}, {3, cells(g, 33, 38, 0, 9)}};
+  // Region 2 straddles rooms 1 and 2 with 100 cells: left out. Region 3 (60 cells) too.
+  const RegionCells kept = without_small_regions(found, min_segment_cells(g));
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept.count(1), 1u);
+  const LabelGrid rooms = without_small_rooms(g, min_segment_cells(g));
+  EXPECT_EQ(rooms.at(39, 0), 0);
+  EXPECT_EQ(rooms.at(35, 0), 2);
+  const auto s = score_segmentation(rooms, kept);
+  EXPECT_DOUBLE_EQ(s.precision, 1.0);
+  EXPECT_EQ(s.rooms, 2);
+  // Scored whole, the straddling sliver costs precision.
+  EXPECT_LT(score_segmentation(g, found).precision, 0.9);
+}
+
 TEST(Gateways, MatchedOneToOneNearestFirst)
 {
   // Truth 0 and 1 both near found 0; found 0 is closer to truth 1, so truth 0 takes found 1.
@@ -178,6 +201,35 @@ TEST(RegionGraph, NeutralizedAndOneSidedGatewaysAreNoEdges)
   EXPECT_EQ(counts.neutralized, 1);
   EXPECT_EQ(counts.not_traversed, 1);
   EXPECT_EQ(counts.doors, 2);
+}
+
+TEST(RegionGraph, CrossingJoiningThreeRegionsIsThreeEdgesButOneGateway)
+{
+  // A T-crossing at x in [4, 6] joins regions a (west), b (east) and c (north): one gateway
+  // object per pair, each with the crossing's outline in its region_a's frame.
+  rgmap::RgMap m;
+  const int64_t a = m.add_region({}, 1).id;
+  const int64_t b = m.add_region(geometry::Pose2(7, 0, 0), 2).id;
+  const int64_t c = m.add_region(geometry::Pose2(5, 3, M_PI / 2), 3).id;
+  const std::vector<Vector2d> outline{{4, 0}, {4, 2}, {6, 2}, {6, 0}};
+  auto add = [&](int64_t from, int64_t to) {
+    rgmap::Gateway& g = m.add_gateway(rgmap::GatewayClass::kTCrossing, from, 4);
+    const geometry::Pose2 from_map = m.region(from)->map_from_region.inverse();
+    for (const auto& p : outline) g.gateway_points.push_back(from_map * p);
+    m.connect(g.id, to, from_map * m.region(to)->map_from_region);
+  };
+  add(a, b);
+  add(b, c);
+  add(c, a);
+  EXPECT_EQ(region_graph(m).edges.size(), 3u);
+  EXPECT_EQ(repeated_crossings(m), (std::set<int64_t>{2, 3}));
+  EXPECT_EQ(count_map(m, 100).gateways, 1);
+  ASSERT_EQ(gateway_positions(m).size(), 1u);
+  EXPECT_NEAR((gateway_positions(m)[0] - Vector2d(5, 1)).norm(), 0.0, 1e-9);
+  // Another crossing with a different outline is a gateway of its own.
+  rgmap::Gateway& other = m.add_gateway(rgmap::GatewayClass::kTCrossing, a, 5);
+  other.gateway_points = {{14, 0}, {14, 2}, {16, 2}, {16, 0}};
+  EXPECT_EQ(count_map(m, 100).gateways, 2);
 }
 
 TEST(RegionCells, FreespacePlacedThroughTheAlignment)
