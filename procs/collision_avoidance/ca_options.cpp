@@ -1,5 +1,7 @@
 #include "collision_avoidance/ca_options.h"
 
+#include <cmath>
+
 namespace rgnav::collision_avoidance {
 
 CaNodeOptions load_ca_options(const config::Config& root)
@@ -45,6 +47,9 @@ CaNodeOptions load_ca_options(const config::Config& root)
   po.horizon = ppl.number("horizon_s", po.horizon, 0.0, 10.0);
   po.step = ppl.number("step_s", po.step, 0.05, 2.0);
   po.max_still_there = ppl.number("max_still_there", po.max_still_there, 0.0, 1.0);
+  po.stopped_memory = ppl.number("stopped_memory_s", po.stopped_memory, 0.0, 600.0);
+  po.stopped_min_travel = ppl.number("stopped_min_travel_m", po.stopped_min_travel, 0.0, 10.0);
+  po.stopped_min_moving = ppl.number("stopped_min_moving_s", po.stopped_min_moving, 0.0, 60.0);
 
   const auto pl = root.section("planner");
   c.planner.safety_margin = pl.number("safety_margin_m", c.planner.safety_margin, 0.0, 1.0);
@@ -93,6 +98,11 @@ CaNodeOptions load_ca_options(const config::Config& root)
   c.yield_after = be.number("yield_after_s", c.yield_after, 0.5, 600.0);
   c.yield_reach = be.number("yield_reach_m", c.yield_reach, 0.0, 3.0);
   c.backoff_speed = be.number("backoff_speed_mps", c.backoff_speed, 0.02, 0.5);
+  c.give_way.length = be.number("give_way_length_m", c.give_way.length, 0.1, 5.0);
+  c.give_way.min_length = be.number("give_way_min_length_m", c.give_way.min_length, 0.05, c.give_way.length);
+  c.give_way.spread = be.number("give_way_spread_rad", c.give_way.spread, 0.0, M_PI);
+  c.give_way_speed = be.number("give_way_speed_mps", c.give_way_speed, 0.02, 1.0);
+  c.give_way_timeout = be.number("give_way_timeout_s", c.give_way_timeout, 1.0, 600.0);
   c.reach_radius = be.number("reach_radius_m", c.reach_radius, 0.05, 2.0);
   c.goal_tolerance = be.number("goal_tolerance_m", c.goal_tolerance, 0.01, 1.0);
   c.lookahead_targets = static_cast<int>(be.integer("lookahead_targets", c.lookahead_targets, 1, 10));

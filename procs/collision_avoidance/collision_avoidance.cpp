@@ -7,10 +7,6 @@ namespace rgnav::collision_avoidance {
 using trajectory::Chain;
 using trajectory::Segment;
 
-namespace {
-constexpr const char* kTurningAway = "reactive fallback: backing off, turning away";
-}  // namespace
-
 const char* mode_name(Mode m)
 {
   switch (m) {
@@ -172,8 +168,13 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
 
   // A back-off manoeuvre runs to its end: re-deciding every 100 ms on a clearance that
   // flickers around the threshold (scan noise) made the robot twitch between turning away
-  // and turning back.
-  if (backoff_id_ && active_ && active_->id == *backoff_id_ && !targets_changed_) {
+  // and turning back. New targets end a plain back-off (the robot decides anew toward them;
+  // running every back-off to its end cost the obstacle courses seven of 47 goals, in time).
+  // Giving way goes on while the targets are re-sent for the same goal (re-expressed as the
+  // localization corrects the odometry, which it does during every turn on the spot): that
+  // cut every give-way short in its first turn. A new goal ends it too.
+  const bool keeps_going = giving_way_now_ ? targets_.goal_id == backoff_goal_id_ : !targets_changed_;
+  if (backoff_id_ && active_ && active_->id == *backoff_id_ && keeps_going) {
     const bool ours = has_feedback_ && feedback_.trajectory_id == *backoff_id_;
     const bool ended = ours && (feedback_.state == 2 || feedback_.state == 0);
     // Committed, but never blind: something on what remains of it ends it.
@@ -189,6 +190,17 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
     }
   }
   backoff_id_.reset();
+  giving_way_now_ = false;
+  // Giving way goes on until the robot is out of the way: a line that turned out blocked once
+  // the turn brought its end into view (the laser looks ahead only) is replaced by the next
+  // freest one from where the robot is, instead of heading straight back into the spot.
+  if (give_way_active_ && !targets_changed_goal()) {
+    const double done = (pose_.translation() - give_way_from_).norm();
+    if (done < 0.8 * options_.give_way.length && now < give_way_until_) {
+      if (auto again = giving_way(now, options_.give_way.length - done)) return again;
+    }
+    give_way_active_ = false;
+  }
 
   bool replan = targets_changed_ || !active_ || stopped_ || mode_ == Mode::kReactive || mode_ == Mode::kBlocked;
   targets_changed_ = false;
@@ -261,130 +273,6 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
     return send_new(std::move(planned->chain), now, planned->predicted_time, Mode::kPlanned);
   }
   return reactive(now);
-}
-
-std::optional<trajectory::Trajectory> CollisionAvoidance::backing_off(time::Time now, double radius)
-{
-  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
-  const Eigen::Vector2d here = pose_.translation();
-  if (map_.clearance(here, radius) >= radius) return std::nullopt;
-  Eigen::Vector2d away = Eigen::Vector2d::Zero();
-  for (const auto& p : map_.points()) {
-    const Eigen::Vector2d d = here - p;
-    const double n = d.norm();
-    if (n < radius + 0.1 && n > 1e-6) away += d / n;
-  }
-  if (away.norm() < 1e-6) return std::nullopt;  // surrounded evenly: nothing better than waiting
-  const double heading = std::atan2(away.y(), away.x());
-  const double dth = geometry::normalize_angle(heading - pose_.theta());
-  const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
-  const bool turn_first = std::fabs(dth) > 0.3;
-  if (turn_first && !standing) return stop(now, Mode::kReactive, "reactive fallback: backing off, stopping first");
-  // Turn and drive out as one committed manoeuvre: turning first and deciding the way out
-  // afterwards made the robot turn back and forth beside a person who stood waiting for it
-  // (what the laser saw of them changed with every turn, and so did "away").
-  Segment out = Segment::line(Pose2(here, heading), options_.backoff_length);
-  out.set_v_max(options_.backoff_speed);
-  Chain c = turn_first ? Chain({Segment::turn(pose_, dth), out}) : Chain({out});
-  const double t_turn = turn_first ? trajectory::turn_duration(dth, options_.omega_max, 1.0) : 0.0;
-  if (first_collision(c, map_, clearance, options_.planner.check_step)) {
-    if (!turn_first) return std::nullopt;
-    // No way out that way: still face it (the turn brings the space there into view).
-    if (active_ && !stopped_ && mode_ == Mode::kReactive && status_ == kTurningAway &&
-        time::to_seconds(now - last_sent_) < t_turn)
-      return std::nullopt;  // the turn is under way
-    status_ = kTurningAway;
-    return commit_backoff(send_new(Chain({Segment::turn(pose_, dth)}), now, t_turn, Mode::kReactive), now, t_turn);
-  }
-  status_ = turn_first ? "reactive fallback: backing off, turning and driving away" : "reactive fallback: backing off, driving away";
-  const double t = t_turn + options_.backoff_length / options_.backoff_speed;
-  return commit_backoff(send_new(std::move(c), now, t, Mode::kReactive), now, t);
-}
-
-std::optional<trajectory::Trajectory> CollisionAvoidance::commit_backoff(std::optional<trajectory::Trajectory> t,
-                                                                         time::Time now, double duration)
-{
-  if (t) {
-    backoff_id_ = t->id;
-    // Its predicted duration plus the acceleration phases and some slack; then decide anew.
-    backoff_until_ = now + time::Duration(static_cast<int64_t>((duration + 2.0) * 1e6));
-  }
-  return t;
-}
-
-std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time now)
-{
-  ++fallbacks_;
-  const Pose2 target = goals().empty() ? pose_ : goals().front();
-  const Eigen::Vector2d d = pose_.inverse() * target.translation();
-  const double bearing = std::atan2(d.y(), d.x());
-  const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
-  if (!blocked_since_set_) {
-    blocked_since_set_ = true;
-    blocked_since_ = now;
-  }
-  // No headway for a long time: whoever waits with the robot (a person at their personal
-  // space, who will not walk on while the robot stands in their way) gets room. Back away
-  // from what is near, farther out than the plain back-off looks.
-  if (time::to_seconds(now - progress_since_) > options_.yield_after) {
-    progress_since_ = now;
-    const double reach = options_.planner.robot_radius + options_.planner.safety_margin + options_.yield_reach;
-    if (auto away = backing_off(now, reach)) {
-      status_ = "reactive fallback: no headway, yielding";
-      return away;
-    }
-  }
-  // First behaviour: stop and wait a moment (a person crossing clears the way by itself),
-  // but not where a person is about to walk: they would walk into the robot.
-  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
-  const bool in_the_way = map_.clearance_predicted(pose_.translation(), clearance) < clearance;
-  if (!in_the_way && time::to_seconds(now - blocked_since_) < options_.fallback_wait)
-    return stop(now, Mode::kReactive, "reactive fallback: stopped, waiting for the way to clear");
-  // Too close to something (a person who stepped up to the robot and now waits for it to
-  // move, a box seen late): nothing that keeps the full clearance starts here. Back off:
-  // face away from what is close (a turn on the spot is always safe for the round B21r,
-  // and brings the space there into the laser's view), then drive out along that heading.
-  if (auto away = backing_off(now, clearance)) return away;
-  // Readings: the newest scan plus the map's other obstacles (3D grid, older scans) near by.
-  std::vector<PolarReading> readings = last_readings_;
-  const Pose2 base_from_odom = pose_.inverse();
-  for (const auto& p : map_.points()) {
-    const Eigen::Vector2d b = base_from_odom * p;
-    if (b.norm() < 3.0) readings.push_back({std::atan2(b.y(), b.x()), b.norm()});
-  }
-  const ReactiveDecision dec = decide(readings, bearing, standing, options_.reactive);
-  if (dec.action == ReactiveDecision::Action::kTurn) {
-    Chain c({Segment::turn(pose_, dec.heading)});
-    status_ = "reactive fallback: turning toward free space";
-    const double t = trajectory::turn_duration(dec.heading, options_.omega_max, 1.0);
-    if (active_ && !stopped_ && mode_ == Mode::kReactive && time::to_seconds(now - last_sent_) < t) return std::nullopt;
-    return send_new(std::move(c), now, t, Mode::kReactive);
-  }
-  // Free space leads away from the target (back down the corridor the robot came along):
-  // driving there only loses ground. Face the target's side and plan again from there.
-  if (dec.action == ReactiveDecision::Action::kDrive &&
-      std::fabs(geometry::normalize_angle(dec.heading - bearing)) > M_PI_2) {
-    if (!standing) return stop(now, Mode::kReactive, "reactive fallback: free space leads away, stopping");
-    const double turn = std::clamp(bearing, -options_.reactive.max_turn, options_.reactive.max_turn);
-    const double t = trajectory::turn_duration(turn, options_.omega_max, 1.0);
-    if (active_ && !stopped_ && mode_ == Mode::kReactive && time::to_seconds(now - last_sent_) < t) return std::nullopt;
-    status_ = "reactive fallback: turning toward the target";
-    blocked_since_ = now;
-    return send_new(Chain({Segment::turn(pose_, turn)}), now, t, Mode::kReactive);
-  }
-  if (dec.action == ReactiveDecision::Action::kDrive) {
-    const double L = options_.reactive.step_length;
-    Segment arc = Segment::arc(pose_, std::clamp(dec.heading / L, -options_.planner.kappa_max, options_.planner.kappa_max), L);
-    arc.set_v_max(std::max(0.05, dec.speed));
-    Chain c({arc});
-    if (!first_collision(c, map_, options_.planner.robot_radius + 0.5 * options_.planner.safety_margin,
-                         options_.planner.check_step)) {
-      status_ = "reactive fallback: steering toward free space";
-      return send_new(std::move(c), now, L / std::max(0.05, dec.speed), Mode::kReactive);
-    }
-  }
-  blocked_since_ = now;  // nothing to do but stand: wait again before the next try
-  return stop(now, Mode::kReactive, "reactive fallback: stopped, obstacle ahead");
 }
 
 }  // namespace rgnav::collision_avoidance

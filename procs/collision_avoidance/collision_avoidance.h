@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "collision_avoidance/chain_planner.h"
+#include "collision_avoidance/give_way.h"
 #include "collision_avoidance/grid_path.h"
 #include "collision_avoidance/local_map.h"
 #include "collision_avoidance/reactive.h"
@@ -43,6 +44,9 @@ struct CaOptions
   double headway = 0.3;            // [m] moving this far counts as headway ...
   double yield_after = 8.0;        // [s] ... none for this long: back away (yield) ...
   double yield_reach = 0.5;        // [m] ... from what is this much farther than the clearance
+  GiveWayOptions give_way;         // ... first by driving back, away from the target (give_way.h)
+  double give_way_speed = 0.25;    // [m/s]
+  double give_way_timeout = 20.0;  // [s] giving way ends after this even if not done
   double a_max = 0.4;              // [m/s^2] sent with every trajectory
   double omega_max = 1.0;          // [rad/s]
 };
@@ -107,6 +111,12 @@ class CollisionAvoidance
   std::optional<trajectory::Trajectory> reactive(time::Time now);
   // Backs away from obstacle points closer than `radius` (none: nullopt).
   std::optional<trajectory::Trajectory> backing_off(time::Time now, double radius);
+  // No headway: drive back up to `length`, away from the target, out of the way of whoever
+  // waits (none free: nullopt; moving and needing a turn: a stop first).
+  std::optional<trajectory::Trajectory> giving_way(time::Time now, double length);
+  // A person who walked up and stopped stands within `reach` (people_tracker.h LastSeenMover).
+  bool someone_waits_near(double reach) const;
+  bool targets_changed_goal() const { return targets_.goal_id != give_way_goal_id_; }
   std::optional<trajectory::Trajectory> commit_backoff(std::optional<trajectory::Trajectory> t, time::Time now,
                                                        double duration);
   std::vector<Pose2> goals() const;
@@ -137,6 +147,15 @@ class CollisionAvoidance
   int64_t fallbacks_ = 0;
   int64_t detours_ = 0;
   std::optional<int64_t> backoff_id_;  // the back-off manoeuvre under way, run to its end
+  int64_t backoff_goal_id_ = 0;        // ... unless the goal changes
+  bool giving_way_now_ = false;        // the manoeuvre under way gives way
+  bool give_way_active_ = false;       // giving way until this far from where it began, or until ...
+  Eigen::Vector2d give_way_from_ = Eigen::Vector2d::Zero();
+  time::Time give_way_until_{};        // ... this time
+  int64_t give_way_goal_id_ = 0;
+  bool has_yield_anchor_ = false;      // where the robot got stuck, for give_way_timeout
+  Eigen::Vector2d yield_anchor_ = Eigen::Vector2d::Zero();
+  time::Time yield_anchor_time_{};
   time::Time backoff_until_{};
   bool has_progress_pose_ = false;
   Eigen::Vector2d progress_pose_ = Eigen::Vector2d::Zero();

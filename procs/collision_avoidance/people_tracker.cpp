@@ -93,6 +93,10 @@ void PeopleTracker::update(time::Time stamp, const std::vector<Eigen::Vector2d>&
     }
     Track& t = tracks_[static_cast<size_t>(best)];
     continued[static_cast<size_t>(best)] = 1;
+    const double since_seen = t.centroids.empty() ? 0.0 : time::to_seconds(stamp - t.last_seen);
+    const bool was_predicting = !t.centroids.empty() && predicts(t);
+    if (t.centroids.empty()) t.first = c;
+    t.travelled = std::max(t.travelled, (c - t.first).norm());
     t.centroids.emplace_back(stamp, c);
     t.clusters.push_back(std::move(cluster));
     while (time::to_seconds(stamp - t.centroids.front().first) > options_.history) {
@@ -102,22 +106,35 @@ void PeopleTracker::update(time::Time stamp, const std::vector<Eigen::Vector2d>&
     t.last_seen = stamp;
     fit_velocity(t);
     t.left_its_place = left_its_place(t, seen_now);
+    if (predicts(t)) {
+      t.moved = true;
+      if (was_predicting) t.moving_for += since_seen;
+    }
   }
-  tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
-                               [&](const Track& t) { return time::to_seconds(stamp - t.last_seen) > options_.lost_after; }),
-                tracks_.end());
+  auto lost = [&](const Track& t) { return time::to_seconds(stamp - t.last_seen) > options_.lost_after; };
+  for (const Track& t : tracks_)
+    if (lost(t) && t.moved && t.travelled >= options_.stopped_min_travel && t.moving_for >= options_.stopped_min_moving)
+      last_seen_.push_back({t.last_seen, t.centroids.back().second});
+  tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(), lost), tracks_.end());
+  while (!last_seen_.empty() && time::to_seconds(stamp - last_seen_.front().stamp) > options_.stopped_memory)
+    last_seen_.pop_front();
+}
+
+bool PeopleTracker::predicts(const Track& t) const
+{
+  // A track needs most of its history before its velocity means anything.
+  if (t.centroids.size() < 3 ||
+      time::to_seconds(t.centroids.back().first - t.centroids.front().first) < 0.5 * options_.history)
+    return false;
+  const double speed = t.velocity.norm();
+  return speed >= options_.min_speed && speed <= options_.max_speed && t.left_its_place;
 }
 
 std::vector<Eigen::Vector2d> PeopleTracker::predicted(time::Time now) const
 {
   std::vector<Eigen::Vector2d> out;
   for (const Track& t : tracks_) {
-    const double speed = t.velocity.norm();
-    // A track needs most of its history before its velocity means anything.
-    if (t.centroids.size() < 3 ||
-        time::to_seconds(t.centroids.back().first - t.centroids.front().first) < 0.5 * options_.history)
-      continue;
-    if (speed < options_.min_speed || speed > options_.max_speed || !t.left_its_place) continue;
+    if (!predicts(t)) continue;
     const double since = time::to_seconds(now - t.last_seen);
     for (double dt = options_.step; dt <= options_.horizon + 1e-9; dt += options_.step) {
       const Eigen::Vector2d shift = t.velocity * (since + dt);

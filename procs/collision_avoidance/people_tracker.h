@@ -38,6 +38,18 @@ struct PeopleTrackerOptions
   double horizon = 1.0;            // [s] predicted this far ahead
   double step = 0.25;              // [s] one predicted copy of the cluster per step
   double max_still_there = 0.6;    // share of a track's oldest points the newest scan may still hit: more is no mover
+  double stopped_memory = 20.0;    // [s] where a mover was last seen is kept this long (someone who stopped) ...
+  double stopped_min_travel = 0.5; // [m] ... if it got this far from where its track began ...
+  double stopped_min_moving = 1.0; // [s] ... and moved (predicted motion) this long: a face coming into view, a wall
+                                   // seen piece by piece while the robot drives, moves for a moment
+};
+
+// Where a mover was last seen: a person who walked up and stopped (their cells turn static
+// and the track ends) stands there, as far as anyone can tell.
+struct LastSeenMover
+{
+  time::Time stamp{};
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // odom frame, the track's last centroid
 };
 
 // What the newest scan says about a place (odom frame): its beams there end at it, short of
@@ -57,6 +69,10 @@ struct Track
   std::deque<std::pair<time::Time, Eigen::Vector2d>> centroids;  // oldest first
   std::deque<std::vector<Eigen::Vector2d>> clusters;             // the clusters of `centroids` (newest last)
   bool left_its_place = true;  // the newest scan no longer sees it where it was (or cannot tell)
+  bool moved = false;          // predicted motion at some time ...
+  Eigen::Vector2d first = Eigen::Vector2d::Zero();  // ... and got this far from its first centroid:
+  double travelled = 0.0;      // [m] a person walking, not a box face coming into view
+  double moving_for = 0.0;     // [s] predicted motion this long in all
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();           // [m/s]
   time::Time last_seen{};
 };
@@ -72,6 +88,8 @@ class PeopleTracker
   // Points where the tracked movers will be over the horizon (odom frame), from `now`.
   std::vector<Eigen::Vector2d> predicted(time::Time now) const;
   const std::vector<Track>& tracks() const { return tracks_; }
+  // Where tracks that had moved ended (newest last), for stopped_memory.
+  const std::deque<LastSeenMover>& last_seen_movers() const { return last_seen_; }
 
  private:
   std::vector<std::vector<Eigen::Vector2d>> clusters(const std::vector<Eigen::Vector2d>& points) const;
@@ -79,7 +97,10 @@ class PeopleTracker
   bool left_its_place(const Track& t, const SeenNowFn& seen_now) const;
 
   const PeopleTrackerOptions options_;
+  bool predicts(const Track& t) const;
+
   std::vector<Track> tracks_;
+  std::deque<LastSeenMover> last_seen_;
   int next_id_ = 1;
 };
 

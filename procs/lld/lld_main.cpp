@@ -2,11 +2,11 @@
 // BASE_CMD and LLD_STATUS. --loop-stats FILE writes the control loop's timing at exit.
 #include <CLI/CLI.hpp>
 
-#include <fstream>
 #include <memory>
 #include <string>
 
 #include "lld/lld_node.h"
+#include "lld/loop_stats_json.h"
 #include "runtime/process_main.h"
 
 namespace {
@@ -19,12 +19,8 @@ struct StatsWriter
   ~StatsWriter()
   {
     if (path.empty() || !node) return;
-    const auto s = node->loop_stats();
-    node.reset();  // joins the control thread first
-    std::ofstream out(path);
-    out << "{\"ticks\": " << s.ticks << ", \"overruns\": " << s.overruns << ", \"jitter_p50_ms\": " << s.jitter_p50_ms
-        << ", \"jitter_p99_ms\": " << s.jitter_p99_ms << ", \"jitter_max_ms\": " << s.jitter_max_ms
-        << ", \"jitter_mean_ms\": " << s.jitter_mean_ms << "}\n";
+    node->stop_loop();  // final figures: the control thread has ended
+    rgnav::lld::write_loop_stats(path, node->loop_stats());
   }
 };
 
@@ -38,7 +34,8 @@ int main(int argc, char** argv)
       [&](rgnav::runtime::ProcessContext& ctx) -> std::shared_ptr<void> {
         const auto options = rgnav::lld::load_lld_options(ctx.config);
         auto writer = std::make_shared<StatsWriter>();
-        writer->node = std::make_shared<rgnav::lld::LldNode>(ctx.node, options);
+        // A config check starts no control loop (no SCHED_FIFO thread, no mlockall).
+        writer->node = std::make_shared<rgnav::lld::LldNode>(ctx.node, options, /*start_thread=*/!ctx.checking_only);
         writer->path = stats_path;
         return writer;
       },

@@ -41,10 +41,15 @@ LldNode::LldNode(runtime::Node& node, const LldOptions& options, bool start_thre
   if (start_thread) thread_ = std::thread([this] { control_thread(); });
 }
 
-LldNode::~LldNode()
+void LldNode::stop_loop()
 {
   loop_.stop();
   if (thread_.joinable()) thread_.join();
+}
+
+LldNode::~LldNode()
+{
+  stop_loop();
   const LoopStats s = loop_.stats();
   if (s.ticks > 0)
     spdlog::info("control loop: {} ticks, {} overruns, period jitter p50 {:.3f} ms p99 {:.3f} ms max {:.3f} ms",

@@ -39,6 +39,9 @@ class LldNode
   // One control period at message time `now`.
   void control_step(time::Time now, double dt, double jitter_ms);
 
+  // Ends the control loop and joins its thread (the destructor does it too): the stats read
+  // afterwards are final.
+  void stop_loop();
   LoopStats loop_stats() const { return loop_.stats(); }
   const Follower& follower() const { return follower_; }
 

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <random>
 
 #include "collision_avoidance/ca_options.h"
@@ -24,6 +25,7 @@
 #include "sim/simulator.h"
 #include "trajectory/construct.h"
 
+#include "contact_report.h"
 #include "obstacle_course.h"
 
 using namespace rgnav;
@@ -160,6 +162,41 @@ nlohmann::json tracking(const lld::LldOptions& lo, double v, int chains, uint64_
           {"time_pred_err_max_pct", terr_max}};
 }
 
+// One contact for control.json: what was hit, the robot's speed just before (the simulator
+// stops it at contact), and for a person who closed the gap over the last 1 and 3 seconds.
+nlohmann::json contact_json(int course, const sim::Simulator& sim, const sim::CollisionEvent& e,
+                            const bench::ContactHistory& history, double true_v, double cmd_v,
+                            const collision_avoidance::CollisionAvoidance& ca)
+{
+  nlohmann::json j = {{"course", course},
+                      {"t_s", sim.time_s()},
+                      {"with", e.with},
+                      {"robot_v_true_mps", true_v},
+                      {"robot_v_cmd_mps", cmd_v},
+                      {"mode", collision_avoidance::mode_name(ca.mode())},
+                      {"status", ca.status()}};
+  const auto& people = sim.world().people;
+  for (size_t p = 0; p < people.size(); ++p) {
+    if (e.with != "person " + people[p].name) continue;
+    const double radii = people[p].radius + sim.options().robot.radius;
+    for (double w : {1.0, 3.0}) {
+      if (auto s = history.split(p, w, radii)) {
+        const std::string key = w < 2.0 ? "1s" : "3s";
+        j["gap_before_" + key + "_m"] = s->gap_before_m;
+        j["robot_closing_" + key + "_m"] = s->robot_closing_m;
+        j["person_closing_" + key + "_m"] = s->person_closing_m;
+        if (w < 2.0) {
+          j["closed_by"] = s->closed_by;
+          j["person_speed_mps"] = s->person_speed_mps;
+        }
+      }
+    }
+    if (auto s = history.split(p, 0.3, radii))
+      j["robot_toward_person_mps"] = s->window_s > 0 ? s->robot_closing_m / s->window_s : 0.0;
+  }
+  return j;
+}
+
 nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaOptions& co, int n, uint64_t seed,
                        int only, double personal_space)
 {
@@ -169,6 +206,8 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
   double time_sum = 0.0;
   int64_t fallbacks = 0, replans = 0;
   nlohmann::json failures = nlohmann::json::array();
+  nlohmann::json contacts = nlohmann::json::array();
+  std::map<std::string, int> closed_by;
   int redrawn = 0;
   const double clearance = co.planner.robot_radius + co.planner.safety_margin;
   for (int k = 0; k < n; ++k) {
@@ -198,13 +237,22 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
     bool have = false, arrived = false;
     int64_t last_id = 0;
     double t_end = 0.0;
+    bench::ContactHistory history;
+    double true_v_before = 0.0, cmd_v_before = 0.0;  // the step before the newest (contact stops the robot)
     for (int i = 0; i < static_cast<int>(120.0 / kPeriod); ++i) {
       const auto out = sim.step(kPeriodUs);
-      for (const auto& e : out.collisions)
+      {
+        std::vector<Eigen::Vector2d> people;
+        for (const auto& disc : sim.people()) people.push_back(disc.center);
+        history.add(sim.time_s(), to_pose(sim.truth()).translation(), people);
+      }
+      for (const auto& e : out.collisions) {
+        contacts.push_back(contact_json(k, sim, e, history, true_v_before, cmd_v_before, ca));
+        closed_by[contacts.back().value("closed_by", std::string("obstacle"))]++;
         if (getenv("CB_DEBUG"))
-          std::cerr << "course " << k << " collision at t=" << sim.time_s() << " with " << e.with << " mode "
-                    << collision_avoidance::mode_name(ca.mode()) << " '" << ca.status() << "' pose " << e.world_from_base.x
-                    << "," << e.world_from_base.y << "\n";
+          std::cerr << "course " << k << " collision at t=" << sim.time_s() << " " << contacts.back().dump() << "\n";
+      }
+      if (!out.odometry.empty()) true_v_before = out.odometry.back().true_v;
       for (const auto& o : out.odometry) {
         odi = {to_pose(o.odom_from_base), o.v, o.omega, time::from_utime(o.utime)};
         have = true;
@@ -249,6 +297,7 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
       }
       const auto& st = f.step(now, kPeriod, have ? &odi : nullptr);
       cmd.set(sim.now_utime(), {st.command.v, st.command.omega}, lo.loop.command_deadline_ms * 1000);
+      cmd_v_before = st.command.v;
       if (getenv("CB_DEBUG") && i % 10 == 0)
         std::cerr << "t=" << sim.time_s() << " truth=" << sim.truth().x << "," << sim.truth().y << " th=" << sim.truth().theta
                   << " next=" << ca.next_target() << " mode=" << collision_avoidance::mode_name(ca.mode()) << " '" << ca.status()
@@ -274,6 +323,8 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
                   << " moving_d=" << ca.map().clearance_moving(odi.pose.translation(), 3.0)
                   << " predicted_d=" << ca.map().clearance_predicted(odi.pose.translation(), 3.0) << " people";
         for (const auto& disc : sim.people()) std::cerr << " " << disc.center.x() << "," << disc.center.y();
+        std::cerr << " stopped movers (odom)";
+        for (const auto& m : ca.map().tracker().last_seen_movers()) std::cerr << " " << m.position.x() << "," << m.position.y();
         std::cerr << " '" << ca.status() << "'\n";
       }
       if (ca.mode() == collision_avoidance::Mode::kArrived) {
@@ -301,7 +352,9 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
           {"impassable_redrawn", redrawn},
           {"replans", replans},
           {"fallbacks", fallbacks},
-          {"failures", failures}};
+          {"failures", failures},
+          {"contacts_closed_by", closed_by},
+          {"contacts", contacts}};
 }
 
 }  // namespace

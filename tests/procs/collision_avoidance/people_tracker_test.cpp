@@ -114,5 +114,37 @@ TEST(PeopleTracker, APersonLeavesItsPlaceWalkingAsideOrTowardTheLaser)
   }
 }
 
+// A person walks for 2 s and stops (their cells turn static: no more young points): the
+// track ends, and where it ended is kept (someone who walked up and now waits). A face that
+// "moves" for a moment (coming into view) leaves nothing.
+TEST(PeopleTracker, RemembersWhereAMoverStopped)
+{
+  PeopleTrackerOptions o;
+  PeopleTracker tracker(o);
+  time::Time t{};
+  Eigen::Vector2d at(3.0, -1.0);
+  for (int k = 0; k < 75; ++k) {  // 2 s at 37.5 Hz, 0.6 m/s
+    t = time::from_utime(1'000'000 + k * 26'667);
+    at = Eigen::Vector2d(3.0, -1.0) + Eigen::Vector2d(0.0, 0.6) * (k * 0.026667);
+    tracker.update(t, person(at));
+  }
+  EXPECT_TRUE(tracker.last_seen_movers().empty());  // still walking
+  t = t + time::Duration(1'000'000);
+  tracker.update(t, {});
+  ASSERT_EQ(tracker.last_seen_movers().size(), 1u);
+  EXPECT_NEAR((tracker.last_seen_movers()[0].position - at).norm(), 0.2, 0.05);  // the arc's centroid
+  // Forgotten after stopped_memory.
+  tracker.update(t + time::Duration(static_cast<int64_t>((o.stopped_memory + 1.0) * 1e6)), {});
+  EXPECT_TRUE(tracker.last_seen_movers().empty());
+
+  PeopleTracker brief(o);
+  for (int k = 0; k < 15; ++k) {  // 0.4 s of apparent motion: a face coming into view
+    t = time::from_utime(1'000'000 + k * 26'667);
+    brief.update(t, person(Eigen::Vector2d(3.0, -1.0) + Eigen::Vector2d(0.0, 0.6) * (k * 0.026667)));
+  }
+  brief.update(t + time::Duration(1'000'000), {});
+  EXPECT_TRUE(brief.last_seen_movers().empty());
+}
+
 }  // namespace
 }  // namespace rgnav::collision_avoidance
