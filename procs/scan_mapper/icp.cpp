@@ -113,6 +113,9 @@ IcpResult register_scan(const ScanSide& scan, const PointMap& model, const Pose2
   for (size_t i = 0; i < scan.points.size(); ++i)
     if (scan.pair(model, i, T * scan.points[i], c, s, o.inlier_distance_m) >= 0) ++inliers;
   res.inlier_ratio = static_cast<double>(inliers) / static_cast<double>(scan.points.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> et(fin.H.topLeftCorner<2, 2>());
+  res.weakest_translation_points = et.eigenvalues()(0);
+  res.weakest_direction = et.eigenvectors().col(0);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(fin.H);
   if (fin.n >= 10 && es.eigenvalues()(0) > 1e-9) {
     const double sigma = std::max(o.point_sigma_m, res.rms_m);
@@ -125,6 +128,10 @@ IcpResult register_scan(const ScanSide& scan, const PointMap& model, const Pose2
     res.covariance = o.covariance_inflation * sigma * sigma * es.eigenvectors() *
                      ev.cwiseInverse().cwiseMin(1e6).asDiagonal() * es.eigenvectors().transpose();
     res.ok = true;
+  }
+  if (res.ok && res.weakest_translation_points < o.degenerate_min_points) {
+    const Eigen::Vector2d& v = res.weakest_direction;
+    res.covariance.topLeftCorner<2, 2>() += o.degenerate_variance_m2 * v * v.transpose();
   }
   return res;
 }

@@ -29,6 +29,13 @@ struct IcpOptions
   double point_sigma_m = 0.03;          // range noise for the covariance estimate
   double covariance_inflation = 4.0;    // residuals are correlated; the raw estimate is too confident
   double max_normal_angle_deg = 60.0;   // scan and model normals further apart do not pair (180: off)
+  // Degeneracy (Zhang, Kaess & Singh, ICRA 2016): a translation direction constrained by fewer
+  // surface points than this (a hallway's axis, seen only at a few door jambs) is not measured:
+  // the match's variance along it grows by degenerate_variance_m2, so that the Kalman fusion
+  // keeps the odometry there. The Gauss-Newton covariance claims millimetres along such an
+  // axis, although a jamb matched to the next door's is off by decimetres. 0: off.
+  double degenerate_min_points = 0.0;
+  double degenerate_variance_m2 = 1.0;
 };
 
 struct IcpResult
@@ -40,6 +47,10 @@ struct IcpResult
   // ... of those on surfaces (point-to-line) alone: near the range noise when the fit is right.
   // Point-to-point residuals also hold the spacing of sparse far points, whatever the fit.
   double surface_rms_m = 0.0;
+  // Smallest eigenvalue of the translation block of the Gauss-Newton information (unit normals):
+  // about how many surface points constrain the weakest direction, and that direction (map frame).
+  double weakest_translation_points = 0.0;
+  Eigen::Vector2d weakest_direction = Eigen::Vector2d::UnitX();
   int iterations = 0;
   int correspondences = 0;
   bool ok = false;            // enough correspondences for a well-posed solution

@@ -40,6 +40,8 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   o.icp.point_sigma_m = icp.number("point_sigma_m", o.icp.point_sigma_m, 0.001, 1.0);
   o.icp.covariance_inflation = icp.number("covariance_inflation", o.icp.covariance_inflation, 1.0, 1e4);
   o.icp.max_normal_angle_deg = icp.number("max_normal_angle_deg", o.icp.max_normal_angle_deg, 10.0, 180.0);
+  o.icp.degenerate_min_points = icp.number("degenerate_min_points", o.icp.degenerate_min_points, 0.0, 1e6);
+  o.icp.degenerate_variance_m2 = icp.number("degenerate_variance_m2", o.icp.degenerate_variance_m2, 1e-4, 1e4);
   if (o.icp.final_max_distance_m > o.icp.initial_max_distance_m)
     c.fail("registration.icp.final_max_distance_m", "must not exceed initial_max_distance_m");
   const auto cor = reg.section("correlative");

@@ -1,6 +1,6 @@
 // rgnav_import: recorded laser logs → LCM log files (LASER_FRONT, ODOMETRY, REFERENCE_POSE).
 //   rgnav_import IN OUT.lcmlog [--format auto|carmen|mines] [--reference] [--reference-from CORRECTED]
-//   [--fov-inclusive] [--max-range M]
+//   [--fov-inclusive] [--max-range M] [--odometry-delay-scans N]
 // Malformed lines are reported with their line numbers and skipped; a truncated input imports
 // what is valid. Exit 0 when something was imported, 1 when nothing could be, 2 on bad usage.
 #include <CLI/CLI.hpp>
@@ -12,6 +12,7 @@
 #include "importers/carmen_parser.h"
 #include "importers/lcm_log_io.h"
 #include "importers/mines_parser.h"
+#include "importers/odometry_alignment.h"
 #include "importers/reference_matching.h"
 
 namespace imp = rgnav::importers;
@@ -40,6 +41,7 @@ int main(int argc, char** argv)
   std::string in, out, format = "auto", reference_from;
   bool reference = false, fov_inclusive = false;
   float max_range = 80.f;
+  int odometry_delay_scans = 0;
   app.add_option("input", in, "CARMEN log (.log, .log.gz, .clf) or Mines .dat")->required()->check(CLI::ExistingFile);
   app.add_option("output", out, "LCM log to write")->required();
   app.add_option("--format", format, "auto, carmen or mines")->check(CLI::IsMember({"auto", "carmen", "mines"}));
@@ -49,6 +51,9 @@ int main(int argc, char** argv)
   app.add_flag("--fov-inclusive", fov_inclusive,
                "FLASER beams span 180 deg inclusive (fov/(n-1)), as in logs decoded from MRPT rawlogs");
   app.add_option("--max-range", max_range, "range limit for FLASER/RLASER (no limit in the format) [m]");
+  app.add_option("--odometry-delay-scans", odometry_delay_scans,
+                 "the log pairs each scan with the odometry of N scans later: give each scan the earlier pose")
+      ->check(CLI::Range(0, 100));
   CLI11_PARSE(app, argc, argv);
   if (format == "auto") format = detect_format(in);
   try {
@@ -63,6 +68,10 @@ int main(int argc, char** argv)
       log = imp::read_carmen(in, o);
     }
     report(log, in);
+    if (odometry_delay_scans > 0) {
+      const size_t n = imp::delay_odometry_by_scans(&log, odometry_delay_scans);
+      std::cerr << in << ": odometry delayed by " << odometry_delay_scans << " scan(s), " << n << " poses changed\n";
+    }
     if (!reference_from.empty()) {
       imp::CarmenOptions o;
       o.old_laser_range_max = max_range;

@@ -26,6 +26,7 @@ struct SimMappingResult
   double tour_length_m = 0.0;   // planned tour, one lap
   int laps = 0;
   bool capped = false;          // stopped at max_sim_s before the tour was done
+  int people_removed = 0;       // people of the world left out (static building only)
   double driven_m = 0.0;        // true path length driven
   double sim_seconds = 0.0;     // simulated time
   double mapping_cpu_seconds = 0.0;  // CPU time inside the mapping library (this thread)

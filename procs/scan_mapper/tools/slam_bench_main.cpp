@@ -165,6 +165,7 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["laps"] = r.laps;
   j["driven_m"] = r.driven_m;
   j["capped"] = r.capped;
+  j["people_removed"] = r.people_removed;
   if (r.capped) j["cap_sim_seconds"] = sim_mapping.max_sim_s;
   j["collisions"] = r.collisions;
   j["accepted_scans"] = r.stats.accepted;

@@ -11,6 +11,7 @@
 #include "importers/carmen_parser.h"
 #include "importers/lcm_log_io.h"
 #include "importers/mines_parser.h"
+#include "importers/odometry_alignment.h"
 #include "importers/reference_matching.h"
 
 namespace imp = rgnav::importers;
@@ -81,6 +82,33 @@ TEST(CarmenParser, FovInclusiveBeamSpacingForMrptDecodedLogs)
   ASSERT_EQ(log.scans.size(), 1u);
   EXPECT_NEAR(log.scans[0].angle_min, -M_PI / 2, 1e-6);
   EXPECT_NEAR(log.scans[0].angle_min + 179 * log.scans[0].angle_increment, M_PI / 2, 1e-5);
+}
+
+TEST(OdometryAlignment, DelayGivesEachScanThePoseOfTheScanBefore)
+{
+  // The Intel rawlog decoding: ODOM then FLASER (with the same pose) per scan, all at one
+  // synthetic timestamp, and every pose one scan ahead. Scan k's odometry is in x = k + 1.
+  imp::ImportedLog log;
+  imp::CarmenOptions o;
+  std::string why;
+  for (int k = 0; k < 4; ++k) {
+    const double x = k + 1.0;
+    const std::string odom = "ODOM " + std::to_string(x) + " 0 0 0 0 0 5.0 host 5.0";
+    ASSERT_TRUE(imp::parse_carmen_line(odom, o, &log, &why)) << why;
+    ASSERT_TRUE(imp::parse_carmen_line(flaser(180, 1.0, x, 0.0, 0.0, 5.0), o, &log, &why)) << why;
+  }
+  ASSERT_EQ(log.odometry.size(), 8u);
+  EXPECT_EQ(imp::delay_odometry_by_scans(&log, 1), 6u);  // the first scan's two records keep theirs
+  // What a consumer reading the log in order sees at each scan: the last odometry before it.
+  std::vector<double> at_scan;
+  double last = -1.0;
+  for (const auto& e : log.events) {
+    if (e.kind == imp::LogEvent::Kind::kOdometry) last = log.odometry[e.index].x;
+    if (e.kind == imp::LogEvent::Kind::kScan) at_scan.push_back(last);
+  }
+  EXPECT_EQ(at_scan, (std::vector<double>{1.0, 1.0, 2.0, 3.0}));
+  for (const auto& p : log.odometry) EXPECT_EQ(p.utime, 5'000'000);  // timestamps kept
+  EXPECT_EQ(imp::delay_odometry_by_scans(&log, 0), 0u);
 }
 
 TEST(CarmenParser, RejectsMalformedLinesWithReasons)

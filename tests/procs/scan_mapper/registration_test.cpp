@@ -139,3 +139,36 @@ TEST(Icp, EmptyOrTinyInputsFailCleanly)
   EXPECT_FALSE(sm::icp_point_to_line(few, empty, {}, {}).ok);
   EXPECT_EQ(empty.nearest({0, 0}, 1.0), -1);
 }
+
+TEST(Icp, CorridorAxisIsTheWeakDirectionAndLeftToOdometry)
+{
+  // A 2 m wide corridor longer than the laser's reach: the walls fix the lateral position and
+  // the heading; along the axis (x) only the pseudo-constraints of sparse far points without a
+  // surface normal remain.
+  const std::vector<sm::testing::Segment> corridor = {{{-50, -1}, {50, -1}}, {{-50, 1}, {50, 1}}};
+  std::mt19937 rng(3);
+  LaserModel m;
+  m.noise_m = 0.01;
+  m.max_range = 8.0;
+  const auto ref = cast_scan(corridor, sm::Pose2{}, m, &rng);
+  const sm::Pose2 motion{0.2, 0.05, 0.03};
+  const auto cur = cast_scan(corridor, motion, m, &rng);
+  const sm::PointMap model(points_of(ref));
+  sm::IcpOptions o;
+  const auto plain = sm::icp_point_to_line(points_of(cur), model, motion, o);
+  ASSERT_TRUE(plain.ok);
+  EXPECT_GT(std::fabs(plain.weakest_direction.x()), 0.99);  // the corridor's axis
+  EXPECT_LT(plain.weakest_translation_points, 40.0);
+  o.degenerate_min_points = 60.0;
+  const auto marked = sm::icp_point_to_line(points_of(cur), model, motion, o);
+  ASSERT_TRUE(marked.ok);
+  // The Gauss-Newton covariance claims about a centimetre along the axis; marked, the axis gets
+  // the added variance, the lateral direction and the heading stay as measured.
+  const Eigen::Matrix2d added = marked.covariance.topLeftCorner<2, 2>() - plain.covariance.topLeftCorner<2, 2>();
+  const Eigen::Vector2d axis = marked.weakest_direction;
+  const Eigen::Vector2d across(-axis.y(), axis.x());
+  EXPECT_LT(plain.covariance(0, 0), 0.01 * 0.01 * 4);
+  EXPECT_NEAR(axis.dot(added * axis), o.degenerate_variance_m2, 1e-6);
+  EXPECT_NEAR(across.dot(added * across), 0.0, 1e-6);
+  EXPECT_NEAR(marked.covariance(2, 2), plain.covariance(2, 2), 1e-12);
+}
