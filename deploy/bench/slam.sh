@@ -27,9 +27,10 @@ mkdir -p "$WORK"
 imp="$BUILD/bin/rgnav_import"
 # The raw Intel log was decoded from an MRPT rawlog: its 180 beams span 180 deg inclusive.
 # Its decoding also pairs every scan with the odometry pose one scan later (the movement that
-# follows it): the odometry's heading increments agree with the scan-matched ones best one scan
-# late (rms 0.145 rad at lag 0, 0.042 at lag 1; after the delay 0.028 at lag 0), so each scan
-# gets the pose of the scan before (--odometry-delay-scans 1, common/importers/odometry_alignment.h).
+# follows it): deploy/tools/odometry_lag.py on the mapped trajectory finds the odometry's heading
+# increments closest to the estimate's when shifted by -1 scan (rms 0.144 rad unshifted, 0.042
+# shifted; imported with the delay: 0.028 unshifted), so each scan gets the pose of the scan
+# before (--odometry-delay-scans 1, common/importers/odometry_alignment.h).
 "$imp" "$DATA/raw/intel/intel-raw-odometry.carmen.log.gz" "$WORK/intel.lcmlog" --fov-inclusive --odometry-delay-scans 1 \
   --reference-from "$DATA/corrected/intel-corrected.log.gz"
 "$imp" "$DATA/raw/mines/exp1.dat" "$WORK/mines_exp1.lcmlog"

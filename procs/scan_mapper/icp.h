@@ -32,8 +32,9 @@ struct IcpOptions
   // Degeneracy (Zhang, Kaess & Singh, ICRA 2016): a translation direction constrained by fewer
   // surface points than this (a hallway's axis, seen only at a few door jambs) is not measured:
   // the match's variance along it grows by degenerate_variance_m2, so that the Kalman fusion
-  // keeps the odometry there. The Gauss-Newton covariance claims millimetres along such an
-  // axis, although a jamb matched to the next door's is off by decimetres. 0: off.
+  // keeps the odometry there, and a loop closure edge found there holds the graph only across
+  // the hallway. The Gauss-Newton covariance claims millimetres along such an axis, although a
+  // jamb matched to the next door's is off by decimetres. 0: off.
   double degenerate_min_points = 0.0;
   double degenerate_variance_m2 = 1.0;
 };
