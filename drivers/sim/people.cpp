@@ -36,7 +36,7 @@ Vec2 People::position(size_t i, double s) const
   return a + u * (b - a);
 }
 
-void People::advance(double dt, const Circle& robot)
+void People::advance(double dt, const std::optional<Circle>& robot_or_none)
 {
   for (size_t i = 0; i < people_.size(); ++i) {
     auto& st = state_[i];
@@ -46,6 +46,11 @@ void People::advance(double dt, const Circle& robot)
       continue;
     }
     const double next_s = st.s + p.speed * dt;
+    if (!robot_or_none) {
+      st.s = next_s;
+      continue;
+    }
+    const Circle& robot = *robot_or_none;
     const Vec2 next = position(i, next_s);
     const Vec2 now = position(i, st.s);
     const double gap = p.radius + robot.radius;

@@ -3,6 +3,7 @@
 // with a personal space, a person walking toward the robot waits that far from it.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "sim/lms2xx_model.h"
@@ -16,7 +17,8 @@ class People
   explicit People(std::vector<Person> people);
 
   // Advances everyone by dt seconds, given the robot's disc.
-  void advance(double dt, const Circle& robot);
+  // robot: nullopt when people do not make way for it.
+  void advance(double dt, const std::optional<Circle>& robot);
   // Current discs, in the order of World::people.
   std::vector<Circle> discs() const;
   size_t size() const { return people_.size(); }

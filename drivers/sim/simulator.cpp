@@ -40,7 +40,7 @@ double Simulator::clearance(const Vec2& p, double search, std::string* what) con
   const Clearance c = scene_.clearance(p, search, band, door_open_);
   double best = c.distance;
   if (what && c.owner >= 0) *what = scene_.owner_names()[static_cast<size_t>(c.owner)];
-  const auto discs = people_.discs();
+  const auto discs = options_.people_block_robot ? people_.discs() : std::vector<Circle>{};
   for (size_t i = 0; i < discs.size(); ++i) {
     const double d = (discs[i].center - p).norm() - discs[i].radius;
     if (d < best && d <= search) {
@@ -126,7 +126,8 @@ void Simulator::physics(int64_t t_end_us, StepOutput* out)
   true_v_ = dt > 0.0 ? motion.ds / dt : 0.0;
   true_omega_ = dt > 0.0 ? motion.dtheta / dt : 0.0;
   odometry_.integrate(motion);
-  people_.advance(dt, {Vec2(truth_.x, truth_.y), r});
+  people_.advance(dt, options_.people_block_robot ? std::optional<Circle>(Circle{Vec2(truth_.x, truth_.y), r})
+                                                 : std::nullopt);
   now_us_ = t_end_us;
   update_doors();
 }

@@ -42,6 +42,10 @@ struct SimulatorOptions
   double odometry_hz = 50.0;
   int64_t start_utime = 1'000'000'000'000'000;  // [us] message time of simulation time 0
   bool laser_enabled = true;
+  // false (benchmarks of perception only): people are seen by the laser, but neither they nor
+  // the robot make way, and the robot's body passes through them (a blind tour follower can
+  // then drive a world with walking people).
+  bool people_block_robot = true;
   RobotOptions robot;
   SynchroDriveOptions drive;
   OdometryErrorOptions odometry;

@@ -236,7 +236,10 @@ World office_world()
   w.tables.push_back(make_table("lobby.table2", {17.0, 5.0}, {1.2, 0.8}));
 
   w.people.push_back(make_person("walker_a", {{3.0, 13.3}, {37.0, 13.3}}, 0.9, false, 0.0));
-  w.people.push_back(make_person("walker_b", {{30.0, 12.6}, {8.0, 12.6}}, 0.7, false, 5.0));
+  // walker_b turns at x = 11, halfway between the doors of office_w2 and office_w3: turning
+  // 0.7 m in front of office_w2's door, a person waiting there for the robot (which waited for
+  // them to clear the door) held the demo robot at that door for good (demo-20261123-201201).
+  w.people.push_back(make_person("walker_b", {{30.0, 12.6}, {11.0, 12.6}}, 0.7, false, 5.0));
   w.people.push_back(make_person("visitor", {{21.5, 4.5}, {24.5, 4.5}, {24.5, 1.0}, {21.5, 1.0}}, 0.6, true, 0.0));
   // walker_c keeps to the right of the 2 m hallways hall_c and hall_d, as people do: walking
   // their centre line back and forth, a person waiting for the robot left it no room to pass

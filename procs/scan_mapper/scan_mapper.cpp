@@ -231,8 +231,64 @@ std::optional<IcpResult> ScanMapper::register_locally(const ScanNode& scan, cons
     const IcpResult again = icp_point_to_line(points, scan.normals, scan.has_normal, map, cor.map_from_scan, options_.icp);
     if (again.ok && (!best.ok || again.inlier_ratio > best.inlier_ratio)) best = again;
   }
+  if (best.ok && options_.moving_points.margin_m > 0.0) {
+    if (auto refit = register_without_moving(scan, map, best.map_from_scan)) best = *refit;
+  }
   if (!best.ok || best.inlier_ratio < options_.min_accept_inlier_ratio) return std::nullopt;
   return best;
+}
+
+std::optional<IcpResult> ScanMapper::register_without_moving(const ScanNode& scan, const PointMap& map,
+                                                             const Pose2& map_from_scan)
+{
+  const auto& o = options_.moving_points;
+  const int n = static_cast<int>(nodes_.size());
+  const int first = std::max(0, n - options_.local_map_scans);
+  // The local map's scans see through the new scan's points on something that has since come
+  // (a person walking toward the laser) ...
+  std::vector<ScanView> model_views;
+  for (int k = first; k < n; ++k) {
+    const auto& nk = nodes_[static_cast<size_t>(k)];
+    model_views.emplace_back(nk.scan, nk.map_from_base * options_.base_from_laser);
+  }
+  const Points here = transform_points(map_from_scan, scan.points);
+  const double c = std::cos(map_from_scan.theta()), s = std::sin(map_from_scan.theta());
+  Points here_normals;
+  here_normals.reserve(scan.normals.size());
+  for (const auto& v : scan.normals) here_normals.emplace_back(c * v.x() - s * v.y(), s * v.x() + c * v.y());
+  std::vector<char> keep_scan;
+  mark_seen_through(model_views, here, here_normals, scan.has_normal, o, &keep_scan);
+  // ... and the new scan sees through the local map's points on something that has gone (the
+  // trail a person walking away leaves).
+  const std::vector<ScanView> scan_view{ScanView(scan.scan, map_from_scan * options_.base_from_laser)};
+  std::vector<char> keep_model;
+  mark_seen_through(scan_view, map.points(), map.normals(), map.has_normals(), o, &keep_model);
+  const auto moving = [](const std::vector<char>& keep) { return std::count(keep.begin(), keep.end(), 0); };
+  const auto moved_scan = moving(keep_scan), moved_model = moving(keep_model);
+  if (moved_scan == 0 && moved_model == 0) return std::nullopt;
+  stats_.moving_points += moved_scan + moved_model;
+
+  Points points, normals;
+  std::vector<char> has_normal;
+  for (size_t i = 0; i < keep_scan.size(); ++i)
+    if (keep_scan[i]) {
+      points.push_back(scan.points[i]);
+      normals.push_back(scan.normals[i]);
+      has_normal.push_back(scan.has_normal[i]);
+    }
+  Points model, model_normals;
+  std::vector<char> model_has_normal;
+  for (size_t i = 0; i < keep_model.size(); ++i)
+    if (keep_model[i]) {
+      model.push_back(map.points()[i]);
+      model_normals.push_back(map.normals()[i]);
+      model_has_normal.push_back(map.has_normals()[i]);
+    }
+  if (model.size() < 10 || points.size() < 10) return std::nullopt;
+  const PointMap still(std::move(model), std::move(model_normals), std::move(model_has_normal));
+  IcpResult refit = icp_point_to_line(points, normals, has_normal, still, map_from_scan, options_.icp);
+  if (!refit.ok) return std::nullopt;
+  return refit;
 }
 
 const ScanMapper::Submap& ScanMapper::submap_around(int anchor)

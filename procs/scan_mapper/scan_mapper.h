@@ -102,6 +102,7 @@ struct MapperStats
   int64_t scans_in = 0, accepted = 0, no_odometry = 0, matched = 0, correlative_retries = 0,
           match_rejected = 0, loop_attempts = 0, loop_closures = 0, loop_rejected_after_opt = 0, invalid = 0;
   int64_t loop_rejected_strain = 0;  // of loop_rejected_after_opt: for the strain on the graph
+  int64_t moving_points = 0;  // points left out of local registration as seen through
 };
 
 // Everything needed to resume: nodes and graph edges.
@@ -159,6 +160,9 @@ class ScanMapper
   Eigen::Matrix3d odometry_covariance(const Pose2& increment) const;
   // Registers the scan's points (base frame) against the local map from guess; nullopt if it fails.
   std::optional<IcpResult> register_locally(const ScanNode& scan, const Pose2& guess, bool wide);
+  // Registers again from map_from_scan without the points on something that moved (seen through,
+  // moving_points.h); nullopt when there were none (or too few points were left).
+  std::optional<IcpResult> register_without_moving(const ScanNode& scan, const PointMap& map, const Pose2& map_from_scan);
   // Searches one closure for `node`; nullopt when none is found.
   std::optional<ClosureHypothesis> find_closure(int node);
   bool try_loop_closure(int node, MapperUpdate* update);

@@ -44,6 +44,9 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   o.icp.degenerate_variance_m2 = icp.number("degenerate_variance_m2", o.icp.degenerate_variance_m2, 1e-4, 1e4);
   if (o.icp.final_max_distance_m > o.icp.initial_max_distance_m)
     c.fail("registration.icp.final_max_distance_m", "must not exceed initial_max_distance_m");
+  const auto mov = reg.section("moving_points");
+  o.moving_points.margin_m = mov.number("margin_m", o.moving_points.margin_m, 0.0, 5.0);
+  o.moving_points.max_incidence_deg = mov.number("max_incidence_deg", o.moving_points.max_incidence_deg, 0.0, 90.0);
   const auto cor = reg.section("correlative");
   o.correlative.resolution_m = cor.number("resolution_m", o.correlative.resolution_m, 0.01, 0.5);
   o.correlative.sigma_m = cor.number("sigma_m", o.correlative.sigma_m, 0.005, 1.0);

@@ -6,6 +6,7 @@
 #include "scan_mapper/correlative_matcher.h"
 #include "scan_mapper/icp.h"
 #include "scan_mapper/loop_search.h"
+#include "scan_mapper/moving_points.h"
 #include "scan_mapper/pose_math.h"
 #include "scan_mapper/pose_graph.h"
 #include "scan_mapper/scan_points.h"
@@ -69,6 +70,7 @@ struct ScanMapperOptions
   PointFilterOptions points;
   int local_map_scans = 15;        // recent accepted scans registered against
   IcpOptions icp;
+  MovingPointOptions moving_points;  // left out of local registration
   double min_inlier_ratio = 0.5;   // below: retry with the correlative search
   double min_accept_inlier_ratio = 0.25;  // below even after the retry: odometry alone
   CorrelativeWindow local_window{0.4, 0.35};  // correlative retry around the odometry guess

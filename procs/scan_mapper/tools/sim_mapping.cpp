@@ -57,15 +57,21 @@ class TruthTrack
 
 }  // namespace
 
-SimMappingResult run_sim_mapping(const std::string& world_path, const sim::SimulatorOptions& sim_options,
+SimMappingResult run_sim_mapping(const std::string& world_path, const sim::SimulatorOptions& sim_options_in,
                                  ScanMapperOptions mapper_options, const SimMappingOptions& options)
 {
   SimMappingResult res;
   sim::World world = sim::load_world(world_path);
   // The bench's plain tour follower neither waits for nor passes people (a person ahead stalls
-  // it until the time cap), and the relations metric measures the static building: people stay out.
-  res.people_removed = static_cast<int>(world.people.size());
-  world.people.clear();
+  // it until the time cap): people stay out, or walk where the robot's body passes through them.
+  sim::SimulatorOptions sim_options = sim_options_in;
+  if (options.keep_people) {
+    res.people_walking = static_cast<int>(world.people.size());
+    sim_options.people_block_robot = false;
+  } else {
+    res.people_removed = static_cast<int>(world.people.size());
+    world.people.clear();
+  }
   res.world = world.name;
   const sim::Tour tour = sim::plan_tour(world, sim_options.robot);
   if (tour.waypoints.size() < 2) throw std::runtime_error(world_path + ": no tour through this world");

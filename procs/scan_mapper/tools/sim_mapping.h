@@ -18,6 +18,9 @@ struct SimMappingOptions
 {
   int laps = 2;                 // the planned tour is driven this often (more loops)
   double max_sim_s = 1800.0;    // cap on simulated time per world (a benchmark must end)
+  // Keep the world's people walking: the laser sees them, the robot's body passes through
+  // them (SimulatorOptions::people_block_robot), so the tour is the same as without them.
+  bool keep_people = false;
 };
 
 struct SimMappingResult
@@ -27,6 +30,7 @@ struct SimMappingResult
   int laps = 0;
   bool capped = false;          // stopped at max_sim_s before the tour was done
   int people_removed = 0;       // people of the world left out (static building only)
+  int people_walking = 0;       // people kept walking (keep_people)
   double driven_m = 0.0;        // true path length driven
   double sim_seconds = 0.0;     // simulated time
   double mapping_cpu_seconds = 0.0;  // CPU time inside the mapping library (this thread)

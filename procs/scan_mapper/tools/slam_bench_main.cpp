@@ -1,14 +1,16 @@
 // rgnav_slam_bench: the SLAM benchmark (see deploy/bench/slam.sh).
 //   rgnav_slam_bench --json OUT.json --maps DIR [--config FILE]
 //     [--real NAME=LOG[@X,Y,THETA][#SECONDS]] ... [--sim NAME=WORLD ... --sim-config sim.yaml]
-//     [--sim-seeds 1,2,3]
+//     [--sim-people NAME=WORLD ...] [--sim-seeds 1,2,3]
 // Per real log: agreement with the log's REFERENCE_POSE poses (relations metric, when
 // present), map consistency, realtime factor (log duration / CPU time of the mapping on one
 // core; #SECONDS gives the true duration of a log whose timestamps are synthetic).
 // Per simulated world: the relations metric and ATE against the simulator's exact truth, for
 // the simulator config's seed (sim.<world>) and, with --sim-seeds, for each of those seeds
 // (sim_seeds.<world>: per seed, their mean and worst): one seed's odometry noise can happen
-// to hide or provoke an error, so robustness is judged over several.
+// to hide or provoke an error, so robustness is judged over several. --sim-people drives the
+// same tour with the world's people walking (the robot's body passes through them): moving
+// legs in the scans.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -166,6 +168,7 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["driven_m"] = r.driven_m;
   j["capped"] = r.capped;
   j["people_removed"] = r.people_removed;
+  j["people_walking"] = r.people_walking;
   if (r.capped) j["cap_sim_seconds"] = sim_mapping.max_sim_s;
   j["collisions"] = r.collisions;
   j["accepted_scans"] = r.stats.accepted;
@@ -239,6 +242,9 @@ int main(int argc, char** argv)
 #ifdef RGNAV_SLAM_BENCH_SIM
   sm::SimMappingOptions sim_mapping;
   app.add_option("--sim", sims, "NAME=WORLD: drive a closed tour in this simulated world (exact ground truth)");
+  std::vector<std::string> sims_with_people;
+  app.add_option("--sim-people", sims_with_people,
+                 "NAME=WORLD: as --sim, with the world's people walking (seen by the laser; the robot passes through them)");
   app.add_option("--sim-config", sim_config, "simulator config (robot, drive, odometry error, laser)");
   app.add_option("--sim-laps", sim_mapping.laps, "laps of the planned tour")->check(CLI::Range(1, 100));
   app.add_option("--sim-max-s", sim_mapping.max_sim_s, "cap on simulated seconds per world")->check(CLI::PositiveNumber);
@@ -258,7 +264,7 @@ int main(int argc, char** argv)
       std::cerr << out["real"][r.name].dump(2) << "\n";
     }
 #ifdef RGNAV_SLAM_BENCH_SIM
-    if (!sims.empty()) {
+    if (!sims.empty() || !sims_with_people.empty()) {
       const auto sim_cfg = rgnav::config::Config::load(sim_config);
       const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg);
       const auto& e = sim_options.odometry;
@@ -271,10 +277,15 @@ int main(int argc, char** argv)
                                    {"sigma_rotation_per_m", e.sigma_rotation_per_m}};
       const auto seeds = parse_seeds(seed_list);
       if (!seeds.empty()) out["sim_seed_list"] = seeds;
-      for (const auto& spec : sims) {
+      std::vector<std::pair<std::string, bool>> worlds;  // spec, with people
+      for (const auto& spec : sims) worlds.emplace_back(spec, false);
+      for (const auto& spec : sims_with_people) worlds.emplace_back(spec, true);
+      for (const auto& [spec, with_people] : worlds) {
         std::string name;
+        auto world_mapping = sim_mapping;
+        world_mapping.keep_people = with_people;
         std::cerr << "simulated world " << spec << " (seed " << sim_options.seed << ")\n";
-        auto j = evaluate_sim(spec, sim_options, options, sim_mapping, maps_dir, "", &name);
+        auto j = evaluate_sim(spec, sim_options, options, world_mapping, maps_dir, "", &name);
         std::cerr << j.dump(2) << "\n";
         if (!seeds.empty()) {
           std::vector<nlohmann::json> runs;
@@ -286,7 +297,7 @@ int main(int argc, char** argv)
             auto seeded = sim_options;
             seeded.seed = seed;
             std::cerr << "simulated world " << spec << " (seed " << seed << ")\n";
-            runs.push_back(evaluate_sim(spec, seeded, options, sim_mapping, maps_dir, "_seed" + std::to_string(seed), &name));
+            runs.push_back(evaluate_sim(spec, seeded, options, world_mapping, maps_dir, "_seed" + std::to_string(seed), &name));
             std::cerr << runs.back().dump(2) << "\n";
           }
           out["sim_seeds"][name] = summarize_seeds(runs);

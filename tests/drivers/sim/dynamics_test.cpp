@@ -277,6 +277,35 @@ TEST(People, WaitForTheRobotAtTheirPersonalSpace)
   EXPECT_NEAR(sim.people()[0].center.x(), -3.2, 1e-6);
 }
 
+TEST(People, ThatDoNotBlockTheRobotAreSeenAndPassedThrough)
+{
+  // Benchmarks of perception (people_block_robot: false): a person standing in the robot's way
+  // is in the scans, but neither stops the robot nor waits for it.
+  for (const bool block : {true, false}) {
+    World w = box_world(8.0);
+    w.start = {-6, 0, 0};
+    Person p;
+    p.path = {{0, 0}};
+    w.people.push_back(p);
+    SimulatorOptions o = quiet_options();
+    o.people_block_robot = block;
+    Simulator sim(w, o);
+    Constant forward({0.5, 0.0});
+    sim.set_command_source(&forward);
+    const StepOutput first = sim.step(microseconds(20000));
+    ASSERT_FALSE(first.scans.empty());
+    EXPECT_NEAR(first.scans[0].ranges[90], 6.0 - 0.22 - 0.12, 0.01) << block;
+    sim.step(microseconds(20'000'000));
+    if (block) {
+      EXPECT_EQ(sim.collisions(), 1);
+      EXPECT_LT(sim.truth().x, -0.22 - 0.26 + 1e-3);
+    } else {
+      EXPECT_EQ(sim.collisions(), 0);
+      EXPECT_GT(sim.truth().x, 1.0);
+    }
+  }
+}
+
 TEST(Doors, ScheduledDoorClosesDuringTheRun)
 {
   World w = box_world(8.0);
