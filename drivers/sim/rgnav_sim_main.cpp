@@ -38,7 +38,9 @@ int main(int argc, char** argv)
         if (process.interface == sim::InterfaceMode::kProtocol) {
 #if RGNAV_SIM_PROTOCOL
           const auto protocol = sim::load_protocol_options(protocol_files, ctx.config.section("protocol"));
-          hardware = [protocol](sim::Simulator& s) { return std::make_unique<sim::ProtocolHardware>(protocol, s); };
+          // --check-config validates the protocol options but opens no pseudo-terminal or bus.
+          if (!ctx.checking_only)
+            hardware = [protocol](sim::Simulator& s) { return std::make_unique<sim::ProtocolHardware>(protocol, s); };
           options.laser_enabled = false;  // the emulated LMS casts its own rays
 #else
           (void)protocol_files;

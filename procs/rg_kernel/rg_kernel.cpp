@@ -199,12 +199,13 @@ rgmap::Region RgKernel::describe_region(int64_t id) const
   return r;
 }
 
-const rgmap::RgMap& RgKernel::refreshed_map()
+const rgmap::RgMap& RgKernel::refreshed_map(const std::function<void()>& between_regions)
 {
   for (const int64_t id : dirty_) {
     const Region::State state = map_.region(id)->state;
     *map_.region(id) = describe_region(id);
     map_.region(id)->state = state;
+    if (between_regions) between_regions();
   }
   dirty_.clear();
   return map_;

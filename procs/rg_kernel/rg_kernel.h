@@ -15,6 +15,7 @@
 // Inputs are applied in the order given; with the same inputs the map is the same.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <set>
 #include <vector>
@@ -85,8 +86,11 @@ class RgKernel
 
   const rgmap::RgMap& map() const { return map_; }
   // The map with the description (segments, bbox, freespace) of every region that changed
-  // since the last call brought up to date.
-  const rgmap::RgMap& refreshed_map();
+  // since the last call brought up to date. After a loop closure that is every region it
+  // corrected; between_regions (if set) is called after each, so that a process can show it is
+  // alive meanwhile.
+  const rgmap::RgMap& refreshed_map(const std::function<void()>& between_regions = {});
+  size_t stale_regions() const { return dirty_.size(); }
   // Same, computed from scratch for every region (tests, offline tools).
   rgmap::RgMap described_map() const;
   rgmap::Region describe_region(int64_t id) const;

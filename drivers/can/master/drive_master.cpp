@@ -91,7 +91,8 @@ std::vector<DriveMaster::Step> DriveMaster::configuration_steps() const
 void DriveMaster::begin_configuration(Clock::time_point now)
 {
   ++generation_;
-  ++epoch_;
+  if (may_have_rebooted_) ++epoch_;
+  may_have_rebooted_ = false;
   retry_on_heartbeat_ = false;
   sdo_->cancel(options_.node_id);
   state_ = DriveState::kConfiguring;
@@ -159,11 +160,13 @@ void DriveMaster::on_heartbeat(NmtState nmt, Clock::time_point now)
   now_ = now;
   if (state_ == DriveState::kLost) {
     spdlog::info("drive {}: heartbeat back ({})", options_.node_id, canopen::to_string(nmt));
+    if (nmt == NmtState::kBootUp) may_have_rebooted_ = true;
     go_offline("heartbeat back, reconfiguring", now);
     return;
   }
   if (nmt == NmtState::kBootUp) {
     // The node (re)booted: whatever was configured is gone.
+    may_have_rebooted_ = true;
     if (state_ != DriveState::kOffline || now < retry_at_) go_offline("node rebooted", now);
     return;
   }

@@ -90,8 +90,10 @@ class DriveMaster
   int32_t position() const { return position_; }  // [counts] 0x6064, wraps modulo 2^32
   int32_t velocity() const { return velocity_; }  // [counts/s] 0x606C
   uint64_t position_samples() const { return position_samples_; }
-  // Increments whenever the position may have jumped (configuration restarted: the drive may
-  // have rebooted); odometry re-baselines on a change.
+  // Increments whenever the position may have jumped (the drive booted, or was configured for
+  // the first time); odometry re-baselines on a change. A drive that is reconfigured after its
+  // heartbeat came back in a running NMT state did not reboot: its counter went on, and the
+  // motion during the outage is in the next reading.
   uint32_t position_epoch() const { return epoch_; }
   std::optional<uint16_t> active_emcy() const { return emcy_; }
 
@@ -119,6 +121,7 @@ class DriveMaster
   std::string reason_ = "not configured yet";
   uint32_t generation_ = 0;
   uint32_t epoch_ = 0;
+  bool may_have_rebooted_ = true;  // until configured once, and after a boot-up
   Clock::time_point now_{};
   Clock::time_point retry_at_{};
   Clock::time_point started_at_{};

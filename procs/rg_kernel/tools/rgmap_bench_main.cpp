@@ -26,6 +26,37 @@ std::pair<std::string, std::string> split_spec(const std::string& spec)
   return {spec.substr(0, eq), spec.substr(eq + 1)};
 }
 
+// --diagnose: the ground-truth gateways missed and the false ones, and the room centres, all in
+// the world frame, to find them on the pictures.
+void print_gateway_diagnosis(const rp::WorldScore& score, const rp::GroundTruth& truth)
+{
+  // Which ground-truth gateways were missed and where the false ones are (world frame).
+  std::vector<char> t_hit(score.gateway_truth_positions.size(), 0), f_hit(score.gateway_found_positions.size(), 0);
+  for (const auto& [t, f] : score.gateways.pairs) t_hit[static_cast<size_t>(t)] = f_hit[static_cast<size_t>(f)] = 1;
+  for (size_t k = 0; k < t_hit.size(); ++k)
+    if (!t_hit[k])
+      std::cerr << "  missed gateway at (" << score.gateway_truth_positions[k].x() << ", "
+                << score.gateway_truth_positions[k].y() << ")\n";
+  // Room centres (world frame, cell centres), to find the rooms named above on the picture.
+  std::vector<Eigen::Vector2d> sum(truth.room_names.size() + 1, Eigen::Vector2d::Zero());
+  std::vector<int64_t> cnt(truth.room_names.size() + 1, 0);
+  for (int y = 0; y < truth.rooms.height; ++y)
+    for (int x = 0; x < truth.rooms.width; ++x)
+      if (const int32_t l = truth.rooms.at(x, y); l > 0 && static_cast<size_t>(l) < sum.size()) {
+        sum[static_cast<size_t>(l)] += Eigen::Vector2d(x, y);
+        ++cnt[static_cast<size_t>(l)];
+      }
+  for (size_t l = 1; l < sum.size(); ++l)
+    if (cnt[l] > 0) {
+      const Eigen::Vector2d c = truth.rooms.origin + truth.rooms.resolution * (sum[l] / static_cast<double>(cnt[l]) + Eigen::Vector2d(0.5, 0.5));
+      std::cerr << "  room " << truth.room_names[l - 1] << " centre (" << c.x() << ", " << c.y() << ")\n";
+    }
+  for (size_t k = 0; k < f_hit.size(); ++k)
+    if (!f_hit[k])
+      std::cerr << "  false gateway at (" << score.gateway_found_positions[k].x() << ", "
+                << score.gateway_found_positions[k].y() << ")\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -93,7 +124,10 @@ int main(int argc, char** argv)
             rp::write_run_outputs(run.run, loaded.options, dir);
             w["pictures"] = {dir + "/rgmap.svg", dir + "/rgmap.png"};
             j[section][name] = w;
-            if (diagnose) std::cerr << label << ":\n" << rp::to_text(score.segmentation_diagnosis, truth.room_names);
+            if (diagnose) {
+              std::cerr << label << ":\n" << rp::to_text(score.segmentation_diagnosis, truth.room_names);
+              print_gateway_diagnosis(score, truth);
+            }
             std::cerr << label << ": precision " << w["seg_precision"] << " recall " << w["seg_recall"] << " gateways "
                       << w["gateways_matched"] << "/" << w["gateways_truth"] << " false " << w["gateways_false"]
                       << " isomorphic " << w["graph_isomorphic"] << "\n";

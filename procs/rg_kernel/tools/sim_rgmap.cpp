@@ -159,6 +159,8 @@ WorldScore score_world(const SimRgMapRun& run, const GroundTruth& truth, double 
   }
   for (int k : crossed_gateways(truth, run.true_path)) crossed.push_back(truth.gateways[static_cast<size_t>(k)].center());
   s.gateways = match_gateways(between, found, gateway_match_distance);
+  s.gateway_truth_positions = between;
+  s.gateway_found_positions = found;
   s.gateways_crossed = match_gateways(crossed, found, gateway_match_distance);
 
   std::map<int64_t, int64_t> to_room;

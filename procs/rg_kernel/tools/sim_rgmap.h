@@ -54,6 +54,8 @@ struct WorldScore
   SegmentationScore segmentation;
   SegmentationDiagnosis segmentation_diagnosis;   // where the precision is lost
   GatewayMatch gateways;            // against every gateway between explored rooms
+  std::vector<Eigen::Vector2d> gateway_truth_positions;   // world frame, indices of gateways.pairs' first
+  std::vector<Eigen::Vector2d> gateway_found_positions;   // world frame, indices of gateways.pairs' second
   GatewayMatch gateways_crossed;    // against the gateways the robot went through
   GraphComparison graph;            // against the room graph of the explored rooms
   MapCounts counts;

@@ -8,6 +8,8 @@
 // exits; and the same with an external vcan_broker. Prints the measured figures.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -340,6 +342,14 @@ TEST(SimProtocolProcesses, ExternalBrokerAndConfigChecks)
   EXPECT_TRUE(refused.exited && refused.code == 2) << refused.describe();
   EXPECT_NE(testing::read_file(dir.file("fast.err")).find("sim.clock"), std::string::npos)
       << testing::read_file(dir.file("fast.err"));
+
+  // A good config is checked without opening the emulated laser's pty (its symlink is the
+  // laser driver's port) or joining the bus.
+  const auto checked = testing::run_to_completion(
+      {bin + "/rgnav_sim", "--config", cfg.sim, "--interface", "protocol", "--world", world, "--check-config"}, 20000ms,
+      {dir.file("check.out"), dir.file("check.err"), {}, ""});
+  EXPECT_TRUE(checked.exited && checked.code == 0) << checked.describe() << testing::read_file(dir.file("check.err"));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("laser_front"))) << "--check-config opened the emulated laser";
 
   bus::LcmBus lcm(url);
   Listener in(lcm);

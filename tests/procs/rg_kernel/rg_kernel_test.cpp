@@ -310,6 +310,32 @@ TEST(RgKernel, CorrectedScanIsReplacedNotDuplicated)
   EXPECT_EQ(d.kernel.stats().raw_points, before.raw_points);
 }
 
+TEST(RgKernel, RefreshDescribesEveryStaleRegionOnceAndReportsEach)
+{
+  // The node heartbeats from the callback while a loop closure's regions are described again.
+  Drive d;
+  for (double x = 1.0; x < 3.9; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
+  d.traverse_door(4.3, 0);
+  for (double x = 4.5; x < 7.5; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
+  // Region 1 was described when it was finalised; a loop closure's correction of its first scan
+  // makes it stale again, next to the current region 2.
+  EXPECT_EQ(d.kernel.stale_regions(), 1u);
+  ScanInput corrected;
+  corrected.scan_id = 1;
+  corrected.revision = 1;
+  corrected.utime = d.t;
+  corrected.map_from_base = geometry::Pose2(1.0, 1.52, 0);
+  corrected.laser_points = testing::cast(d.walls, geometry::Pose2(1.0, 1.5, 0));
+  ASSERT_TRUE(d.kernel.add_scan(corrected));
+  EXPECT_EQ(d.kernel.stale_regions(), 2u);
+  int calls = 0;
+  d.kernel.refreshed_map([&] { ++calls; });
+  EXPECT_EQ(calls, 2);
+  EXPECT_EQ(d.kernel.stale_regions(), 0u);
+  d.kernel.refreshed_map([&] { ++calls; });
+  EXPECT_EQ(calls, 2);  // nothing stale: nothing described
+}
+
 TEST(RgKernel, AbsurdPoseRefused)
 {
   Drive d;
