@@ -26,7 +26,8 @@ struct MovingPointOptions
   double max_incidence_deg = 70.0;
 };
 
-// One scan's beams around its laser, placed in the map.
+// One scan's beams around its laser, placed in the map. Keeps a reference to the scan, which
+// must outlive the view.
 class ScanView
 {
  public:

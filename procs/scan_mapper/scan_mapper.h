@@ -7,7 +7,10 @@
 //     point map of the last local_map_scans accepted scans, started at the odometry guess;
 //     if it fits badly, a correlative search around the guess re-seeds ICP. Every scan's
 //     surface normals are oriented toward its laser, and only points seen from the same side
-//     pair: the two faces of a thin wall (room side, corridor side) stay apart.
+//     pair: the two faces of a thin wall (room side, corridor side) stay apart. Points on
+//     something that moved (another scan of the local map saw through them: a person walking
+//     along a hallway, whose trail would otherwise pull the match along it) are then left out
+//     and ICP runs again from its fit (moving_points.h).
 //  3. Kalman fusion: the scan-matched increment and the odometry increment are combined
 //     weighted by their covariances (in a corridor ICP is weak along it; odometry is not).
 //  4. Global correlation: every few scans, an older scan whose relative uncertainty (read off
