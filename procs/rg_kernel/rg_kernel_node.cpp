@@ -175,14 +175,10 @@ void RgKernelNode::restore()
   const int64_t from_snapshot = inputs_;
   const auto t1 = std::chrono::steady_clock::now();
   // Replay what was journaled after it: same inputs, same order, same map. A long tail (after
-  // a fallback) takes a while: keep heartbeating so the supervisor sees progress.
-  auto last_beat = std::chrono::steady_clock::now();
+  // a fallback) takes a while.
   replaying_ = true;
   for (const auto& rec : store_->open_from(loaded_generation_)) {
-    if (std::chrono::steady_clock::now() - last_beat > std::chrono::milliseconds(200)) {
-      node_.publish_heartbeat();
-      last_beat = std::chrono::steady_clock::now();
-    }
+    heartbeat_while_busy();
     std::string why;
     const auto* data = reinterpret_cast<const uint8_t*>(rec.bytes.data());
     if (rec.tag == kAlignedScan) {
@@ -227,6 +223,14 @@ void RgKernelNode::maybe_snapshot()
     spdlog::error("snapshot failed: {}", e.what());
     node_.set_status(heartbeat_t::STATE_DEGRADED, "snapshot failed");
   }
+}
+
+void RgKernelNode::heartbeat_while_busy()
+{
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_busy_beat_ < std::chrono::milliseconds(100)) return;
+  node_.publish_heartbeat();
+  last_busy_beat_ = now;
 }
 
 void RgKernelNode::snapshot_now()
@@ -280,15 +284,8 @@ void RgKernelNode::publish()
   // supervisor takes the kernel for hung and restarts it (seen in the demo after a closure that
   // corrected 1135 scans).
   const auto start = std::chrono::steady_clock::now();
-  auto last_beat = start;
   const size_t stale = kernel_.stale_regions();
-  const rgmap::RgMap& map = kernel_.refreshed_map([&] {
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_beat > std::chrono::milliseconds(100)) {
-      node_.publish_heartbeat();
-      last_beat = now;
-    }
-  });
+  const rgmap::RgMap& map = kernel_.refreshed_map([this] { heartbeat_while_busy(); });
   const double refresh_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (refresh_ms > 200.0) spdlog::info("{} region(s) described again in {:.0f} ms", stale, refresh_ms);
   if (map.current_region == 0) return;

@@ -4,12 +4,16 @@
 
 namespace rgnav::scan_mapper {
 
-ScanView::ScanView(const Scan& scan, const Pose2& map_from_laser)
-    : scan_(scan), laser_from_map_(map_from_laser.inverse()), origin_(map_from_laser.translation())
+ScanView::ScanView(const Scan& scan, const Pose2& map_from_laser, const MovingPointOptions& o)
+    : scan_(scan),
+      laser_from_map_(map_from_laser.inverse()),
+      origin_(map_from_laser.translation()),
+      margin_(o.margin_m),
+      min_cos_incidence_(std::cos(o.max_incidence_deg * M_PI / 180.0))
 {
 }
 
-bool ScanView::sees_through(const Eigen::Vector2d& p, const Eigen::Vector2d& normal, const MovingPointOptions& o) const
+bool ScanView::sees_through(const Eigen::Vector2d& p, const Eigen::Vector2d& normal) const
 {
   const Eigen::Vector2d q = laser_from_map_ * p;
   const double d = q.norm();
@@ -17,7 +21,7 @@ bool ScanView::sees_through(const Eigen::Vector2d& p, const Eigen::Vector2d& nor
   if (normal.squaredNorm() > 0.0) {
     // Incidence of this scan's beam on the point's surface (either face).
     const double cos_incidence = std::fabs(normal.dot((p - origin_) / d));
-    if (cos_incidence < std::cos(o.max_incidence_deg * M_PI / 180.0)) return false;
+    if (cos_incidence < min_cos_incidence_) return false;
   }
   const double f = (std::atan2(q.y(), q.x()) - scan_.angle_min) / scan_.angle_increment;
   if (!(f >= 0.0)) return false;
@@ -27,20 +31,20 @@ bool ScanView::sees_through(const Eigen::Vector2d& p, const Eigen::Vector2d& nor
     const double r = scan_.ranges[i];
     // No return (at or beyond the limit): nothing within the range limit.
     const double reach = (r >= scan_.range_max) ? static_cast<double>(scan_.range_max) : r;
-    if (!(r > scan_.range_min) || !(reach > d + o.margin_m)) return false;
+    if (!(r > scan_.range_min) || !(reach > d + margin_)) return false;
   }
   return true;
 }
 
 void mark_seen_through(const std::vector<ScanView>& views, const Points& points, const Points& normals,
-                       const std::vector<char>& has_normal, const MovingPointOptions& o, std::vector<char>* keep)
+                       const std::vector<char>& has_normal, std::vector<char>* keep)
 {
   keep->resize(points.size(), 1);
   for (size_t i = 0; i < points.size(); ++i) {
     if (!(*keep)[i]) continue;
     const Eigen::Vector2d n = (i < has_normal.size() && has_normal[i]) ? normals[i] : Eigen::Vector2d::Zero();
     for (const auto& v : views)
-      if (v.sees_through(points[i], n, o)) {
+      if (v.sees_through(points[i], n)) {
         (*keep)[i] = 0;
         break;
       }

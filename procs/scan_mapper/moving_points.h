@@ -31,20 +31,22 @@ struct MovingPointOptions
 class ScanView
 {
  public:
-  ScanView(const Scan& scan, const Pose2& map_from_laser);
+  ScanView(const Scan& scan, const Pose2& map_from_laser, const MovingPointOptions& options);
   // Both beams around p (map frame) reach past it by margin_m (a beam without return reaches to
   // the range limit). normal (map frame, or zero if unknown) is p's surface normal.
-  bool sees_through(const Eigen::Vector2d& p, const Eigen::Vector2d& normal, const MovingPointOptions& o) const;
+  bool sees_through(const Eigen::Vector2d& p, const Eigen::Vector2d& normal) const;
 
  private:
   const Scan& scan_;
   Pose2 laser_from_map_;
   Eigen::Vector2d origin_;
+  double margin_;
+  double min_cos_incidence_;
 };
 
 // keep[i] is cleared for every points[i] (map frame, normals[i] its normal when has_normal[i])
 // that one of the views sees through.
 void mark_seen_through(const std::vector<ScanView>& views, const Points& points, const Points& normals,
-                       const std::vector<char>& has_normal, const MovingPointOptions& o, std::vector<char>* keep);
+                       const std::vector<char>& has_normal, std::vector<char>* keep);
 
 }  // namespace rgnav::scan_mapper

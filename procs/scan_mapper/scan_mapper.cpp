@@ -249,7 +249,7 @@ std::optional<IcpResult> ScanMapper::register_without_moving(const ScanNode& sca
   std::vector<ScanView> model_views;
   for (int k = first; k < n; ++k) {
     const auto& nk = nodes_[static_cast<size_t>(k)];
-    model_views.emplace_back(nk.scan, nk.map_from_base * options_.base_from_laser);
+    model_views.emplace_back(nk.scan, nk.map_from_base * options_.base_from_laser, o);
   }
   const Points here = transform_points(map_from_scan, scan.points);
   const double c = std::cos(map_from_scan.theta()), s = std::sin(map_from_scan.theta());
@@ -257,36 +257,38 @@ std::optional<IcpResult> ScanMapper::register_without_moving(const ScanNode& sca
   here_normals.reserve(scan.normals.size());
   for (const auto& v : scan.normals) here_normals.emplace_back(c * v.x() - s * v.y(), s * v.x() + c * v.y());
   std::vector<char> keep_scan;
-  mark_seen_through(model_views, here, here_normals, scan.has_normal, o, &keep_scan);
+  mark_seen_through(model_views, here, here_normals, scan.has_normal, &keep_scan);
   // ... and the new scan sees through the local map's points on something that has gone (the
   // trail a person walking away leaves).
-  const std::vector<ScanView> scan_view{ScanView(scan.scan, map_from_scan * options_.base_from_laser)};
+  const std::vector<ScanView> scan_view{ScanView(scan.scan, map_from_scan * options_.base_from_laser, o)};
   std::vector<char> keep_model;
-  mark_seen_through(scan_view, map.points(), map.normals(), map.has_normals(), o, &keep_model);
+  mark_seen_through(scan_view, map.points(), map.normals(), map.has_normals(), &keep_model);
   const auto moving = [](const std::vector<char>& keep) { return std::count(keep.begin(), keep.end(), 0); };
   const auto moved_scan = moving(keep_scan), moved_model = moving(keep_model);
   if (moved_scan == 0 && moved_model == 0) return std::nullopt;
   stats_.moving_points += moved_scan + moved_model;
 
-  Points points, normals;
-  std::vector<char> has_normal;
-  for (size_t i = 0; i < keep_scan.size(); ++i)
-    if (keep_scan[i]) {
-      points.push_back(scan.points[i]);
-      normals.push_back(scan.normals[i]);
-      has_normal.push_back(scan.has_normal[i]);
-    }
-  Points model, model_normals;
-  std::vector<char> model_has_normal;
-  for (size_t i = 0; i < keep_model.size(); ++i)
-    if (keep_model[i]) {
-      model.push_back(map.points()[i]);
-      model_normals.push_back(map.normals()[i]);
-      model_has_normal.push_back(map.has_normals()[i]);
-    }
-  if (model.size() < 10 || points.size() < 10) return std::nullopt;
-  const PointMap still(std::move(model), std::move(model_normals), std::move(model_has_normal));
-  IcpResult refit = icp_point_to_line(points, normals, has_normal, still, map_from_scan, options_.icp);
+  struct Kept
+  {
+    Points points, normals;
+    std::vector<char> has_normal;
+  };
+  const auto kept = [](const std::vector<char>& keep, const Points& p, const Points& n, const std::vector<char>& h) {
+    Kept k;
+    for (size_t i = 0; i < keep.size(); ++i)
+      if (keep[i]) {
+        k.points.push_back(p[i]);
+        k.normals.push_back(n[i]);
+        k.has_normal.push_back(h[i]);
+      }
+    return k;
+  };
+  const Kept still_scan = kept(keep_scan, scan.points, scan.normals, scan.has_normal);
+  Kept model = kept(keep_model, map.points(), map.normals(), map.has_normals());
+  if (model.points.size() < 10 || still_scan.points.size() < 10) return std::nullopt;
+  const PointMap still(std::move(model.points), std::move(model.normals), std::move(model.has_normal));
+  IcpResult refit =
+      icp_point_to_line(still_scan.points, still_scan.normals, still_scan.has_normal, still, map_from_scan, options_.icp);
   if (!refit.ok) return std::nullopt;
   return refit;
 }
