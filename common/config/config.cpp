@@ -181,6 +181,20 @@ std::vector<double> Config::numbers(const std::string& key, const std::vector<do
   return out;
 }
 
+std::vector<std::string> Config::strings(const std::string& key, const std::vector<std::string>& default_value) const
+{
+  const YAML::Node n = lookup(key);
+  if (!n.IsDefined() || n.IsNull()) return default_value;
+  if (n.IsScalar()) return {n.Scalar()};
+  if (!n.IsSequence()) fail(key, "expected a list of strings, got " + describe(n));
+  std::vector<std::string> out;
+  for (size_t i = 0; i < n.size(); ++i) {
+    if (!n[i].IsScalar()) fail(key, "element " + std::to_string(i) + ": expected a string, got " + describe(n[i]));
+    out.push_back(n[i].Scalar());
+  }
+  return out;
+}
+
 std::vector<Config> Config::list(const std::string& key) const
 {
   const YAML::Node n = lookup(key);

@@ -51,6 +51,8 @@ class Config
   std::vector<double> numbers(const std::string& key, const std::vector<double>& default_value,
                               double min, double max, size_t size_min = 0,
                               size_t size_max = SIZE_MAX) const;
+  // A sequence of strings (a scalar counts as a list of one).
+  std::vector<std::string> strings(const std::string& key, const std::vector<std::string>& default_value) const;
   // Elements of a sequence of mappings, each as a Config (e.g. walls of a world).
   std::vector<Config> list(const std::string& key) const;
 

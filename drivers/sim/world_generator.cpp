@@ -190,10 +190,14 @@ World office_world()
   w.start = {20.0, 2.0, M_PI / 2};
   FreeSpace fs;
   const Rect hall_a{1, 12, 39, 14}, hall_b_south{19, 6, 21, 12}, hall_b_north{19, 14, 21, 24};
+  // Labelled as the RG model cuts it (crossing gateways join hallway regions, diss. Fig. 4.1):
+  // hall_a is two hallways, one each side of the X-crossing, whose square is the gateway's own
+  // area and in no region. The T-junction's and the turns' squares lie in one of the hallways
+  // they join.
+  const Rect hall_a_west{1, 12, 19, 14}, hall_a_east{21, 12, 39, 14};
   const Rect hall_c{19, 24, 37, 26}, hall_d{35, 14, 37, 24}, lobby{14, 0, 26, 6};
   for (const Rect& r : {hall_a, hall_b_south, hall_b_north, hall_c, hall_d, lobby}) fs.add(r);
-  // Hallways and junction squares are walls-free unions; the crossing square belongs to hall_a.
-  fs.add({19, 12, 21, 14});
+  // Hallways and junction squares are walls-free unions.
 
   std::vector<Office> offices;
   // South row, doors north onto hall_a (the wall between is 0.15 m).
@@ -204,23 +208,24 @@ World office_world()
     o.room = {south_x[i] + 0.1, 6.15, south_x[i] + 3.9, 11.85};
     o.door_side = Side::kNorth;
     o.door_at = south_x[i] + 2.0;
-    o.hall = "hall_a";
+    o.hall = i < 4 ? "hall_a_west" : "hall_a_east";
     o.wall_to_hall = 0.15;
     o.cluttered = (i == 1 || i == 4 || i == 6);
     o.closed = (i == 7);
     offices.push_back(o);
   }
   // North-west: a lab and a kitchen onto hall_a, a meeting room onto hall_b_north.
-  offices.push_back({"lab", {1.1, 14.15, 6.9, 19.85}, Side::kSouth, 4.0, "hall_a", 0.15, true, false});
-  offices.push_back({"kitchen", {7.1, 14.15, 12.9, 19.85}, Side::kSouth, 10.0, "hall_a", 0.15, false, false});
+  offices.push_back({"lab", {1.1, 14.15, 6.9, 19.85}, Side::kSouth, 4.0, "hall_a_west", 0.15, true, false});
+  offices.push_back({"kitchen", {7.1, 14.15, 12.9, 19.85}, Side::kSouth, 10.0, "hall_a_west", 0.15, false, false});
   offices.push_back({"meeting", {13.1, 14.15, 18.9, 19.85}, Side::kEast, 17.0, "hall_b_north", 0.1, false, false});
   // Inside the loop: two onto hall_a, two onto hall_c.
-  offices.push_back({"office_n1", {21.1, 14.15, 27.9, 18.9}, Side::kSouth, 24.5, "hall_a", 0.15, false, false});
-  offices.push_back({"office_n2", {28.1, 14.15, 34.9, 18.9}, Side::kSouth, 31.5, "hall_a", 0.15, true, false});
+  offices.push_back({"office_n1", {21.1, 14.15, 27.9, 18.9}, Side::kSouth, 24.5, "hall_a_east", 0.15, false, false});
+  offices.push_back({"office_n2", {28.1, 14.15, 34.9, 18.9}, Side::kSouth, 31.5, "hall_a_east", 0.15, true, false});
   offices.push_back({"office_n3", {21.1, 19.1, 27.9, 23.85}, Side::kNorth, 24.5, "hall_c", 0.15, false, false});
   offices.push_back({"office_n4", {28.1, 19.1, 34.9, 23.85}, Side::kNorth, 31.5, "hall_c", 0.15, false, false});
 
-  w.regions.push_back(make_region("hall_a", RegionKind::kHallway, hall_a));
+  w.regions.push_back(make_region("hall_a_west", RegionKind::kHallway, hall_a_west));
+  w.regions.push_back(make_region("hall_a_east", RegionKind::kHallway, hall_a_east));
   w.regions.push_back(make_region("hall_b_south", RegionKind::kHallway, hall_b_south));
   w.regions.push_back(make_region("hall_b_north", RegionKind::kHallway, hall_b_north));
   w.regions.push_back(make_region("hall_c", RegionKind::kHallway, hall_c));
@@ -253,14 +258,15 @@ World office_world()
   for (auto& p : w.people) p.personal_space = 0.4;
 
   using G = GatewayClass;
-  // The crossing square belongs to hall_a; the X-crossing joins both halves of hall_b to it.
-  w.gateways.push_back(make_gateway("crossing_ab", G::kXCrossing, {{19, 12}, {21, 12}, {21, 14}, {19, 14}}, "hall_b_south", "hall_b_north"));
-  w.gateways.push_back(make_gateway("junction_da", G::kTJunction, {{35, 14}, {37, 14}}, "hall_d", "hall_a", -M_PI / 2));
+  Gateway crossing = make_gateway("crossing_ab", G::kXCrossing, {{19, 12}, {21, 12}, {21, 14}, {19, 14}}, "hall_b_south", "hall_b_north");
+  crossing.regions.insert(crossing.regions.end(), {"hall_a_west", "hall_a_east"});
+  w.gateways.push_back(crossing);
+  w.gateways.push_back(make_gateway("junction_da", G::kTJunction, {{35, 14}, {37, 14}}, "hall_d", "hall_a_east", -M_PI / 2));
   w.gateways.push_back(make_gateway("turn_bc", G::kRTurn, {{21, 24}, {19, 26}}, "hall_b_north", "hall_c", M_PI / 2));
   w.gateways.push_back(make_gateway("turn_cd", G::kRTurn, {{35, 24}, {37, 26}}, "hall_c", "hall_d", 0.0));
   w.gateways.push_back(make_gateway("lobby_opening", G::kOpening, {{19, 6}, {21, 6}}, "lobby", "hall_b_south"));
-  w.gateways.push_back(make_gateway("dead_end_a_west", G::kDeadEnd, {{1, 12}, {1, 14}}, "hall_a", "", M_PI));
-  w.gateways.push_back(make_gateway("dead_end_a_east", G::kDeadEnd, {{39, 12}, {39, 14}}, "hall_a", "", 0.0));
+  w.gateways.push_back(make_gateway("dead_end_a_west", G::kDeadEnd, {{1, 12}, {1, 14}}, "hall_a_west", "", M_PI));
+  w.gateways.push_back(make_gateway("dead_end_a_east", G::kDeadEnd, {{39, 12}, {39, 14}}, "hall_a_east", "", 0.0));
   return w;
 }
 

@@ -226,12 +226,14 @@ World parse_world_yaml(const config::Config& cfg, const std::string& base_dir)
     g.name = unique_name(c, "", &gateway_names);
     g.cls = *gateway_class_from_string(c.choice("class", "door", gateway_class_names()));
     g.points = read_points(c, "points", 1);
-    for (const char* key : {"from", "to"}) {
-      const std::string r = c.string(key, "");
-      if (r.empty()) continue;
+    // from / to, and `joins` for a crossing between more than two regions (every pair adjacent).
+    auto add_region = [&](const char* key, const std::string& r) {
+      if (r.empty()) return;
       if (!region_names.count(r)) c.fail(key, "no region named '" + r + "'");
-      g.regions.push_back(r);
-    }
+      if (std::find(g.regions.begin(), g.regions.end(), r) == g.regions.end()) g.regions.push_back(r);
+    };
+    for (const char* key : {"from", "to"}) add_region(key, c.string(key, ""));
+    for (const auto& r : c.strings("joins", {})) add_region("joins", r);
     if (c.has("heading")) g.heading = c.number("heading", 0.0, -10.0, 10.0);
     world.gateways.push_back(g);
   }
@@ -318,8 +320,14 @@ std::string world_to_yaml(const World& w)
   if (!w.gateways.empty()) o << "gateways:\n";
   for (const auto& g : w.gateways) {
     o << "  - {name: " << quoted(g.name) << ", class: " << to_string(g.cls) << ", points: " << points_text(g.points);
-    if (!g.regions.empty()) o << ", from: " << quoted(g.regions[0]);
-    if (g.regions.size() > 1) o << ", to: " << quoted(g.regions[1]);
+    if (g.regions.size() > 2) {
+      o << ", joins: [";
+      for (size_t k = 0; k < g.regions.size(); ++k) o << (k ? ", " : "") << quoted(g.regions[k]);
+      o << "]";
+    } else {
+      if (!g.regions.empty()) o << ", from: " << quoted(g.regions[0]);
+      if (g.regions.size() > 1) o << ", to: " << quoted(g.regions[1]);
+    }
     if (g.heading) o << ", heading: " << num(*g.heading);
     o << "}\n";
   }

@@ -93,4 +93,31 @@ std::vector<Line> clip_lines(const std::vector<Vector2d>& points, const std::vec
   return out;
 }
 
+double widest_opening(const Line& side, const std::vector<rgmap::LineSegment>& walls, double tolerance)
+{
+  const Vector2d a = side.first;
+  const double length = (side.second - a).norm();
+  if (length < 1e-9) return 0.0;
+  const Vector2d along = (side.second - a) / length, normal(-along.y(), along.x());
+  const double min_cos = std::cos(15.0 * M_PI / 180.0);
+  std::vector<std::pair<double, double>> covered;   // [t0, t1] along the side
+  for (const auto& w : walls) {
+    const Vector2d d = w.b - w.a;
+    if (d.norm() < 1e-9 || std::fabs(d.normalized().dot(along)) < min_cos) continue;
+    if (std::fabs(normal.dot(w.a - a)) > tolerance || std::fabs(normal.dot(w.b - a)) > tolerance) continue;
+    double t0 = along.dot(w.a - a), t1 = along.dot(w.b - a);
+    if (t0 > t1) std::swap(t0, t1);
+    t0 = std::max(t0, 0.0);
+    t1 = std::min(t1, length);
+    if (t1 > t0) covered.push_back({t0, t1});
+  }
+  std::sort(covered.begin(), covered.end());
+  double widest = 0.0, reached = 0.0;
+  for (const auto& [t0, t1] : covered) {
+    widest = std::max(widest, t0 - reached);
+    reached = std::max(reached, t1);
+  }
+  return std::max(widest, length - reached);
+}
+
 }  // namespace rgnav::rg_kernel

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "rgmap/rg_map.h"
+
 namespace rgnav::rg_kernel {
 
 using Line = std::pair<Eigen::Vector2d, Eigen::Vector2d>;
@@ -42,6 +44,12 @@ std::vector<EdgeFrame> edge_frames(const std::vector<Eigen::Vector2d>& points);
 // crossing through it twice: as the door and as the junction left or entered through the door.
 bool line_on_crossed_side(const std::vector<Eigen::Vector2d>& outline, const Eigen::Vector2d& p, const Eigen::Vector2d& q,
                           double heading, double tolerance);
+
+// [m] The longest stretch of `side` that no wall runs along: walls are line-map segments
+// parallel to it (within 15 deg) with both ends within `tolerance` of its line. A crossing's
+// side with a branch behind it is open over about the branch's width; a hallway wall with a
+// door in it, at most over the door.
+double widest_opening(const Line& side, const std::vector<rgmap::LineSegment>& walls, double tolerance);
 
 // The lines of one gateway (points in the region frame) that end the beams of a region whose
 // robot stood at `origins` (region frame): all its edges, except for an outline the sides with

@@ -208,6 +208,11 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
                    c_map.x(), c_map.y(), door);
       return false;
     }
+    if (walled_crossing(e, from)) {
+      spdlog::info("{} traversal at ({:.2f}, {:.2f}) between walls (no branch-wide opening in its sides), ignored",
+                   rgmap::to_string(e.cls), c_map.x(), c_map.y());
+      return false;
+    }
   }
   for (Gateway* k : known) {
     if (g || k->region_b != 0) continue;
@@ -258,7 +263,10 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
   cur->utime = e.utime;
 
   if (next == 0) {
-    next = KnownPlaces(map_, builders_, from, options_.known_place).region_holding(e.map_from_base.translation());
+    // Past the gateway as the detector saw it just now, not only as it is known (another visit's
+    // measurement, known_place.h).
+    next = KnownPlaces(map_, builders_, from, options_.known_place, e.gateway_points)
+               .region_holding(e.map_from_base.translation());
     if (next) spdlog::info("gateway {} leads from region {} into known region {}", g->id, from, next);
   }
   if (next == 0) next = open_region(e.map_from_base, e.utime);

@@ -12,9 +12,11 @@ using Eigen::Vector2d;
 using rgmap::Region;
 
 KnownPlaces::KnownPlaces(const rgmap::RgMap& map, const std::map<int64_t, RegionBuilder>& builders, int64_t except,
-                         KnownPlaceOptions options)
+                         KnownPlaceOptions options, const std::vector<Vector2d>& crossed)
     : options_(options)
 {
+  if (crossed.size() >= 2)
+    for (const auto& line : gateway_edges(crossed)) gateway_lines_.push_back(line);
   for (const auto& [id, r] : map.regions()) {
     if (id == except || r.state != Region::State::kFinalised) continue;
     auto b = builders.find(id);

@@ -33,8 +33,14 @@ class KnownPlaces
  public:
   // The finalised regions of `map` except `except`, with their robot positions from
   // `builders` (region frame), and every non-neutralized gateway line in the map frame.
+  // `crossed` (map frame, points as in a gateway) is a gateway the robot has just crossed as the
+  // gateway detector saw it then; its lines end lines of sight too. A crossing matched to a known
+  // one keeps the known outline, measured on another visit: with pose error between the visits
+  // the robot, just past the side it left by, can lie inside that outline, where every region
+  // whose robot went through the junction "saw" it (office, SLAM poses: the hallway beyond a
+  // crossing taken for the one the crossing was first entered from).
   KnownPlaces(const rgmap::RgMap& map, const std::map<int64_t, RegionBuilder>& builders, int64_t except,
-              KnownPlaceOptions options);
+              KnownPlaceOptions options, const std::vector<Eigen::Vector2d>& crossed = {});
 
   // The known region that holds the map point (the lowest id if several), 0 if none.
   int64_t region_holding(const Eigen::Vector2d& map_point) const;

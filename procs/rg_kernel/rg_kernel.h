@@ -35,6 +35,12 @@ struct KernelOptions
   KnownPlaceOptions known_place;         // what makes a position part of a known region (known_place.h)
   double late_scan_reach = 3.0;          // [m] scans this far past a crossed gateway belong beyond it
   double junction_side_reach = 2.0;      // [m] robot this near outside a crossing's side: its region lies beyond
+  // [m] A crossing gone straight through whose sides along the way (in the current region's line
+  // map) are open over less than this (or 80 % of the side, if shorter) has no branch: the
+  // detector took doors in the hallway walls, or a room's wall seen through one for the far
+  // side, for a junction (issue 8: spurious crossings cut hallways). Doors are at most 1.3 m.
+  double min_branch_width = 1.4;
+  double branch_wall_tolerance = 0.25;   // [m] a wall segment this near a side's line runs along it
   bool doorway_gateways = true;          // a doorway of the line map (build.doorways) the robot goes through is a gateway
   // [m] a gateway line (not an outline) ends beams this far beyond its points too: the detector's
   // and the line map's door points lie on the jambs' visible edges, and beams grazing past them
@@ -133,6 +139,9 @@ class RgKernel
   // The door of the current region just crossed that lies in a side of the junction traversal
   // `e` went through (the same crossing reported again), 0 if none.
   int64_t door_on_junction_side(const GatewayEventInput& e, int64_t current) const;
+  // Whether the crossing traversal `e` went straight between walls: every side of its outline
+  // along the heading is walled in the current region's line map (no branch-wide opening).
+  bool walled_crossing(const GatewayEventInput& e, int64_t current) const;
   Eigen::Vector2d crossing_in_map(const rgmap::Gateway& g) const;
   std::vector<int64_t> scans_past_gateway(int64_t region_id, const GatewayEventInput& e) const;
   StoredScan to_stored(const ScanInput& s, int64_t region_id) const;

@@ -74,6 +74,16 @@ TEST(Config, ChoiceListsAllowedValues)
               HasSubstr("'turbo' is not one of: direct, protocol"));
 }
 
+TEST(Config, StringsTakeAListOrOneScalar)
+{
+  const auto c = Config::parse("many: [a, b]\none: c\nbad: [[x]]\nmap: {k: v}\n", "s.yaml");
+  EXPECT_EQ(c.strings("many", {}), (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(c.strings("one", {}), (std::vector<std::string>{"c"}));
+  EXPECT_EQ(c.strings("missing", {"d"}), (std::vector<std::string>{"d"}));
+  EXPECT_THAT(error_of([&] { c.strings("bad", {}); }), HasSubstr("'bad': element 0: expected a string"));
+  EXPECT_THAT(error_of([&] { c.strings("map", {}); }), HasSubstr("expected a list of strings"));
+}
+
 TEST(Config, ListElementsTrackUnknownKeys)
 {
   const auto c = Config::parse("walls:\n  - {x: 1, y: 2}\n  - {x: 3, z: 4}\n", "w.yaml");

@@ -152,36 +152,62 @@ GatewayMatch match_gateways(const std::vector<Vector2d>& truth, const std::vecto
   return m;
 }
 
+namespace {
+
+// Gateways of the map grouped by crossing: those with the same 4-point outline (within 1 cm in
+// the map frame) in one group, lowest id first; every other gateway alone.
+std::vector<std::vector<int64_t>> crossing_groups(const rgmap::RgMap& map)
+{
+  std::vector<std::pair<std::vector<Vector2d>, std::vector<int64_t>>> outlines;   // map frame
+  std::vector<std::vector<int64_t>> out;
+  for (const auto& [id, g] : map.gateways()) {
+    const rgmap::Region* a = map.region(g.region_a);
+    if (g.neutralized || g.gateway_points.size() != 4 || !a) {
+      out.push_back({id});
+      continue;
+    }
+    std::vector<Vector2d> pts;
+    for (const auto& p : g.gateway_points) pts.push_back(a->map_from_region * p);
+    auto same = std::find_if(outlines.begin(), outlines.end(), [&](const auto& o) {
+      for (size_t k = 0; k < 4; ++k)
+        if ((o.first[k] - pts[k]).norm() > 0.01) return false;
+      return true;
+    });
+    if (same == outlines.end()) outlines.push_back({std::move(pts), {id}});
+    else same->second.push_back(id);
+  }
+  for (auto& o : outlines) out.push_back(std::move(o.second));
+  return out;
+}
+
+}  // namespace
+
 Graph region_graph(const rgmap::RgMap& map)
 {
   Graph g;
   for (const auto& [id, r] : map.regions())
     if (r.state != rgmap::Region::State::kMerged) g.nodes.insert(id);
-  for (const auto& [id, gw] : map.gateways()) {
-    if (gw.neutralized || gw.region_a == 0 || gw.region_b == 0) continue;
-    const int64_t a = map.resolve(gw.region_a), b = map.resolve(gw.region_b);
-    if (g.nodes.count(a) && g.nodes.count(b)) g.add_edge(a, b);
+  for (const auto& group : crossing_groups(map)) {
+    std::set<int64_t> joined;
+    for (int64_t id : group) {
+      const rgmap::Gateway& gw = map.gateways().at(id);
+      if (gw.neutralized || gw.region_a == 0 || gw.region_b == 0) continue;
+      for (int64_t r : {map.resolve(gw.region_a), map.resolve(gw.region_b)})
+        if (g.nodes.count(r)) joined.insert(r);
+    }
+    // A crossing joins every pair of the regions around it (the RG graph's gateway edges join
+    // all its crossing points), however many pairs the robot went through.
+    for (auto a = joined.begin(); a != joined.end(); ++a)
+      for (auto b = std::next(a); b != joined.end(); ++b) g.add_edge(*a, *b);
   }
   return g;
 }
 
 std::set<int64_t> repeated_crossings(const rgmap::RgMap& map)
 {
-  std::vector<std::pair<int64_t, std::vector<Vector2d>>> seen;   // outlines in the map frame
   std::set<int64_t> out;
-  for (const auto& [id, g] : map.gateways()) {
-    const rgmap::Region* a = map.region(g.region_a);
-    if (g.neutralized || g.gateway_points.size() != 4 || !a) continue;
-    std::vector<Vector2d> pts;
-    for (const auto& p : g.gateway_points) pts.push_back(a->map_from_region * p);
-    const bool repeat = std::any_of(seen.begin(), seen.end(), [&](const auto& s) {
-      for (size_t k = 0; k < 4; ++k)
-        if ((s.second[k] - pts[k]).norm() > 0.01) return false;
-      return true;
-    });
-    if (repeat) out.insert(id);
-    else seen.push_back({id, std::move(pts)});
-  }
+  for (const auto& group : crossing_groups(map))
+    for (size_t k = 1; k < group.size(); ++k) out.insert(group[k]);
   return out;
 }
 

@@ -114,13 +114,13 @@ struct GraphComparison
 GraphComparison compare_graphs(const Graph& truth, const Graph& map, const std::map<int64_t, int64_t>& map_to_truth);
 
 // The region graph of an RG map: live (not merged) regions; an edge per pair of regions joined
-// by a gateway that is traversed (both sides known) and not neutralized.
+// by a gateway that is traversed (both sides known) and not neutralized. A crossing joins every
+// pair of the regions its gateways join (see repeated_crossings), as the truth's crossings do.
 Graph region_graph(const rgmap::RgMap& map);
 
 // A crossing joining more than two regions is one gateway per pair of them in an RG map (a
 // gateway has two sides), all with the crossing's outline: the ids of those repeating the
-// outline of a lower-id gateway (within 1 cm). They are edges of the region graph, but one
-// gateway for counting and matching.
+// outline of a lower-id gateway (within 1 cm). One gateway for counting and matching.
 std::set<int64_t> repeated_crossings(const rgmap::RgMap& map);
 
 // Table 6.1 of the dissertation plus structure and compactness; a crossing counts once.

@@ -66,6 +66,10 @@ TEST(WorldLoading, OfficeWorldHasWhatTheIssueAsksFor)
   EXPECT_EQ(w.doors.size(), static_cast<size_t>(doors_to_rooms));
   EXPECT_TRUE(classes.count(GatewayClass::kXCrossing));
   EXPECT_TRUE(classes.count(GatewayClass::kTJunction));
+  // The X-crossing joins the four hallways around it (written and read back as `joins`).
+  for (const auto& g : w.gateways)
+    if (g.cls == GatewayClass::kXCrossing)
+      EXPECT_EQ(g.regions, (std::vector<std::string>{"hall_b_south", "hall_b_north", "hall_a_west", "hall_a_east"}));
   EXPECT_TRUE(classes.count(GatewayClass::kRTurn));
   EXPECT_FALSE(w.tables.empty());
   EXPECT_FALSE(w.people.empty());
@@ -171,6 +175,8 @@ TEST(WorldLoading, MalformedWorldsAreRefusedWithFileAndKey)
   expect_refused("bad4.yaml", wall + "regions:\n  - {name: r, kind: attic, polygon: [0, 0, 1, 0, 1, 1]}\n", "regions[0].kind");
   expect_refused("bad5.yaml", wall + "regions:\n  - {name: r, polygon: [0, 0, 1, 0, 1]}\n", "regions[0].polygon");
   expect_refused("bad6.yaml", wall + "gateways:\n  - {name: g, class: door, points: [0, 0], from: nowhere}\n", "gateways[0].from");
+  expect_refused("bad6b.yaml", wall + "regions:\n  - {name: r, polygon: [0, 0, 1, 0, 1, 1]}\ngateways:\n  - {name: g, class: x_crossing, points: [0, 0], joins: [r, nowhere]}\n",
+                 "gateways[0].joins");
   expect_refused("bad7.yaml", wall + "wals: []\n", "wals");
   expect_refused("bad8.yaml", wall + "tables:\n  - {center: [1, 1], size: [0.2, 0.2], leg_size: 0.1}\n", "tables[0].leg_size");
   expect_refused("bad9.yaml", wall + "people:\n  - {name: p, path: [1, 1], speed: -1}\n", "people[0].speed");

@@ -153,5 +153,48 @@ TEST(RgKernel, ScansBeyondTheRegionsOwnDoorCarveNoFreespace)
   EXPECT_TRUE(r1.freespace.is_free(Vector2d(2.0, 0.0)));   // (3, 1.5): room A
 }
 
+// A hallway y in [0, 2] along x from 0 to 12, an X-crossing at x in [4, 6], branches north and
+// south to y = 6 and y = -4.
+std::vector<testing::Wall> hallway_with_crossing()
+{
+  using V = Vector2d;
+  return {{V(0, 0), V(4, 0)},   {V(6, 0), V(12, 0)},  {V(0, 2), V(4, 2)},  {V(6, 2), V(12, 2)},
+          {V(0, 0), V(0, 2)},   {V(12, 0), V(12, 2)}, {V(4, 2), V(4, 6)},  {V(6, 2), V(6, 6)},
+          {V(4, 6), V(6, 6)},   {V(4, 0), V(4, -4)},  {V(6, 0), V(6, -4)}, {V(4, -4), V(6, -4)}};
+}
+
+TEST(RgKernel, CrossingLeftUnderPoseDriftIntoANewBranchOpensANewRegion)
+{
+  // Office world on SLAM poses: the robot went north through a crossing (region 1, the south
+  // branch, whose robot stood inside the junction until the report), came back round a loop
+  // from the east (region 3) and left the crossing to the west. The report matched the known
+  // crossing, whose outline (the first visit's, 0.2 m off after the loop's drift) still held the
+  // robot, 0.14 m past the west side as the detector saw it now: region 1's robot, inside the
+  // junction, "saw" that position, and the whole west hallway went into the south branch's region.
+  Drive d;
+  d.walls = hallway_with_crossing();
+  for (double y = -3.5; y < 2.0; y += 0.2) d.scan_at(geometry::Pose2(5.0, y, M_PI / 2));
+  const std::vector<Vector2d> outline = {Vector2d(4, 0), Vector2d(4, 2), Vector2d(6, 2), Vector2d(6, 0)};
+  ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kXCrossing, 1, geometry::Pose2(5.0, 2.15, M_PI / 2), outline));
+  for (double y = 2.3; y < 5.4; y += 0.2) d.scan_at(geometry::Pose2(5.0, y, M_PI / 2));
+  // Round the loop (not modelled): a gateway found far away leads into the east hallway.
+  ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kNarrowPassage, 2, geometry::Pose2(10.5, 1.0, M_PI),
+                         {Vector2d(10.8, 0), Vector2d(10.8, 2)}));
+  ASSERT_EQ(d.kernel.map().current_region, 3);
+  for (double x = 10.3; x > 4.25; x -= 0.2) d.scan_at(geometry::Pose2(x, 1.0, M_PI));
+  ASSERT_EQ(d.kernel.map().current_region, 3);
+  // Left west: the drifted outline's west side is x = 4.2, the known one's x = 4.
+  std::vector<Vector2d> drifted;
+  for (const auto& p : outline) drifted.push_back(p + Vector2d(0.2, 0));
+  ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kXCrossing, 3, geometry::Pose2(4.06, 1.0, M_PI), drifted));
+  const auto& m = d.kernel.map();
+  EXPECT_EQ(m.current_region, 4);
+  EXPECT_EQ(m.region(1)->state, rgmap::Region::State::kFinalised);
+  for (double x = 3.9; x > 1.0; x -= 0.2) d.scan_at(geometry::Pose2(x, 1.0, M_PI));
+  EXPECT_EQ(m.current_region, 4);
+  EXPECT_EQ(d.kernel.stats().regions, 4);
+  EXPECT_TRUE(m.consistency_problems().empty());
+}
+
 }  // namespace
 }  // namespace rgnav::rg_kernel

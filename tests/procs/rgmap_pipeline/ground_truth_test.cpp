@@ -71,24 +71,27 @@ TEST_F(TwoRooms, RoomsGatewayAndGraph)
 namespace rgnav::rgmap_pipeline {
 namespace {
 
-TEST(OfficeWorld, LabelledGatewaysAndTheCrossingInsideTheHallway)
+TEST(OfficeWorld, LabelledGatewaysAndTheCrossingBetweenFourHallways)
 {
   const auto world = sim::load_world(std::string(RGNAV_CONFIG_DIR) + "/worlds/office.yaml");
   const auto t = ground_truth_of(world, 0.1);
   ASSERT_EQ(t.room_names.size(), world.regions.size());
-  const int32_t hall_a = t.label_of("hall_a"), south = t.label_of("hall_b_south"), north = t.label_of("hall_b_north");
-  ASSERT_GT(hall_a, 0);
+  const int32_t west = t.label_of("hall_a_west"), east = t.label_of("hall_a_east");
+  const int32_t south = t.label_of("hall_b_south"), north = t.label_of("hall_b_north");
+  ASSERT_GT(west, 0);
+  ASSERT_GT(east, 0);
   bool crossing = false, dead_end = false;
   for (const auto& g : t.gateways) {
     if (g.name == "crossing_ab") {
       crossing = true;
-      EXPECT_EQ(g.rooms, (std::vector<int32_t>{south, north, hall_a}));
+      // The crossing square is in no room: its rooms are the four hallways it joins.
+      EXPECT_EQ(g.rooms, (std::vector<int32_t>{south, north, west, east}));
       EXPECT_NEAR(g.center().x(), 20, 1e-9);
       EXPECT_NEAR(g.center().y(), 13, 1e-9);
     }
     if (g.name == "dead_end_a_west") {
       dead_end = true;
-      EXPECT_EQ(g.rooms, (std::vector<int32_t>{hall_a}));
+      EXPECT_EQ(g.rooms, (std::vector<int32_t>{west}));
     }
   }
   EXPECT_TRUE(crossing);
@@ -104,7 +107,8 @@ TEST(OfficeWorld, LabelledGatewaysAndTheCrossingInsideTheHallway)
   const Graph graph = truth_graph(t, all);
   EXPECT_EQ(graph.nodes.size(), t.room_names.size());
   EXPECT_GT(graph.edges.size(), graph.nodes.size() - 1);
-  EXPECT_TRUE(graph.edges.count({std::min(hall_a, north), std::max(hall_a, north)}));
+  EXPECT_TRUE(graph.edges.count({std::min(west, north), std::max(west, north)}));
+  EXPECT_TRUE(graph.edges.count({std::min(west, east), std::max(west, east)}));
 }
 
 }  // namespace

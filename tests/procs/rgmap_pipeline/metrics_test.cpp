@@ -232,6 +232,31 @@ TEST(RegionGraph, CrossingJoiningThreeRegionsIsThreeEdgesButOneGateway)
   EXPECT_EQ(count_map(m, 100).gateways, 2);
 }
 
+TEST(RegionGraph, CrossingJoinsEveryPairOfItsRegionsThoughTheRobotWentThroughTwo)
+{
+  // The robot went west -> east and east -> north through a T-crossing, never west -> north: the
+  // crossing still joins west and north (as the truth's crossings join all their rooms).
+  rgmap::RgMap m;
+  const int64_t a = m.add_region({}, 1).id;
+  const int64_t b = m.add_region(geometry::Pose2(7, 0, 0), 2).id;
+  const int64_t c = m.add_region(geometry::Pose2(5, 3, M_PI / 2), 3).id;
+  const std::vector<Vector2d> outline{{4, 0}, {4, 2}, {6, 2}, {6, 0}};
+  auto add = [&](int64_t from, int64_t to) {
+    rgmap::Gateway& g = m.add_gateway(rgmap::GatewayClass::kTCrossing, from, 4);
+    const geometry::Pose2 from_map = m.region(from)->map_from_region.inverse();
+    for (const auto& p : outline) g.gateway_points.push_back(from_map * p);
+    m.connect(g.id, to, from_map * m.region(to)->map_from_region);
+  };
+  add(a, b);
+  add(b, c);
+  const Graph g = region_graph(m);
+  EXPECT_EQ(g.edges.size(), 3u);
+  EXPECT_TRUE(g.edges.count({std::min(a, c), std::max(a, c)}));
+  // A door with the same regions elsewhere adds no pair the crossing does not have.
+  m.connect(m.add_gateway(rgmap::GatewayClass::kDoor, a, 5).id, c, m.region(a)->map_from_region.inverse() * m.region(c)->map_from_region);
+  EXPECT_EQ(region_graph(m).edges.size(), 3u);
+}
+
 TEST(RegionCells, FreespacePlacedThroughTheAlignment)
 {
   // A region whose freespace is 2 x 1 cells of 1 m at region x 0..2, y 0..1; the region frame is
