@@ -28,7 +28,8 @@
 #     one, nearest first, within gateway_match_m to ground-truth gateways between explored rooms
 #     (world files: labelled gateways incl. hallway junctions; IPA maps: doorway runs closed in
 #     *_gt_segmentation.png); gateways_crossed(_matched): only those the true path went through.
-#   graph_isomorphic: region graph (live regions, traversed non-neutralized gateways) isomorphic to
+#   graph_isomorphic: region graph (live regions, traversed non-neutralized gateways; a crossing joins
+#     every pair of its regions, as the truth's crossings do) isomorphic to
 #     the room graph of the tour's rooms; graph_*: node/edge counts and differences, edges
 #     matched / missing / extra / internal under the region -> best room mapping.
 #   regions, merged_regions, gateways, doors, neutralized, segments, compression (scan points /
