@@ -19,8 +19,8 @@ struct TruthGateway
   // [m] world frame: the gateway line (2 points) or the outline of a crossing (4 points,
   // dissertation fig. 4.1); the robot went through it when its path crosses an edge.
   std::vector<Eigen::Vector2d> points;
-  // Labels of the rooms it joins (0 = none): its two sides, and for a crossing inside a third
-  // room (office.yaml's X-crossing of hall_b inside hall_a) that room too. Dead ends: one.
+  // Labels of the rooms it joins: those the world names (from, to, joins: office.yaml's X-crossing
+  // joins four hallways), and the room its centre lies in if that is another. Dead ends: one.
   std::vector<int32_t> rooms;
   Eigen::Vector2d center() const;
 };
