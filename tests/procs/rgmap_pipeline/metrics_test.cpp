@@ -203,58 +203,56 @@ TEST(RegionGraph, NeutralizedAndOneSidedGatewaysAreNoEdges)
   EXPECT_EQ(counts.doors, 2);
 }
 
-TEST(RegionGraph, CrossingJoiningThreeRegionsIsThreeEdgesButOneGateway)
+// A T-crossing at x in [4, 6] joining regions 1 (west), 2 (east) and 3 (north): one gateway
+// object per pair the robot went through, each with the crossing's outline in its region_a's frame.
+struct TCrossingMap
 {
-  // A T-crossing at x in [4, 6] joins regions a (west), b (east) and c (north): one gateway
-  // object per pair, each with the crossing's outline in its region_a's frame.
   rgmap::RgMap m;
   const int64_t a = m.add_region({}, 1).id;
   const int64_t b = m.add_region(geometry::Pose2(7, 0, 0), 2).id;
   const int64_t c = m.add_region(geometry::Pose2(5, 3, M_PI / 2), 3).id;
-  const std::vector<Vector2d> outline{{4, 0}, {4, 2}, {6, 2}, {6, 0}};
-  auto add = [&](int64_t from, int64_t to) {
+
+  void went_through(int64_t from, int64_t to)
+  {
     rgmap::Gateway& g = m.add_gateway(rgmap::GatewayClass::kTCrossing, from, 4);
     const geometry::Pose2 from_map = m.region(from)->map_from_region.inverse();
-    for (const auto& p : outline) g.gateway_points.push_back(from_map * p);
+    for (const Vector2d& p : {Vector2d(4, 0), Vector2d(4, 2), Vector2d(6, 2), Vector2d(6, 0)}) g.gateway_points.push_back(from_map * p);
     m.connect(g.id, to, from_map * m.region(to)->map_from_region);
-  };
-  add(a, b);
-  add(b, c);
-  add(c, a);
+  }
+};
+
+TEST(RegionGraph, CrossingJoiningThreeRegionsIsThreeEdgesButOneGateway)
+{
+  TCrossingMap t;
+  auto& m = t.m;
+  t.went_through(t.a, t.b);
+  t.went_through(t.b, t.c);
+  t.went_through(t.c, t.a);
   EXPECT_EQ(region_graph(m).edges.size(), 3u);
   EXPECT_EQ(repeated_crossings(m), (std::set<int64_t>{2, 3}));
   EXPECT_EQ(count_map(m, 100).gateways, 1);
   ASSERT_EQ(gateway_positions(m).size(), 1u);
   EXPECT_NEAR((gateway_positions(m)[0] - Vector2d(5, 1)).norm(), 0.0, 1e-9);
   // Another crossing with a different outline is a gateway of its own.
-  rgmap::Gateway& other = m.add_gateway(rgmap::GatewayClass::kTCrossing, a, 5);
+  rgmap::Gateway& other = m.add_gateway(rgmap::GatewayClass::kTCrossing, t.a, 5);
   other.gateway_points = {{14, 0}, {14, 2}, {16, 2}, {16, 0}};
   EXPECT_EQ(count_map(m, 100).gateways, 2);
 }
 
 TEST(RegionGraph, CrossingJoinsEveryPairOfItsRegionsThoughTheRobotWentThroughTwo)
 {
-  // The robot went west -> east and east -> north through a T-crossing, never west -> north: the
+  // The robot went west -> east and east -> north through the crossing, never west -> north: the
   // crossing still joins west and north (as the truth's crossings join all their rooms).
-  rgmap::RgMap m;
-  const int64_t a = m.add_region({}, 1).id;
-  const int64_t b = m.add_region(geometry::Pose2(7, 0, 0), 2).id;
-  const int64_t c = m.add_region(geometry::Pose2(5, 3, M_PI / 2), 3).id;
-  const std::vector<Vector2d> outline{{4, 0}, {4, 2}, {6, 2}, {6, 0}};
-  auto add = [&](int64_t from, int64_t to) {
-    rgmap::Gateway& g = m.add_gateway(rgmap::GatewayClass::kTCrossing, from, 4);
-    const geometry::Pose2 from_map = m.region(from)->map_from_region.inverse();
-    for (const auto& p : outline) g.gateway_points.push_back(from_map * p);
-    m.connect(g.id, to, from_map * m.region(to)->map_from_region);
-  };
-  add(a, b);
-  add(b, c);
-  const Graph g = region_graph(m);
+  TCrossingMap t;
+  t.went_through(t.a, t.b);
+  t.went_through(t.b, t.c);
+  const Graph g = region_graph(t.m);
   EXPECT_EQ(g.edges.size(), 3u);
-  EXPECT_TRUE(g.edges.count({std::min(a, c), std::max(a, c)}));
+  EXPECT_TRUE(g.edges.count({t.a, t.c}));
   // A door with the same regions elsewhere adds no pair the crossing does not have.
-  m.connect(m.add_gateway(rgmap::GatewayClass::kDoor, a, 5).id, c, m.region(a)->map_from_region.inverse() * m.region(c)->map_from_region);
-  EXPECT_EQ(region_graph(m).edges.size(), 3u);
+  t.m.connect(t.m.add_gateway(rgmap::GatewayClass::kDoor, t.a, 5).id, t.c,
+              t.m.region(t.a)->map_from_region.inverse() * t.m.region(t.c)->map_from_region);
+  EXPECT_EQ(region_graph(t.m).edges.size(), 3u);
 }
 
 TEST(RegionCells, FreespacePlacedThroughTheAlignment)
