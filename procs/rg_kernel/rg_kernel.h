@@ -11,8 +11,8 @@
 // per gateway, the branches its first traversal took; left into another branch it gets a
 // gateway of its own with the same outline. A junction entered or left through a door just
 // crossed is that door's crossing reported again; a junction gone straight through whose sides
-// are walled in the line map has no branch (walled_crossing.cpp). Scans taken beyond one of the region's own
-// doors carve no freespace into it (region_builder.h, ForeignSide).
+// are walled in the line map has no branch (walled_crossing.cpp). Scans taken beyond one of the
+// region's own doors carve no freespace into it (region_builder.h, ForeignSide).
 // Inputs are applied in the order given; with the same inputs the map is the same.
 #pragma once
 
