@@ -1,6 +1,7 @@
 #include "scan_mapper/correlative_matcher.h"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <limits>
 
@@ -69,7 +70,7 @@ LikelihoodGrid::LikelihoodGrid(const Points& points, const CorrelativeOptions& o
 }
 
 CorrelativeResult correlative_match(const Points& scan, const LikelihoodGrid& grid, const Pose2& guess,
-                                    const CorrelativeWindow& window, const CorrelativeOptions& o)
+                                    const CorrelativeWindow& window, const CorrelativeOptions& o, double distinct_m)
 {
   CorrelativeResult best{guess, 0.0};
   if (scan.empty()) return best;
@@ -114,26 +115,36 @@ CorrelativeResult correlative_match(const Points& scan, const LikelihoodGrid& gr
     // Ties: prefer the smaller correction (deterministic, and closer to the guess).
     return std::abs(a.k) + std::abs(a.ox) + std::abs(a.oy) < std::abs(b.k) + std::abs(b.ox) + std::abs(b.oy);
   });
-  double best_score = -1.0;
-  int bk = 0, bx = 0, by = 0;
-  for (const auto& cand : candidates) {
-    if (cand.bound <= best_score) break;
-    const auto& cl = cells[static_cast<size_t>(cand.k + K)];
-    for (int oy = cand.oy; oy < cand.oy + B && oy <= W; ++oy)
-      for (int ox = cand.ox; ox < cand.ox + B && ox <= W; ++ox) {
-        double sum = 0.0;
-        for (size_t i = 0; i < scan.size(); ++i) sum += grid.fine(cl[2 * i] + ox, cl[2 * i + 1] + oy);
-        const double score = sum / n;
-        if (score > best_score + 1e-12) {
-          best_score = score;
-          bk = cand.k;
-          bx = ox;
-          by = oy;
+  // Branch and bound over the sorted candidates; `skip` leaves out fine translations.
+  auto search = [&](const std::function<bool(int, int)>& skip, int* bk, int* bx, int* by) {
+    double best_score = -1.0;
+    for (const auto& cand : candidates) {
+      if (cand.bound <= best_score) break;
+      const auto& cl = cells[static_cast<size_t>(cand.k + K)];
+      for (int oy = cand.oy; oy < cand.oy + B && oy <= W; ++oy)
+        for (int ox = cand.ox; ox < cand.ox + B && ox <= W; ++ox) {
+          if (skip && skip(ox, oy)) continue;
+          double sum = 0.0;
+          for (size_t i = 0; i < scan.size(); ++i) sum += grid.fine(cl[2 * i] + ox, cl[2 * i + 1] + oy);
+          const double score = sum / n;
+          if (score > best_score + 1e-12) {
+            best_score = score;
+            *bk = cand.k;
+            *bx = ox;
+            *by = oy;
+          }
         }
-      }
-  }
-  best.score = std::max(0.0, best_score);
+    }
+    return std::max(0.0, best_score);
+  };
+  int bk = 0, bx = 0, by = 0;
+  best.score = search(nullptr, &bk, &bx, &by);
   best.map_from_scan = Pose2{guess.x() + bx * res, guess.y() + by * res, normalize_angle(guess.theta() + bk * step)};
+  if (distinct_m > 0) {
+    const double r2 = (distinct_m / res) * (distinct_m / res);
+    int k2 = 0, x2 = 0, y2 = 0;
+    best.runner_up = search([&](int ox, int oy) { return (ox - bx) * (ox - bx) + (oy - by) * (oy - by) < r2; }, &k2, &x2, &y2);
+  }
   return best;
 }
 

@@ -60,10 +60,16 @@ struct CorrelativeResult
 {
   Pose2 map_from_scan;
   double score = 0.0;  // mean likelihood of the scan points, in [0, 1]
+  // The best score of the poses at least `distinct_m` from the best one (any angle), when asked
+  // for: close to `score`, the window holds a second place that fits about as well (a hallway's
+  // doors at regular spacing), and the match may be either.
+  double runner_up = 0.0;
 };
 
-// scan points are in the scan's frame; guess is map_from_scan in the grid's frame.
+// scan points are in the scan's frame; guess is map_from_scan in the grid's frame. distinct_m > 0
+// also finds runner_up (a second branch and bound over the same candidates).
 CorrelativeResult correlative_match(const Points& scan, const LikelihoodGrid& grid, const Pose2& guess,
-                                    const CorrelativeWindow& window, const CorrelativeOptions& options);
+                                    const CorrelativeWindow& window, const CorrelativeOptions& options,
+                                    double distinct_m = 0.0);
 
 }  // namespace rgnav::scan_mapper

@@ -371,8 +371,14 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
   const Pose2 guess = between(a.map_from_base, cur.map_from_base);
   const CorrelativeWindow window{std::clamp(l.gate_sigmas * sxy, l.window_base_m, l.window_max_m),
                                  std::clamp(l.gate_sigmas * sth, l.angular_window_base_rad, l.angular_window_max_rad)};
-  const auto cor = correlative_match(thin_points(cur.points, l.point_spacing_m), *sm.grid, guess, window, l.correlative);
+  const bool ambiguity_checked = l.max_ambiguity < 1.0;
+  const auto cor = correlative_match(thin_points(cur.points, l.point_spacing_m), *sm.grid, guess, window, l.correlative,
+                                     ambiguity_checked ? l.ambiguity_distance_m : 0.0);
   if (cor.score < l.min_score) return std::nullopt;
+  if (ambiguity_checked && cor.runner_up >= l.max_ambiguity * cor.score) {
+    ++stats_.loop_ambiguous;
+    return std::nullopt;
+  }
   IcpResult icp = icp_point_to_line(cur.points, cur.normals, cur.has_normal, *sm.points, cor.map_from_scan, options_.icp);
   // The correlative optimum is only as good as its grid; where the graph already knows the
   // relative pose, ICP from there may find a better fit that the coarse search stepped over.

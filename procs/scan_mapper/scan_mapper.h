@@ -105,6 +105,7 @@ struct MapperStats
   int64_t scans_in = 0, accepted = 0, no_odometry = 0, matched = 0, correlative_retries = 0,
           match_rejected = 0, loop_attempts = 0, loop_closures = 0, loop_rejected_after_opt = 0, invalid = 0;
   int64_t loop_rejected_strain = 0;  // of loop_rejected_after_opt: for the strain on the graph
+  int64_t loop_ambiguous = 0;        // loop searches whose best fit had a near-equal rival elsewhere
   int64_t moving_points = 0;  // points left out of local registration as seen through
 };
 

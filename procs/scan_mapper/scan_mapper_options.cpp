@@ -87,6 +87,8 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   l.consistency.trans_m = lc.number("consistency_m", l.consistency.trans_m, 0.001, 10.0);
   l.consistency.rot_rad = lc.number("consistency_deg", l.consistency.rot_rad / kDeg, 0.01, 90.0) * kDeg;
   l.min_score = lc.number("min_score", l.min_score, 0.0, 1.0);
+  l.max_ambiguity = lc.number("max_ambiguity", l.max_ambiguity, 0.0, 1.0);
+  l.ambiguity_distance_m = lc.number("ambiguity_distance_m", l.ambiguity_distance_m, 0.1, 10.0);
   l.min_inlier_ratio = lc.number("min_inlier_ratio", l.min_inlier_ratio, 0.0, 1.0);
   l.max_rms_m = lc.number("max_rms_m", l.max_rms_m, 0.001, 1.0);
   l.max_residual_chi2 = lc.number("max_residual_chi2", l.max_residual_chi2, 0.1, 1e9);

@@ -40,6 +40,11 @@ struct LoopClosureOptions
   double angular_window_base_rad = 0.15;
   double angular_window_max_rad = 0.5;
   double min_score = 0.6;          // correlative score needed to try ICP
+  // A second fit at least ambiguity_distance_m from the best scoring this share of the best
+  // makes the match ambiguous (doors at regular spacing along a hallway): no hypothesis.
+  // 1 (or more): off.
+  double max_ambiguity = 0.95;
+  double ambiguity_distance_m = 1.0;
   double min_inlier_ratio = 0.75;  // ICP agreement needed to accept
   double max_rms_m = 0.02;         // ... and ICP rms surface residual allowed (about twice the range noise)
   // Verification: a hypothesis is accepted alone only where the graph already knows the

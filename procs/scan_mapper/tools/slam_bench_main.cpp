@@ -87,6 +87,7 @@ nlohmann::json evaluate_real(const RealLog& spec, sm::ScanMapperOptions options,
   j["loop_attempts"] = r.stats.loop_attempts;
   j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
   j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
+  j["loop_ambiguous"] = r.stats.loop_ambiguous;
   j["correlative_retries"] = r.stats.correlative_retries;
   j["match_rejected"] = r.stats.match_rejected;
   j["map_png"] = maps_dir + "/" + spec.name + "/map.png";
@@ -175,6 +176,7 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["loop_closures"] = r.stats.loop_closures;
   j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
   j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
+  j["loop_ambiguous"] = r.stats.loop_ambiguous;
   j["correlative_retries"] = r.stats.correlative_retries;
   j["loop_attempts"] = r.stats.loop_attempts;
   return j;

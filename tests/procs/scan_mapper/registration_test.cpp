@@ -132,6 +132,53 @@ TEST(Correlative, BranchAndBoundEqualsExhaustiveSearch)
   EXPECT_NEAR(a.map_from_scan.theta(), b.map_from_scan.theta(), 1e-9);
 }
 
+// A 2 m hallway along x, its ends out of sight, with a 1 m gap every 4 m in its south wall onto
+// a parallel wall 3 m behind: within the loop search's window (up to 3 m) other fits along the
+// hallway are about as good as the right one (office world: loop closures 3 m off along hall_a
+// were accepted).
+std::vector<sm::testing::Segment> hallway_with_gaps()
+{
+  std::vector<sm::testing::Segment> w{{{-40, 2}, {40, 2}}, {{-40, -3}, {40, -3}}};
+  double x = -40;
+  for (double gap = -38; gap < 40; gap += 4) {
+    w.push_back({{x, 0}, {gap, 0}});
+    x = gap + 1;
+  }
+  w.push_back({{x, 0}, {40, 0}});
+  return w;
+}
+
+TEST(Correlative, RunnerUpTellsAHallwaysAmbiguityFromAPlaceWithStructure)
+{
+  std::mt19937 rng(7);
+  LaserModel m;
+  m.noise_m = 0.01;
+  m.max_range = 8.0;   // the hallway's ends out of sight
+  sm::CorrelativeOptions co;
+  co.resolution_m = 0.1;
+  co.sigma_m = 0.1;
+  co.coarse_factor = 4;
+  // The model: scans from 3 m either side of ref_pose along its heading (as the loop search's
+  // submap, scans of nodes before and after its anchor), in ref_pose's frame.
+  auto ratio = [&](const std::vector<sm::testing::Segment>& world, const sm::Pose2& ref_pose, const sm::Pose2& motion) {
+    sm::Points model_pts;
+    for (double d = -3; d <= 3; d += 0.5) {
+      const sm::Pose2 ref_from_pose{d, 0, 0};
+      for (const auto& p : points_of(cast_scan(world, ref_pose * ref_from_pose, m, &rng))) model_pts.push_back(ref_from_pose * p);
+    }
+    const auto scan_pts = sm::thin_points(points_of(cast_scan(world, ref_pose * motion, m, &rng)), 0.1);
+    const auto c = sm::correlative_match(scan_pts, sm::LikelihoodGrid(model_pts, co), motion, {3.0, 0.3}, co, 1.0);
+    EXPECT_LT(trans_err(c.map_from_scan, motion), 0.15);
+    EXPECT_LE(c.runner_up, c.score);
+    return c.runner_up / c.score;
+  };
+  EXPECT_GT(ratio(hallway_with_gaps(), {0.5, 1.0, 0.0}, {0.3, 0.05, 0.02}), 0.9);
+  EXPECT_LT(ratio(sm::testing::office_world(), {5.0, 4.0, 0.0}, {0.3, 0.05, 0.02}), 0.9);
+  // Not asked for: not searched.
+  const auto pts = points_of(cast_scan(hallway_with_gaps(), {0.5, 1.0, 0.0}, m, &rng));
+  EXPECT_EQ(sm::correlative_match(pts, sm::LikelihoodGrid(pts, co), {}, {3.0, 0.3}, co).runner_up, 0.0);
+}
+
 TEST(Icp, EmptyOrTinyInputsFailCleanly)
 {
   const sm::PointMap empty(sm::Points{});
