@@ -1,8 +1,8 @@
 #include "scan_mapper/correlative_matcher.h"
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace rgnav::scan_mapper {
