@@ -139,6 +139,11 @@ SimMappingResult run_sim_mapping(const std::string& world_path, const sim::Simul
   res.truth = truth_at_node;
   res.ate_rmse_m = ate_rmse(est, truth_at_node);
   res.odometry_ate_rmse_m = ate_rmse(odom_at_node, truth_at_node);
+  for (const auto& e : mapper.graph().edges()) {
+    if (!e.robust) continue;   // robust edges are the loop closures (scan_mapper.cpp)
+    const Pose2 truth_rel = between(truth_at_node[static_cast<size_t>(e.from)], truth_at_node[static_cast<size_t>(e.to)]);
+    if ((truth_rel.translation() - e.from_from_to.translation()).norm() > 0.1) ++res.loop_closures_wrong;
+  }
   return res;
 }
 

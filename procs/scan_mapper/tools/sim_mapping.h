@@ -40,6 +40,9 @@ struct SimMappingResult
   RelationError relations;
   double ate_rmse_m = 0.0;
   double odometry_ate_rmse_m = 0.0;  // raw odometry at the same scans, for comparison
+  // Loop-closure edges of the final graph whose measured relative pose is more than 0.1 m off
+  // the true one (false closures: a look-alike place, a hallway's doors at regular spacing).
+  int loop_closures_wrong = 0;
   std::vector<ScanNode> nodes;
   std::vector<Pose2> truth;          // true pose at each node's scan
 };

@@ -176,6 +176,7 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["loop_closures"] = r.stats.loop_closures;
   j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
   j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
+  j["loop_closures_wrong"] = r.loop_closures_wrong;
   j["loop_ambiguous"] = r.stats.loop_ambiguous;
   j["correlative_retries"] = r.stats.correlative_retries;
   j["loop_attempts"] = r.stats.loop_attempts;

@@ -153,16 +153,6 @@ TEST(RgKernel, ScansBeyondTheRegionsOwnDoorCarveNoFreespace)
   EXPECT_TRUE(r1.freespace.is_free(Vector2d(2.0, 0.0)));   // (3, 1.5): room A
 }
 
-// A hallway y in [0, 2] along x from 0 to 12, an X-crossing at x in [4, 6], branches north and
-// south to y = 6 and y = -4.
-std::vector<testing::Wall> hallway_with_crossing()
-{
-  using V = Vector2d;
-  return {{V(0, 0), V(4, 0)},   {V(6, 0), V(12, 0)},  {V(0, 2), V(4, 2)},  {V(6, 2), V(12, 2)},
-          {V(0, 0), V(0, 2)},   {V(12, 0), V(12, 2)}, {V(4, 2), V(4, 6)},  {V(6, 2), V(6, 6)},
-          {V(4, 6), V(6, 6)},   {V(4, 0), V(4, -4)},  {V(6, 0), V(6, -4)}, {V(4, -4), V(6, -4)}};
-}
-
 TEST(RgKernel, CrossingLeftUnderPoseDriftIntoANewBranchOpensANewRegion)
 {
   // Office world on SLAM poses: the robot went north through a crossing (region 1, the south
@@ -172,7 +162,7 @@ TEST(RgKernel, CrossingLeftUnderPoseDriftIntoANewBranchOpensANewRegion)
   // robot, 0.14 m past the west side as the detector saw it now: region 1's robot, inside the
   // junction, "saw" that position, and the whole west hallway went into the south branch's region.
   Drive d;
-  d.walls = hallway_with_crossing();
+  d.walls = testing::hallway_with_crossing();
   for (double y = -3.5; y < 2.0; y += 0.2) d.scan_at(geometry::Pose2(5.0, y, M_PI / 2));
   const std::vector<Vector2d> outline = {Vector2d(4, 0), Vector2d(4, 2), Vector2d(6, 2), Vector2d(6, 0)};
   ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kXCrossing, 1, geometry::Pose2(5.0, 2.15, M_PI / 2), outline));

@@ -178,16 +178,6 @@ TEST(RgKernel, BeamsGrazingPastTheDoorPointsEndAtTheDoor)
   EXPECT_EQ(run(0.5), 0);
 }
 
-// A straight hallway y in [0, 2] from x = 0 to 12 with an X-crossing at x in [4, 6] (branches
-// north and south).
-std::vector<testing::Wall> hallway_with_crossing()
-{
-  using V = Vector2d;
-  return {{V(0, 0), V(4, 0)},   {V(6, 0), V(12, 0)}, {V(0, 2), V(4, 2)},   {V(6, 2), V(12, 2)},
-          {V(0, 0), V(0, 2)},   {V(12, 0), V(12, 2)}, {V(4, 2), V(4, 6)},  {V(6, 2), V(6, 6)},
-          {V(4, 6), V(6, 6)},   {V(4, 0), V(4, -4)}, {V(6, 0), V(6, -4)}, {V(4, -4), V(6, -4)}};
-}
-
 TEST(RgKernel, RegionEndsWhereItsBeamsLeaveACrossing)
 {
   // The crossing's outline (entry, left, ahead, right sides) is shared by the hallway regions it
@@ -195,7 +185,7 @@ TEST(RgKernel, RegionEndsWhereItsBeamsLeaveACrossing)
   // ended beams before issue 8: the region before the crossing held the hallway after it, and
   // the region after it was merged back into the one before (lab_ipa: every crossing).
   Drive d;
-  d.walls = hallway_with_crossing();
+  d.walls = testing::hallway_with_crossing();
   for (double x = 0.5; x < 6.6; x += 0.2) d.scan_at(geometry::Pose2(x, 1.0, 0));   // the last ones past it
   ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kXCrossing, 7, geometry::Pose2(6.6, 1.0, 0),
                          {Vector2d(4, 2), Vector2d(6, 2), Vector2d(6, 0), Vector2d(4, 0)}));

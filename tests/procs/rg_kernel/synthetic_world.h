@@ -24,6 +24,16 @@ inline std::vector<Wall> two_rooms()
           {V(4, 0), V(4, 1)}, {V(4, 2), V(4, 3)}};
 }
 
+// A straight hallway y in [0, 2] from x = 0 to 12 with an X-crossing at x in [4, 6] (branches
+// north to y = 6 and south to y = -4).
+inline std::vector<Wall> hallway_with_crossing()
+{
+  using V = Eigen::Vector2d;
+  return {{V(0, 0), V(4, 0)},   {V(6, 0), V(12, 0)},  {V(0, 2), V(4, 2)},  {V(6, 2), V(12, 2)},
+          {V(0, 0), V(0, 2)},   {V(12, 0), V(12, 2)}, {V(4, 2), V(4, 6)},  {V(6, 2), V(6, 6)},
+          {V(4, 6), V(6, 6)},   {V(4, 0), V(4, -4)},  {V(6, 0), V(6, -4)}, {V(4, -4), V(6, -4)}};
+}
+
 // A round pillar.
 struct Pillar
 {
