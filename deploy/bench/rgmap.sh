@@ -5,8 +5,8 @@
 #
 # worlds.<name> — simulated tour (lock-step simulator, config/sim.yaml odometry error and laser,
 #   one lap of a closed tour entering every reachable labelled room; walking people left out, the
-#   tour follower does not avoid them): office.yaml and IPA building maps (plain and furnished),
-#   exact ground truth. The map
+#   tour follower does not avoid them): office.yaml and every IPA building map (10 plain and their
+#   10 furnished versions), exact ground truth. The map
 #   is placed in the world by the rigid fit of the accepted scans' estimates to their true poses.
 #   seg_precision / seg_recall: Bormann et al. 2016 as their evaluation code computes the paper's
 #     figures (ipa_room_segmentation EvaluationSegmentation, "micro" values) — per region the share
@@ -34,6 +34,9 @@
 #     matched / missing / extra / internal under the region -> best room mapping.
 #   regions, merged_regions, gateways, doors, neutralized, segments, compression (scan points /
 #     segment end points), mean_region_bytes (freespace bitmap + segments), consistency_problems.
+# summary.<worlds|worlds_true_poses>.<ipa_plain|ipa_furnished> — means of seg_precision /
+#   seg_recall over the IPA maps (Bormann et al. report means over their maps), gateway sums,
+#   isomorphic count, failed runs (left out of the means), and the Voronoi method's figures.
 # logs.<name> — corrected real logs of ../shared/data/laser/corrected (poses taken as given, as
 #   the dissertation did); no ground truth: counts only (false_positives is null).
 #   gateways, doors, neutralized, not_traversed (Table 6.1 columns), regions, merged_regions,
@@ -68,10 +71,18 @@ for name in intel freiburg-079 belgioioso aces; do
   "$BUILD/bin/rgnav_import" "$log" "$WORK/$name.lcmlog" >/dev/null
   reals+=(--real "$name=$WORK/$name.lcmlog")
 done
+# Every building map of ../shared/data/maps/ipa, plain and furnished (<name>_furnished), named
+# after its image without "_scan".
+specs=("office=$ROOT/config/worlds/office.yaml")
+for png in "$IPA"/*.png; do
+  stem=$(basename "$png" .png)
+  [[ "$stem" == *_gt_segmentation || "$stem" == *_furnitures ]] && continue
+  name=${stem%_scan}
+  specs+=("$name=$png")
+  [ -f "$IPA/${stem}_furnitures.png" ] && specs+=("${name}_furnished=$IPA/${stem}_furnitures.png")
+done
 sims=()
-for spec in "office=$ROOT/config/worlds/office.yaml" "lab_ipa=$IPA/lab_ipa.png" "office_e=$IPA/office_e.png" \
-  "lab_intel=$IPA/lab_intel.png" "lab_intel_furnished=$IPA/lab_intel_furnitures.png" \
-  "office_e_furnished=$IPA/office_e_furnitures.png"; do
+for spec in "${specs[@]}"; do
   wanted "${spec%%=*}" && sims+=(--sim "$spec")
 done
 flags=()

@@ -86,11 +86,19 @@ Pose2 add_occupancy_image(const OccupancyImage& image, World* world)
   }
   cv::Mat dist;
   cv::distanceTransform(mask, dist, cv::DIST_L2, 5);
+  // Furniture can wall off a pocket of wide free space (lab_ipa_furnitures, office_g_furnitures):
+  // a start there reaches no room. Start in the largest area a robot can drive around in.
+  const cv::Mat drivable = dist > static_cast<float>(kStartAreaClearanceM / image.resolution);
+  cv::Mat areas, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(drivable, areas, stats, centroids, 8, CV_32S);
+  int largest = 0;
+  for (int k = 1; k < n; ++k)
+    if (largest == 0 || stats.at<int>(k, cv::CC_STAT_AREA) > stats.at<int>(largest, cv::CC_STAT_AREA)) largest = k;
   cv::Point best;
   float best_d = -1.f;
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c)
-      if (dist.at<float>(r, c) > best_d) {
+      if ((largest == 0 || areas.at<int>(r, c) == largest) && dist.at<float>(r, c) > best_d) {
         best_d = dist.at<float>(r, c);
         best = {c, r};
       }

@@ -30,8 +30,11 @@ struct OccupancyImage
 
 // Adds the walls (and, with gt_segmentation, the rooms) of the image to `world`. Returns a
 // start pose: the free pixel farthest from any wall (first in scan order on ties, so the
-// result is deterministic). Throws config::ConfigError naming the file when an image cannot
-// be read or the sizes differ.
+// result is deterministic) within the largest connected area of pixels more than
+// kStartAreaClearanceM from walls (a robot-sized body can drive around in it). Throws
+// config::ConfigError naming the file when an image cannot be read or the sizes differ.
+inline constexpr double kStartAreaClearanceM = 0.4;
+
 Pose2 add_occupancy_image(const OccupancyImage& image, World* world);
 
 // Walls along the boundary between free (non-zero) and blocked pixels of a CV_8U mask whose

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "bench_summary.h"
 #include "importers/lcm_log_io.h"
 #include "offline_run.h"
 #include "runtime/process_main.h"
@@ -139,6 +140,9 @@ int main(int argc, char** argv)
         }
       }
     }
+    j["summary"] = nlohmann::json::object();
+    for (const char* section : {"worlds", "worlds_true_poses"})
+      if (j.contains(section)) j["summary"][section] = rp::summarize_ipa_worlds(j[section]);
     for (const auto& spec : reals) {
       const auto [name, path] = split_spec(spec);
       auto given = loaded;

@@ -153,6 +153,23 @@ TEST(WorldLoading, RosMapServerMap)
   EXPECT_EQ(w.walls.size(), 8u);
 }
 
+TEST(WorldLoading, StartIsInTheLargestDrivableAreaNotInAWalledOffPocket)
+{
+  // 0.1 m pixels. A closed 3 x 3 m square (clearance 1.5 m: the widest spot of the map) beside
+  // a 1.2 x 20 m hallway (clearance 0.6 m) no robot can leave for the square, as furniture
+  // walls off such pockets in lab_ipa_furnitures.png. The hallway is where a tour can go.
+  cv::Mat img(60, 240, CV_8U, cv::Scalar(0));
+  img(cv::Rect(2, 2, 30, 30)).setTo(254);    // the square: x in [0.2, 3.2]
+  img(cv::Rect(36, 20, 200, 12)).setTo(254); // the hallway: x in [3.6, 23.6]
+  cv::imwrite(temp_dir() + "/pocket.pgm", img);
+  const std::string yaml = write_file("pocket.yaml",
+                                      "image: pocket.pgm\nresolution: 0.1\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n"
+                                      "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  const World w = load_world(yaml);
+  EXPECT_GT(w.start.x, 3.6);
+  EXPECT_LT(w.start.x, 23.6);
+}
+
 void expect_refused(const std::string& name, const std::string& text, const std::string& key)
 {
   const std::string path = write_file(name, text);
