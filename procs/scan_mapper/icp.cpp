@@ -129,6 +129,7 @@ IcpResult register_scan(const ScanSide& scan, const PointMap& model, const Pose2
                      ev.cwiseInverse().cwiseMin(1e6).asDiagonal() * es.eigenvectors().transpose();
     res.ok = true;
   }
+  res.fit_covariance = res.covariance;
   if (res.ok && res.weakest_translation_points < o.degenerate_min_points) {
     const Eigen::Vector2d& v = res.weakest_direction;
     res.covariance.topLeftCorner<2, 2>() += o.degenerate_variance_m2 * v * v.transpose();

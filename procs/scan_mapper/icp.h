@@ -43,6 +43,9 @@ struct IcpResult
 {
   Pose2 map_from_scan;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  // of (x, y, theta) in the map frame
+  // The same before the degeneracy terms (IcpOptions::degenerate_*) were added: how precisely
+  // the fit itself holds, where covariance also says which directions it may have aliased.
+  Eigen::Matrix3d fit_covariance = Eigen::Matrix3d::Identity();
   double inlier_ratio = 0.0;  // share of scan points within inlier_distance_m of the model
   double rms_m = 0.0;         // rms residual of the final correspondences
   // ... of those on surfaces (point-to-line) alone: near the range noise when the fit is right.

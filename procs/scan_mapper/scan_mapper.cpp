@@ -141,24 +141,28 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
 
   Pose2 fused = u;
   Eigen::Matrix3d P = Q;
-  if (const auto icp = register_locally(node, guess, relocalize)) {
+  // The candidates best fit first; the first one odometry does not contradict is fused.
+  bool rejected = false;
+  for (const IcpResult& icp : register_locally(node, guess, relocalize)) {
     // Both increments in the previous node's frame.
-    const Pose2 z = between(prev.map_from_base, icp->map_from_scan);
-    const Eigen::Matrix3d R = rot3(-prev.map_from_base.theta()) * icp->covariance * rot3(-prev.map_from_base.theta()).transpose();
+    const Pose2 z = between(prev.map_from_base, icp.map_from_scan);
+    const Eigen::Matrix3d R = rot3(-prev.map_from_base.theta()) * icp.covariance * rot3(-prev.map_from_base.theta()).transpose();
     const Eigen::Vector3d innov = difference(z, u);
     const Eigen::Matrix3d S = Q + R;
     const double chi2 = innov.dot(S.ldlt().solve(innov));
     if (!relocalize && chi2 > options_.max_innovation_chi2) {
-      ++stats_.match_rejected;
-    } else {
-      const Eigen::Matrix3d K = Q * S.inverse();
-      fused = pose_from_vector(to_vector(u) + K * innov);
-      P = (Eigen::Matrix3d::Identity() - K) * Q;
-      P = 0.5 * (P + P.transpose());
-      up.matched = true;
-      ++stats_.matched;
+      rejected = true;
+      continue;
     }
+    const Eigen::Matrix3d K = Q * S.inverse();
+    fused = pose_from_vector(to_vector(u) + K * innov);
+    P = (Eigen::Matrix3d::Identity() - K) * Q;
+    P = 0.5 * (P + P.transpose());
+    up.matched = true;
+    ++stats_.matched;
+    break;
   }
+  if (rejected && !up.matched) ++stats_.match_rejected;
   node.map_from_base = prev.map_from_base * fused;
   node.published = node.map_from_base;
   // First-order propagation of the node covariance.
@@ -204,7 +208,7 @@ void ScanMapper::compute_normals(ScanNode* node) const
                         &node->normals, node->has_normal);
 }
 
-std::optional<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const Pose2& guess, bool wide)
+std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const Pose2& guess, bool wide)
 {
   const Points& points = scan.points;
   const int n = static_cast<int>(nodes_.size());
@@ -218,24 +222,30 @@ std::optional<IcpResult> ScanMapper::register_locally(const ScanNode& scan, cons
     for (const auto& v : nk.normals) normals.emplace_back(c * v.x() - s * v.y(), s * v.x() + c * v.y());
     has_normal.insert(has_normal.end(), nk.has_normal.begin(), nk.has_normal.end());
   }
-  if (model.size() < 10 || points.size() < 10) return std::nullopt;
+  if (model.size() < 10 || points.size() < 10) return {};
   const PointMap map(std::move(model), std::move(normals), std::move(has_normal));
-  IcpResult best = icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, options_.icp);
-  if (wide || !best.ok || best.inlier_ratio < options_.min_inlier_ratio) {
+  std::vector<IcpResult> found{icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, options_.icp)};
+  if (wide || !found[0].ok || found[0].inlier_ratio < options_.min_inlier_ratio) {
     ++stats_.correlative_retries;
     const LikelihoodGrid grid(map.points(), options_.correlative);
     CorrelativeWindow window = options_.local_window;
     if (wide) window = {options_.loop.window_max_m, options_.loop.angular_window_max_rad};
     const auto cor = correlative_match(thin_points(points, options_.loop.point_spacing_m), grid, guess, window,
                                        options_.correlative);
-    const IcpResult again = icp_point_to_line(points, scan.normals, scan.has_normal, map, cor.map_from_scan, options_.icp);
-    if (again.ok && (!best.ok || again.inlier_ratio > best.inlier_ratio)) best = again;
+    // A wide search can fit a turned copy of symmetric surroundings (a round bay seen from its
+    // centre) better than the fit from odometry: both go to the caller, better first.
+    IcpResult again = icp_point_to_line(points, scan.normals, scan.has_normal, map, cor.map_from_scan, options_.icp);
+    if (again.ok && (!found[0].ok || again.inlier_ratio > found[0].inlier_ratio)) found.insert(found.begin(), again);
+    else found.push_back(again);
   }
-  if (best.ok && options_.moving_points.margin_m > 0.0) {
-    if (auto refit = register_without_moving(scan, map, best.map_from_scan)) best = *refit;
+  std::vector<IcpResult> accepted;
+  for (IcpResult& r : found) {
+    if (!r.ok) continue;
+    if (options_.moving_points.margin_m > 0.0)
+      if (auto refit = register_without_moving(scan, map, r.map_from_scan)) r = *refit;
+    if (r.ok && r.inlier_ratio >= options_.min_accept_inlier_ratio) accepted.push_back(r);
   }
-  if (!best.ok || best.inlier_ratio < options_.min_accept_inlier_ratio) return std::nullopt;
-  return best;
+  return accepted;
 }
 
 std::optional<IcpResult> ScanMapper::register_without_moving(const ScanNode& scan, const PointMap& map,
@@ -379,10 +389,12 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
     ++stats_.loop_ambiguous;
     return std::nullopt;
   }
-  IcpResult icp = icp_point_to_line(cur.points, cur.normals, cur.has_normal, *sm.points, cor.map_from_scan, options_.icp);
+  IcpOptions loop_icp = options_.icp;
+  loop_icp.degenerate_variance_m2 = l.degenerate_variance_m2;
+  IcpResult icp = icp_point_to_line(cur.points, cur.normals, cur.has_normal, *sm.points, cor.map_from_scan, loop_icp);
   // The correlative optimum is only as good as its grid; where the graph already knows the
   // relative pose, ICP from there may find a better fit that the coarse search stepped over.
-  const IcpResult from_guess = icp_point_to_line(cur.points, cur.normals, cur.has_normal, *sm.points, guess, options_.icp);
+  const IcpResult from_guess = icp_point_to_line(cur.points, cur.normals, cur.has_normal, *sm.points, guess, loop_icp);
   if (from_guess.ok && (!icp.ok || from_guess.inlier_ratio > icp.inlier_ratio ||
                         (from_guess.inlier_ratio == icp.inlier_ratio && from_guess.rms_m < icp.rms_m)))
     icp = from_guess;
@@ -400,7 +412,10 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
   h.direct = false;
   if (u.reached() && u.sigma_xy() <= l.direct_max_sigma_m) {
     const Eigen::Vector3d r = edge_error(graph_.pose(anchor), graph_.pose(n), h.anchor_from_node);
-    Eigen::Matrix3d S = h.covariance;
+    // The fit's own precision, not the degeneracy terms: along a hallway those let a match slide
+    // to the look-alike door 2-4 m on and still "agree" (office_c).
+    Eigen::Matrix3d S = l.covariance_scale * rot3(-h.anchor_from_node.theta()) * icp.fit_covariance *
+                        rot3(-h.anchor_from_node.theta()).transpose();
     S.diagonal() += Eigen::Vector3d(u.sigma_xy() * u.sigma_xy(), u.sigma_xy() * u.sigma_xy(), u.var_rot);
     h.direct = r.dot(S.ldlt().solve(r)) <= l.direct_max_chi2;
   }

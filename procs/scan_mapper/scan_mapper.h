@@ -162,8 +162,10 @@ class ScanMapper
   // The node's surface normals, oriented toward its laser.
   void compute_normals(ScanNode* node) const;
   Eigen::Matrix3d odometry_covariance(const Pose2& increment) const;
-  // Registers the scan's points (base frame) against the local map from guess; nullopt if it fails.
-  std::optional<IcpResult> register_locally(const ScanNode& scan, const Pose2& guess, bool wide);
+  // Registers the scan's points (base frame) against the local map from guess: the acceptable
+  // fits, best first (the fit from guess and, when it was poor, a correlative search's); none if
+  // registration fails.
+  std::vector<IcpResult> register_locally(const ScanNode& scan, const Pose2& guess, bool wide);
   // Registers again from map_from_scan without the points on something that moved (seen through,
   // moving_points.h); nullopt when there were none (or too few points were left).
   std::optional<IcpResult> register_without_moving(const ScanNode& scan, const PointMap& map, const Pose2& map_from_scan);

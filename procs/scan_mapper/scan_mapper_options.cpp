@@ -94,6 +94,7 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   l.max_residual_chi2 = lc.number("max_residual_chi2", l.max_residual_chi2, 0.1, 1e9);
   l.max_strain_chi2 = lc.number("max_strain_chi2", l.max_strain_chi2, 0.1, 1e9);
   l.covariance_scale = lc.number("covariance_scale", l.covariance_scale, 1.0, 1e6);
+  l.degenerate_variance_m2 = lc.number("degenerate_variance_m2", l.degenerate_variance_m2, 1e-4, 1e6);
   l.point_spacing_m = lc.number("point_spacing_m", l.point_spacing_m, 0.0, 1.0);
   const auto lcor = lc.section("correlative");
   l.correlative.resolution_m = lcor.number("resolution_m", l.correlative.resolution_m, 0.01, 0.5);

@@ -61,6 +61,11 @@ struct LoopClosureOptions
   // rooms) fits its closure edge perfectly; it is the odometry chain that must bend for it.
   double max_strain_chi2 = 100.0;
   double covariance_scale = 4.0;   // loop edges are trusted less than sequential ones
+  // Variance [m^2] (before covariance_scale) a loop closure's match gets along a direction held
+  // by fewer than icp.degenerate_min_points surface points. Larger than the sequential matches'
+  // icp.degenerate_variance_m2: along a hallway every scan of a long drive "closes" to the same
+  // stretch, and 20 such edges, however weak each, add up to a pull of metres (office_c).
+  double degenerate_variance_m2 = 1.0;
   double point_spacing_m = 0.1;    // thinner scans for the correlative search
   // Coarser than local registration: the window is large and ICP refines afterwards.
   CorrelativeOptions correlative{0.1, 0.1, 4, 2.0};
