@@ -45,7 +45,7 @@
 #   instead of the scan mapper's (poses: "true"): segmentation errors apart from SLAM errors.
 #   Diagnostic only; the headline (worlds.<name>) is on the scan mapper's poses. Pictures under
 #   logs/bench/rgmap/<name>/true_poses/.
-# Env: RGMAP_SIM_MAX_S caps simulated seconds per world (default 1200); RGMAP_JSON and
+# Env: RGMAP_SIM_MAX_S caps simulated seconds per world (default 2400: office_g's 742 m tour takes 1550 s); RGMAP_JSON and
 #   RGMAP_WORK write elsewhere (default logs/bench/rgmap.json, logs/bench/rgmap/); RGMAP_ONLY
 #   (space-separated names, e.g. "office lab_ipa") runs only those worlds and no real log unless
 #   named; RGMAP_TRUE_POSES=0 leaves out the true-pose runs.
@@ -89,5 +89,5 @@ flags=()
 [ "${RGMAP_TRUE_POSES:-1}" = 0 ] || flags+=(--true-poses)
 exec "$bin" --config "$ROOT/config/scan_mapper.yaml" --gateway-config "$ROOT/config/gateway_detector_aligned.yaml" \
   --rg-config "$ROOT/config/rg_kernel.yaml" --sim-config "$ROOT/config/sim.yaml" \
-  --json "$JSON" --out "$WORK" --laps 1 --max-sim-s "${RGMAP_SIM_MAX_S:-1200}" \
+  --json "$JSON" --out "$WORK" --laps 1 --max-sim-s "${RGMAP_SIM_MAX_S:-2400}" \
   "${flags[@]}" "${sims[@]}" "${reals[@]}"
