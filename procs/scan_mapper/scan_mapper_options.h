@@ -64,7 +64,7 @@ struct LoopClosureOptions
   // Variance [m^2] (before covariance_scale) a loop closure's match gets along a direction held
   // by fewer than icp.degenerate_min_points surface points. Larger than the sequential matches'
   // icp.degenerate_variance_m2: along a hallway every scan of a long drive "closes" to the same
-  // stretch, and 20 such edges, however weak each, add up to a pull of metres (office_c).
+  // stretch, and 20 such edges, however weak each, add up to a pull of metres (lab_a).
   double degenerate_variance_m2 = 1.0;
   double point_spacing_m = 0.1;    // thinner scans for the correlative search
   // Coarser than local registration: the window is large and ICP refines afterwards.
