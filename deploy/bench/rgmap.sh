@@ -46,9 +46,9 @@
 #   Diagnostic only; the headline (worlds.<name>) is on the scan mapper's poses. Pictures under
 #   logs/bench/rgmap/<name>/true_poses/.
 # Env: RGMAP_SIM_MAX_S caps simulated seconds per world (default 2400: office_g's 742 m tour
-#   takes 1550 s); RGMAP_JSON and RGMAP_WORK write elsewhere (default logs/bench/rgmap.json, logs/bench/rgmap/); RGMAP_ONLY
-#   (space-separated names, e.g. "office lab_ipa") runs only those worlds and no real log unless
-#   named; RGMAP_TRUE_POSES=0 leaves out the true-pose runs.
+#   takes 1550 s); RGMAP_JSON and RGMAP_WORK write elsewhere (default logs/bench/rgmap.json,
+#   logs/bench/rgmap/); RGMAP_ONLY (space-separated names, e.g. "office lab_ipa") runs only those
+#   worlds and no real log unless named; RGMAP_TRUE_POSES=0 leaves out the true-pose runs.
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"
