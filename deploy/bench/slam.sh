@@ -7,9 +7,11 @@
 # at every accepted scan). Scans the mapper did not accept are registered between their
 # accepted neighbours for the reference comparison (offline_mapping.cpp).
 # Simulated part (sim.*, exact ground truth): the lock-step simulator (drivers/sim, odometry
-# error and laser of config/sim.yaml) drives two laps of a closed tour through four IPA building
-# maps and the built-in office world (the demo's; its people left out: the bench's tour
-# follower cannot pass them), feeding its scans and odometry straight into the mapping library;
+# error and laser of config/sim.yaml) drives two laps of a closed tour through six IPA building
+# maps (lab_a: rows of equal cubicles; office_c: equal rooms with round bays, its door at the
+# bay's centre, where a 180 deg scan sees only the arc) and the built-in office world (the
+# demo's; its people left out: the bench's tour follower cannot pass them), feeding its scans
+# and odometry straight into the mapping library;
 # office_people is the office again with its four people walking (hallways and lobby; the
 # robot's body passes through them, so the tour is the same): legs that move in the scans, the
 # live demo's situation (config registration.moving_points). Relations metric
@@ -55,6 +57,8 @@ imp="$BUILD/bin/rgnav_import"
   --sim "lab_intel=$IPA/lab_intel.png" \
   --sim "lab_ipa=$IPA/lab_ipa.png" \
   --sim "office_e=$IPA/office_e.png" \
+  --sim "lab_a=$IPA/lab_a_scan.png" \
+  --sim "office_c=$IPA/office_c.png" \
   --sim "office=$ROOT/config/worlds/office.yaml" \
   --sim-people "office_people=$ROOT/config/worlds/office.yaml"
 echo "wrote $OUT/slam.json" >&2
