@@ -13,11 +13,18 @@ bool ends_with(const std::string& s, const std::string& tail)
 
 nlohmann::json empty_group(double voronoi_recall, double voronoi_precision)
 {
-  return {{"worlds", 0},           {"failed", 0},           {"seg_precision_mean", nullptr},
-          {"seg_recall_mean", nullptr}, {"gateways_matched", 0}, {"gateways_truth", 0},
-          {"gateways_false", 0},   {"graph_isomorphic", 0},
-          {"reference", {{"method", "Voronoi segmentation, Bormann et al. 2016 (offline)"},
-                         {"seg_recall", voronoi_recall}, {"seg_precision", voronoi_precision}}}};
+  return {{"worlds", 0},
+          {"failed", 0},
+          {"seg_precision_mean", nullptr},
+          {"seg_recall_mean", nullptr},
+          {"gateways_matched", 0},
+          {"gateways_truth", 0},
+          {"gateways_false", 0},
+          {"graph_isomorphic", 0},
+          {"reference",
+           {{"method", "Voronoi segmentation, Bormann et al. 2016 (offline)"},
+            {"seg_recall", voronoi_recall},
+            {"seg_precision", voronoi_precision}}}};
 }
 
 }  // namespace
