@@ -17,7 +17,7 @@ namespace {
 constexpr uint32_t kKernelMagic = 0x4b475231;   // "1RGK"
 constexpr uint32_t kFormat = 1;
 
-void put_segments(StateWriter& w, const std::vector<rgmap::LineSegment>& segs)
+void put_segments(persist::ByteWriter& w, const std::vector<rgmap::LineSegment>& segs)
 {
   w.put(static_cast<uint64_t>(segs.size()));
   for (const auto& s : segs) {
@@ -28,7 +28,7 @@ void put_segments(StateWriter& w, const std::vector<rgmap::LineSegment>& segs)
   }
 }
 
-std::vector<rgmap::LineSegment> get_segments(StateReader& r)
+std::vector<rgmap::LineSegment> get_segments(persist::ByteReader& r)
 {
   std::vector<rgmap::LineSegment> segs(r.count(36));
   for (auto& s : segs) {
@@ -40,7 +40,7 @@ std::vector<rgmap::LineSegment> get_segments(StateReader& r)
   return segs;
 }
 
-void put_map(StateWriter& w, const rgmap::RgMap& m)
+void put_map(persist::ByteWriter& w, const rgmap::RgMap& m)
 {
   w.put(m.current_region);
   w.put(m.version);
@@ -105,7 +105,7 @@ void put_map(StateWriter& w, const rgmap::RgMap& m)
   }
 }
 
-rgmap::RgMap get_map(StateReader& rd)
+rgmap::RgMap get_map(persist::ByteReader& rd)
 {
   rgmap::RgMap m;
   m.current_region = rd.get<int64_t>();
@@ -179,7 +179,7 @@ rgmap::RgMap get_map(StateReader& rd)
 
 }  // namespace
 
-void RegionBuilder::save(StateWriter& w, const SharedPoints& shared_points) const
+void RegionBuilder::save(persist::ByteWriter& w, const SharedPoints& shared_points) const
 {
   w.put(static_cast<uint64_t>(scans_.size()));
   for (const auto& [id, s] : scans_) {
@@ -217,7 +217,7 @@ void RegionBuilder::save(StateWriter& w, const SharedPoints& shared_points) cons
   }
 }
 
-void RegionBuilder::load(StateReader& r, const SharedPoints& shared_points)
+void RegionBuilder::load(persist::ByteReader& r, const SharedPoints& shared_points)
 {
   scans_.clear();
   const uint64_t nscans = r.count(45);
@@ -229,7 +229,7 @@ void RegionBuilder::load(StateReader& r, const SharedPoints& shared_points)
     s.region_from_laser = r.pose();
     if (r.get<uint8_t>()) {
       const auto* shared = shared_points ? shared_points(s.scan_id) : nullptr;
-      if (!shared) throw SnapshotError("scan " + std::to_string(s.scan_id) + " refers to points the snapshot lacks");
+      if (!shared) throw persist::CorruptBytes("scan " + std::to_string(s.scan_id) + " refers to points the snapshot lacks");
       s.laser_points = *shared;
     } else {
       s.laser_points = r.points();
@@ -263,7 +263,7 @@ void RegionBuilder::load(StateReader& r, const SharedPoints& shared_points)
   }
 }
 
-void RgKernel::save_state(StateWriter& w) const
+void RgKernel::save_state(persist::ByteWriter& w) const
 {
   w.put(kKernelMagic);
   w.put(kFormat);
@@ -304,21 +304,21 @@ void RgKernel::save_state(StateWriter& w) const
 
 std::string RgKernel::snapshot() const
 {
-  StateWriter w;
+  persist::ByteWriter w;
   save_state(w);
   return w.take();
 }
 
-void RgKernel::restore_state(StateReader& r)
+void RgKernel::restore_state(persist::ByteReader& r)
 {
-  if (r.get<uint32_t>() != kKernelMagic) throw SnapshotError("not an RG kernel state");
+  if (r.get<uint32_t>() != kKernelMagic) throw persist::CorruptBytes("not an RG kernel state");
   if (const uint32_t f = r.get<uint32_t>(); f != kFormat)
-    throw SnapshotError("RG kernel state format " + std::to_string(f) + ", this build reads " + std::to_string(kFormat));
+    throw persist::CorruptBytes("RG kernel state format " + std::to_string(f) + ", this build reads " + std::to_string(kFormat));
   rgmap::RgMap map;
   try {
     map = get_map(r);
   } catch (const std::invalid_argument& e) {
-    throw SnapshotError(std::string("map: ") + e.what());
+    throw persist::CorruptBytes(std::string("map: ") + e.what());
   }
   std::map<int64_t, ScanInput> inputs;
   const uint64_t ninputs = r.count(68);
@@ -341,7 +341,7 @@ void RgKernel::restore_state(StateReader& r)
   const uint64_t nbuilders = r.count(16);
   for (uint64_t k = 0; k < nbuilders; ++k) {
     const int64_t id = r.get<int64_t>();
-    if (!map.region(id)) throw SnapshotError("builder for unknown region " + std::to_string(id));
+    if (!map.region(id)) throw persist::CorruptBytes("builder for unknown region " + std::to_string(id));
     RegionBuilder b(options_.build);
     b.load(r, shared);
     builders.emplace(id, std::move(b));
@@ -363,8 +363,8 @@ void RgKernel::restore_state(StateReader& r)
   const uint64_t ndirty = r.count(8);
   for (uint64_t k = 0; k < ndirty; ++k) dirty.insert(r.get<int64_t>());
   if (map.current_region != 0 && !builders.count(map.current_region))
-    throw SnapshotError("current region " + std::to_string(map.current_region) + " has no scans");
-  if (!r.at_end()) throw SnapshotError("trailing bytes after the RG kernel state");
+    throw persist::CorruptBytes("current region " + std::to_string(map.current_region) + " has no scans");
+  if (!r.at_end()) throw persist::CorruptBytes("trailing bytes after the RG kernel state");
   // All read and checked: commit.
   map_ = std::move(map);
   builders_ = std::move(builders);
@@ -377,7 +377,7 @@ void RgKernel::restore_state(StateReader& r)
 
 void RgKernel::restore(const std::string& snapshot_bytes)
 {
-  StateReader r(snapshot_bytes);
+  persist::ByteReader r(snapshot_bytes);
   restore_state(r);
 }
 

@@ -16,13 +16,13 @@
 #include <vector>
 
 #include "geometry/pose2.h"
+#include "persist/byte_codec.h"
 #include "procs/rg_kernel/doorways.h"
 #include "procs/rg_kernel/gateway_geometry.h"
 #include "procs/rg_kernel/line_alignment.h"
 #include "procs/rg_kernel/line_map.h"
 #include "procs/rg_kernel/line_map_fidelity.h"
 #include "procs/rg_kernel/object_grouping.h"
-#include "procs/rg_kernel/state_codec.h"
 #include "rgmap/rg_map.h"
 
 namespace rgnav::rg_kernel {
@@ -97,9 +97,9 @@ class RegionBuilder
   // exactly the same line map). `shared_points(id)`: the scan's points if the caller stores
   // them already (they are then written once, by the caller), else nullptr.
   using SharedPoints = std::function<const std::vector<Eigen::Vector2d>*(int64_t scan_id)>;
-  void save(StateWriter& w, const SharedPoints& shared_points) const;
-  // Into a freshly constructed builder; throws SnapshotError on malformed bytes.
-  void load(StateReader& r, const SharedPoints& shared_points);
+  void save(persist::ByteWriter& w, const SharedPoints& shared_points) const;
+  // Into a freshly constructed builder; throws persist::CorruptBytes on malformed bytes.
+  void load(persist::ByteReader& r, const SharedPoints& shared_points);
 
  private:
   void add_incrementally(const StoredScan& scan) const;

@@ -110,11 +110,11 @@ class RgKernel
   // The kernel's complete state (map, every region's scans and derived caches, bookkeeping):
   // a kernel restored from it continues exactly as this one would, input for input. Not the
   // options: the restoring kernel is built with its own (the same config).
-  void save_state(StateWriter& w) const;
+  void save_state(persist::ByteWriter& w) const;
   std::string snapshot() const;
   // Replaces this kernel's state with the one at r's position, which must run to r's end;
-  // throws SnapshotError (state unchanged) if it is malformed.
-  void restore_state(StateReader& r);
+  // throws persist::CorruptBytes (state unchanged) if it is malformed.
+  void restore_state(persist::ByteReader& r);
   void restore(const std::string& snapshot_bytes);
 
  private:

@@ -5,7 +5,7 @@
 #include <chrono>
 
 #include "persist/atomic_file.h"
-#include "procs/rg_kernel/state_codec.h"
+#include "persist/byte_codec.h"
 #include "procs/rg_kernel/rg_kernel_conversions.h"
 #include "rgmap/rgmap_conversions.h"
 #include "rgmap/rgmap_json.h"
@@ -132,7 +132,7 @@ constexpr uint32_t kSnapshotMagic = 0x534b4752;   // "RGKS"
 
 std::string RgKernelNode::snapshot_payload() const
 {
-  StateWriter w;
+  persist::ByteWriter w;
   w.put(kSnapshotMagic);
   w.put(inputs_);
   w.put(last_publish_utime_);
@@ -143,8 +143,8 @@ std::string RgKernelNode::snapshot_payload() const
 
 void RgKernelNode::apply_snapshot(const std::string& payload)
 {
-  StateReader r(payload);
-  if (r.get<uint32_t>() != kSnapshotMagic) throw SnapshotError("not an rg_kernel snapshot");
+  persist::ByteReader r(payload);
+  if (r.get<uint32_t>() != kSnapshotMagic) throw persist::CorruptBytes("not an rg_kernel snapshot");
   const int64_t inputs = r.get<int64_t>(), last_publish = r.get<int64_t>();
   const bool unpublished = r.get<uint8_t>() != 0;
   kernel_.restore_state(r);
@@ -169,7 +169,7 @@ void RgKernelNode::restore()
       apply_snapshot(store_->read_snapshot(g));
       loaded_generation_ = g;
       break;
-    } catch (const std::exception& e) {   // persist::CorruptFile, SnapshotError
+    } catch (const std::exception& e) {   // persist::CorruptFile, persist::CorruptBytes
       spdlog::error("snapshot {} is damaged and will not be loaded: {}", store_->snapshot_path(g), e.what());
       store_->set_aside(g, store_->snapshot_path(g) + ": " + e.what());
     }

@@ -16,7 +16,7 @@ constexpr uint32_t kVersion = 2;
 std::string encode_snapshot(const PersistedState& s)
 {
   check_finite(s.mapper);
-  ByteWriter w;
+  persist::ByteWriter w;
   for (char c : kMagic) w.put(c);
   w.put(kVersion);
   w.put(s.last_record);
@@ -30,24 +30,24 @@ std::string encode_snapshot(const PersistedState& s)
 
 PersistedState decode_snapshot(const std::string& bytes)
 {
-  ByteReader r(bytes);
+  persist::ByteReader r(bytes);
   char magic[sizeof kMagic];
   for (char& c : magic) c = r.get<char>();
-  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw CorruptState("not a scan mapper snapshot");
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) throw persist::CorruptBytes("not a scan mapper snapshot");
   const auto version = r.get<uint32_t>();
-  if (version != kVersion) throw CorruptState("unsupported snapshot version " + std::to_string(version));
+  if (version != kVersion) throw persist::CorruptBytes("unsupported snapshot version " + std::to_string(version));
   PersistedState s;
   s.last_record = r.get<uint64_t>();
   s.ids.last_laser_id = r.get<int64_t>();
   s.ids.offset = r.get<int64_t>();
   s.ids.last_issued = r.get<int64_t>();
-  const uint64_t nn = r.count(10'000'000);
+  const uint64_t nn = r.count(1, 10'000'000);
   s.mapper.nodes.reserve(nn);
   for (uint64_t i = 0; i < nn; ++i) s.mapper.nodes.push_back(read_node(r));
-  const uint64_t ne = r.count(100'000'000);
+  const uint64_t ne = r.count(1, 100'000'000);
   s.mapper.edges.reserve(ne);
   for (uint64_t i = 0; i < ne; ++i) s.mapper.edges.push_back(read_edge(r, nn));
-  if (!r.at_end()) throw CorruptState("trailing data");
+  if (!r.at_end()) throw persist::CorruptBytes("trailing data");
   return s;
 }
 
@@ -62,8 +62,8 @@ std::optional<PersistedState> load_snapshot(const std::string& path)
   if (!bytes) return std::nullopt;
   try {
     return decode_snapshot(*bytes);
-  } catch (const CorruptState& e) {
-    throw CorruptState(path + ": " + e.what());
+  } catch (const persist::CorruptBytes& e) {
+    throw persist::CorruptBytes(path + ": " + e.what());
   }
 }
 

@@ -21,7 +21,7 @@ struct PersistedState
 };
 
 std::string encode_snapshot(const PersistedState& state);
-// Throws CorruptState (state_codec.h) when the bytes are not a complete, finite snapshot.
+// Throws persist::CorruptBytes (persist/byte_codec.h) when the bytes are not a complete, finite snapshot.
 PersistedState decode_snapshot(const std::string& bytes);
 
 // Throws std::runtime_error when the file cannot be written or the state is not finite.

@@ -11,12 +11,12 @@ namespace {
 
 enum Tag : uint32_t { kScan = 1, kEstimates = 2 };
 
-void write_ids(ByteWriter& w, const ScanIdState& ids)
+void write_ids(persist::ByteWriter& w, const ScanIdState& ids)
 {
   w.put(ids.last_laser_id), w.put(ids.offset), w.put(ids.last_issued);
 }
 
-ScanIdState read_ids(ByteReader& r)
+ScanIdState read_ids(persist::ByteReader& r)
 {
   ScanIdState ids;
   ids.last_laser_id = r.get<int64_t>();
@@ -25,21 +25,21 @@ ScanIdState read_ids(ByteReader& r)
   return ids;
 }
 
-std::vector<PoseGraphEdge> read_new_edges(ByteReader& r, uint64_t node_count)
+std::vector<PoseGraphEdge> read_new_edges(persist::ByteReader& r, uint64_t node_count)
 {
-  std::vector<PoseGraphEdge> edges(r.count(1'000'000));
+  std::vector<PoseGraphEdge> edges(r.count(1, 1'000'000));
   for (auto& e : edges) e = read_edge(r, node_count);
   return edges;
 }
 
-// Applies one journal record to the state, all or nothing; throws CorruptState (leaving the
+// Applies one journal record to the state, all or nothing; throws persist::CorruptBytes (leaving the
 // state untouched) if it does not fit.
 void apply(const persist::JournalRecord& rec, PersistedState* st)
 {
-  ByteReader r(rec.bytes);
+  persist::ByteReader r(rec.bytes);
   const auto seq = r.get<uint64_t>();
   if (seq != st->last_record + 1)
-    throw CorruptState("it follows record " + std::to_string(st->last_record));
+    throw persist::CorruptBytes("it follows record " + std::to_string(st->last_record));
   const ScanIdState ids = read_ids(r);
   auto& nodes = st->mapper.nodes;
   std::optional<ScanNode> added;
@@ -47,16 +47,16 @@ void apply(const persist::JournalRecord& rec, PersistedState* st)
   if (rec.tag == kScan) {
     const auto index = r.get<uint64_t>();
     if (index != nodes.size())
-      throw CorruptState("it adds node " + std::to_string(index) + " to a state of " + std::to_string(nodes.size()));
+      throw persist::CorruptBytes("it adds node " + std::to_string(index) + " to a state of " + std::to_string(nodes.size()));
     added = read_node(r);
   } else if (rec.tag == kEstimates) {
-    estimates.resize(r.count(nodes.size()));
+    estimates.resize(r.count(1, nodes.size()));
     for (auto& e : estimates) read_estimate(r, &e);
   } else {
-    throw CorruptState("unknown record tag " + std::to_string(rec.tag));
+    throw persist::CorruptBytes("unknown record tag " + std::to_string(rec.tag));
   }
   auto edges = read_new_edges(r, nodes.size() + (added ? 1 : 0));
-  if (!r.at_end()) throw CorruptState("trailing bytes");
+  if (!r.at_end()) throw persist::CorruptBytes("trailing bytes");
   if (added) nodes.push_back(std::move(*added));
   for (size_t i = 0; i < estimates.size(); ++i) {
     nodes[i].map_from_base = estimates[i].map_from_base;
@@ -102,11 +102,11 @@ void MapperStore::recover()
   if (!fresh) {
     if (!journal_->damage().empty()) report_.damage = "journal: " + journal_->damage() + " (tail dropped)";
     for (const auto& rec : journal_->recovered()) {
-      ByteReader peek(rec.bytes);
+      persist::ByteReader peek(rec.bytes);
       uint64_t seq = 0;
       try {
         seq = peek.get<uint64_t>();
-      } catch (const CorruptState&) {
+      } catch (const persist::CorruptBytes&) {
         report_.damage = "journal: record without a sequence number (dropped with the rest)";
         break;
       }
@@ -114,7 +114,7 @@ void MapperStore::recover()
       try {
         apply(rec, &st);
         ++replayed;
-      } catch (const CorruptState& e) {
+      } catch (const persist::CorruptBytes& e) {
         // A record the state cannot take (the CRC held: a bug or a foreign file) is not
         // applied; neither is anything after it, which depends on it.
         report_.damage = std::string("journal record ") + std::to_string(seq) + " refused: " + e.what() +
@@ -137,7 +137,7 @@ void MapperStore::recover()
   }
 }
 
-void MapperStore::write_new_edges(ByteWriter& w, const ScanMapper& mapper)
+void MapperStore::write_new_edges(persist::ByteWriter& w, const ScanMapper& mapper)
 {
   const auto& edges = mapper.graph().edges();
   if (edges.size() < edges_recorded_)
@@ -158,7 +158,7 @@ void MapperStore::record_scan(const ScanMapper& mapper, int index, const ScanIdS
 {
   const ScanNode& node = mapper.nodes().at(static_cast<size_t>(index));
   check_finite(node);
-  ByteWriter w;
+  persist::ByteWriter w;
   w.put(seq_ + 1);
   write_ids(w, ids);
   w.put(static_cast<uint64_t>(index));
@@ -169,7 +169,7 @@ void MapperStore::record_scan(const ScanMapper& mapper, int index, const ScanIdS
 
 void MapperStore::record_estimates(const ScanMapper& mapper, const ScanIdState& ids)
 {
-  ByteWriter w;
+  persist::ByteWriter w;
   w.put(seq_ + 1);
   write_ids(w, ids);
   w.put(static_cast<uint64_t>(mapper.nodes().size()));

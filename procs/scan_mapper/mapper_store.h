@@ -17,9 +17,11 @@
 #include "persist/journal.h"
 #include "scan_mapper/mapper_state_io.h"
 
-namespace rgnav::scan_mapper {
-
+namespace rgnav::persist {
 class ByteWriter;
+}
+
+namespace rgnav::scan_mapper {
 
 struct StoreOptions
 {
@@ -62,7 +64,7 @@ class MapperStore
  private:
   void recover();
   void append(uint32_t tag, const std::string& bytes, const ScanMapper& mapper, const ScanIdState& ids);
-  void write_new_edges(ByteWriter& w, const ScanMapper& mapper);
+  void write_new_edges(persist::ByteWriter& w, const ScanMapper& mapper);
 
   StoreOptions options_;
   std::unique_ptr<persist::Journal> journal_;

@@ -228,9 +228,9 @@ TEST(RgKernelPersistence, SnapshotRestoresTheKernelExactly)
   EXPECT_EQ(rgmap::to_json(b.described_map()).dump(), rgmap::to_json(a.described_map()).dump());
   // Damaged bytes are refused and leave the kernel as it was.
   RgKernel c{KernelOptions{}};
-  EXPECT_THROW(c.restore(snap.substr(0, snap.size() / 2)), SnapshotError);
-  EXPECT_THROW(c.restore(snap + "x"), SnapshotError);
-  EXPECT_THROW(c.restore("garbage"), SnapshotError);
+  EXPECT_THROW(c.restore(snap.substr(0, snap.size() / 2)), persist::CorruptBytes);
+  EXPECT_THROW(c.restore(snap + "x"), persist::CorruptBytes);
+  EXPECT_THROW(c.restore("garbage"), persist::CorruptBytes);
   EXPECT_EQ(c.map().regions().size(), 0u);
 }
 

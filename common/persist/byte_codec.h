@@ -1,8 +1,10 @@
-// A plain binary encoding for the RG kernel's snapshot: fixed-width little-endian integers and
-// IEEE doubles copied bit for bit (a restored kernel must continue exactly as the original
-// would; a text encoding of doubles would have to be proven round-trip exact). The reader
-// checks every length against what is left and throws SnapshotError instead of reading past
-// the end, so a damaged payload that slipped past the file CRC still cannot crash a restore.
+// A plain binary encoding for the processes' persisted state (the scan mapper's snapshot and
+// journal records, the RG kernel's snapshot): fixed-width integers and IEEE doubles copied bit
+// for bit in host order, little-endian on every rgnav target (the files never leave the
+// machine). Bit copies, not text, because a restored process must continue exactly as the
+// original would. The reader checks every length and count against what is left and every
+// double it is asked for as finite, and throws CorruptBytes instead: a damaged payload that
+// slipped past the file's CRC is refused, never half-loaded, and cannot crash a restore.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -17,15 +20,15 @@
 
 #include "geometry/pose2.h"
 
-namespace rgnav::rg_kernel {
+namespace rgnav::persist {
 
-class SnapshotError : public std::runtime_error
+class CorruptBytes : public std::runtime_error
 {
  public:
   using std::runtime_error::runtime_error;
 };
 
-class StateWriter
+class ByteWriter
 {
  public:
   template <class T>
@@ -33,7 +36,7 @@ class StateWriter
   {
     static_assert(std::is_arithmetic_v<T>, "plain numbers only");
     char b[sizeof(T)];
-    std::memcpy(b, &v, sizeof(T));   // host order: little-endian on every rgnav target
+    std::memcpy(b, &v, sizeof(T));
     out_.append(b, sizeof(T));
   }
   void put(const Eigen::Vector2d& v)
@@ -46,6 +49,10 @@ class StateWriter
     put(p.x());
     put(p.y());
     put(p.theta());
+  }
+  void put(const Eigen::Matrix3d& m)   // row by row
+  {
+    for (int i = 0; i < 9; ++i) put(m(i / 3, i % 3));
   }
   void put(const std::string& s)
   {
@@ -64,10 +71,10 @@ class StateWriter
   std::string out_;
 };
 
-class StateReader
+class ByteReader
 {
  public:
-  explicit StateReader(const std::string& bytes) : s_(bytes) {}
+  explicit ByteReader(const std::string& bytes) : s_(bytes) {}
   template <class T>
   T get()
   {
@@ -81,7 +88,7 @@ class StateReader
   double finite()
   {
     const double v = get<double>();
-    if (!std::isfinite(v)) throw SnapshotError("non-finite number at byte " + std::to_string(pos_ - 8));
+    if (!std::isfinite(v)) throw CorruptBytes("non-finite number at byte " + std::to_string(pos_ - sizeof v));
     return v;
   }
   Eigen::Vector2d vec()
@@ -93,6 +100,12 @@ class StateReader
   {
     const double x = finite(), y = finite();
     return geometry::Pose2(x, y, finite());
+  }
+  Eigen::Matrix3d matrix()
+  {
+    Eigen::Matrix3d m;
+    for (int i = 0; i < 9; ++i) m(i / 3, i % 3) = finite();
+    return m;
   }
   std::string str()
   {
@@ -109,12 +122,16 @@ class StateReader
     pos_ += n * sizeof(Eigen::Vector2d);
     return pts;
   }
-  // A count of items of at least `item_bytes` each: refused if the rest cannot hold them.
-  uint64_t count(size_t item_bytes)
+  // A count of items of at least `item_bytes` each, refused if the rest cannot hold them or it
+  // exceeds `max` (a bound the caller knows, e.g. the nodes a journal record may refer to).
+  uint64_t count(size_t item_bytes, uint64_t max = std::numeric_limits<uint64_t>::max())
   {
     const uint64_t n = get<uint64_t>();
+    const size_t at = pos_ - sizeof n;
     if (item_bytes > 0 && n > (s_.size() - pos_) / item_bytes)
-      throw SnapshotError("count " + std::to_string(n) + " at byte " + std::to_string(pos_ - 8) + " exceeds the data");
+      throw CorruptBytes("count " + std::to_string(n) + " at byte " + std::to_string(at) + " exceeds the data");
+    if (n > max)
+      throw CorruptBytes("count " + std::to_string(n) + " at byte " + std::to_string(at) + " exceeds " + std::to_string(max));
     return n;
   }
   bool at_end() const { return pos_ == s_.size(); }
@@ -122,10 +139,10 @@ class StateReader
  private:
   void need(size_t n) const
   {
-    if (s_.size() - pos_ < n) throw SnapshotError("truncated at byte " + std::to_string(pos_));
+    if (s_.size() - pos_ < n) throw CorruptBytes("truncated at byte " + std::to_string(pos_));
   }
   const std::string& s_;
   size_t pos_ = 0;
 };
 
-}  // namespace rgnav::rg_kernel
+}  // namespace rgnav::persist
