@@ -89,7 +89,11 @@ IcpResult register_scan(const ScanSide& scan, const PointMap& model, const Pose2
     // Small Levenberg damping keeps degenerate directions (a corridor) where the guess put them.
     Eigen::Matrix3d H = ne.H;
     H.diagonal() += Eigen::Vector3d(1e-6, 1e-6, 1e-6) * std::max(1.0, H.trace());
-    const Eigen::Vector3d delta = -H.ldlt().solve(ne.g);
+    Eigen::Vector3d delta = -H.ldlt().solve(ne.g);
+    if (!o.estimate_rotation) {
+      delta.head<2>() = -H.topLeftCorner<2, 2>().ldlt().solve(ne.g.head<2>());
+      delta.z() = 0.0;
+    }
     if (!delta.allFinite()) break;
     T = Pose2{T.x() + delta.x(), T.y() + delta.y(), normalize_angle(T.theta() + delta.z())};
     const bool small = std::hypot(delta.x(), delta.y()) < o.converged_translation_m &&

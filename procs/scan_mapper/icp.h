@@ -37,6 +37,9 @@ struct IcpOptions
   // jamb matched to the next door's is off by decimetres. 0: off.
   double degenerate_min_points = 0.0;
   double degenerate_variance_m2 = 1.0;
+  // false: the guess's heading is kept and only the translation fitted (the result's covariance
+  // is still the full Hessian's, heading terms included: the caller says what the heading is worth).
+  bool estimate_rotation = true;
 };
 
 struct IcpResult

@@ -13,6 +13,9 @@ namespace {
 
 constexpr size_t kSubmapCacheSize = 24;
 
+// [rad^2] The heading variance of a fit that kept odometry's heading (one radian: no measurement).
+constexpr double kUnmeasuredHeadingVariance = 1.0;
+
 // Rotation acting on the (x, y) part of a pose covariance.
 Eigen::Matrix3d rot3(double th)
 {
@@ -143,7 +146,7 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
   Eigen::Matrix3d P = Q;
   // The candidates best fit first; the first one odometry does not contradict is fused.
   bool rejected = false;
-  for (const IcpResult& icp : register_locally(node, guess, relocalize)) {
+  for (const IcpResult& icp : register_locally(node, guess, relocalize, std::sqrt(Q(2, 2)))) {
     // Both increments in the previous node's frame.
     const Pose2 z = between(prev.map_from_base, icp.map_from_scan);
     const Eigen::Matrix3d R = rot3(-prev.map_from_base.theta()) * icp.covariance * rot3(-prev.map_from_base.theta()).transpose();
@@ -208,7 +211,8 @@ void ScanMapper::compute_normals(ScanNode* node) const
                         &node->normals, node->has_normal);
 }
 
-std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const Pose2& guess, bool wide)
+std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const Pose2& guess, bool wide,
+                                                    double odometry_sigma_rot)
 {
   const Points& points = scan.points;
   const int n = static_cast<int>(nodes_.size());
@@ -243,7 +247,24 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
     if (!r.ok) continue;
     if (options_.moving_points.margin_m > 0.0)
       if (auto refit = register_without_moving(scan, map, r.map_from_scan)) r = *refit;
-    if (r.ok && r.inlier_ratio >= options_.min_accept_inlier_ratio) accepted.push_back(r);
+    if (!r.ok || r.inlier_ratio < options_.min_accept_inlier_ratio) continue;
+    // After a restart (wide) the guess's heading is no odometry's: nothing to check against.
+    const double turn = normalize_angle(r.map_from_scan.theta() - guess.theta());
+    if (!wide && options_.turn_check_sigmas > 0.0 && std::fabs(turn) > options_.turn_check_sigmas * odometry_sigma_rot) {
+      IcpOptions translation_only = options_.icp;
+      translation_only.estimate_rotation = false;
+      IcpResult held = icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, translation_only);
+      if (held.ok && held.inlier_ratio + options_.turn_min_inlier_gain > r.inlier_ratio) {
+        // The scan does not hold the turn: keep odometry's heading, unmeasured by the fit.
+        held.covariance.row(2).setZero();
+        held.covariance.col(2).setZero();
+        held.covariance(2, 2) = kUnmeasuredHeadingVariance;
+        held.fit_covariance = held.covariance;
+        ++stats_.turns_held;
+        r = held;
+      }
+    }
+    accepted.push_back(r);
   }
   return accepted;
 }

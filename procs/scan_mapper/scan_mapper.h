@@ -107,6 +107,7 @@ struct MapperStats
   int64_t loop_rejected_strain = 0;  // of loop_rejected_after_opt: for the strain on the graph
   int64_t loop_ambiguous = 0;        // loop searches whose best fit had a near-equal rival elsewhere
   int64_t moving_points = 0;  // points left out of local registration as seen through
+  int64_t turns_held = 0;     // fits whose turn the scan did not hold: odometry's heading kept
 };
 
 // Everything needed to resume: nodes and graph edges.
@@ -164,8 +165,10 @@ class ScanMapper
   Eigen::Matrix3d odometry_covariance(const Pose2& increment) const;
   // Registers the scan's points (base frame) against the local map from guess: the acceptable
   // fits, best first (the fit from guess and, when it was poor, a correlative search's); none if
-  // registration fails.
-  std::vector<IcpResult> register_locally(const ScanNode& scan, const Pose2& guess, bool wide);
+  // registration fails. A fit turned from guess by more than turn_check_sigmas x
+  // odometry_sigma_rot [rad] that fits little better than guess's heading does is replaced by
+  // the translation-only fit at guess's heading (ScanMapperOptions::turn_check_sigmas).
+  std::vector<IcpResult> register_locally(const ScanNode& scan, const Pose2& guess, bool wide, double odometry_sigma_rot);
   // Registers again from map_from_scan without the points on something that moved (seen through,
   // moving_points.h); nullopt when there were none (or too few points were left).
   std::optional<IcpResult> register_without_moving(const ScanNode& scan, const PointMap& map, const Pose2& map_from_scan);

@@ -31,6 +31,8 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   o.local_window.linear_m = reg.number("retry_window_m", o.local_window.linear_m, 0.0, 5.0);
   o.local_window.angular_rad = reg.number("retry_window_deg", o.local_window.angular_rad / kDeg, 0.0, 90.0) * kDeg;
   o.max_innovation_chi2 = reg.number("max_innovation_chi2", o.max_innovation_chi2, 0.1, 1e9);
+  o.turn_check_sigmas = reg.number("turn_check_sigmas", o.turn_check_sigmas, 0.0, 100.0);
+  o.turn_min_inlier_gain = reg.number("turn_min_inlier_gain", o.turn_min_inlier_gain, 0.0, 1.0);
   const auto icp = reg.section("icp");
   o.icp.max_iterations = static_cast<int>(icp.integer("max_iterations", o.icp.max_iterations, 1, 500));
   o.icp.initial_max_distance_m = icp.number("initial_max_distance_m", o.icp.initial_max_distance_m, 0.01, 5.0);

@@ -86,6 +86,14 @@ struct ScanMapperOptions
   CorrelativeWindow local_window{0.4, 0.35};  // correlative retry around the odometry guess
   CorrelativeOptions correlative;
   double max_innovation_chi2 = 1000.0;  // scan match vs odometry disagreement that rejects the match
+  // A fit turned from odometry's heading by more than this many of odometry's heading sigmas must
+  // explain more of the scan than the best fit at odometry's heading (translation only) by at
+  // least turn_min_inlier_gain (inlier ratio), else the heading is odometry's. A round bay seen
+  // from its door is an arc that fits any heading; turning it to where the local map's arc ends
+  // gains a few inliers, and the Hessian, held by the jambs, claimed 0.25 deg for fits 15-20 deg
+  // off (issue 6: office_c). 0: off.
+  double turn_check_sigmas = 3.0;
+  double turn_min_inlier_gain = 0.05;
   OdometryNoise odometry_noise;
   LoopClosureOptions loop;
   OptimizerOptions optimizer;
