@@ -131,7 +131,8 @@ class ByteReader
     if (item_bytes > 0 && n > (s_.size() - pos_) / item_bytes)
       throw CorruptBytes("count " + std::to_string(n) + " at byte " + std::to_string(at) + " exceeds the data");
     if (n > max)
-      throw CorruptBytes("count " + std::to_string(n) + " at byte " + std::to_string(at) + " exceeds " + std::to_string(max));
+      throw CorruptBytes("count " + std::to_string(n) + " at byte " + std::to_string(at) + " exceeds " +
+                         std::to_string(max));
     return n;
   }
   bool at_end() const { return pos_ == s_.size(); }

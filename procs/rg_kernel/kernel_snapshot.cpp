@@ -229,7 +229,8 @@ void RegionBuilder::load(persist::ByteReader& r, const SharedPoints& shared_poin
     s.region_from_laser = r.pose();
     if (r.get<uint8_t>()) {
       const auto* shared = shared_points ? shared_points(s.scan_id) : nullptr;
-      if (!shared) throw persist::CorruptBytes("scan " + std::to_string(s.scan_id) + " refers to points the snapshot lacks");
+      if (!shared)
+        throw persist::CorruptBytes("scan " + std::to_string(s.scan_id) + " refers to points the snapshot lacks");
       s.laser_points = *shared;
     } else {
       s.laser_points = r.points();
@@ -313,7 +314,8 @@ void RgKernel::restore_state(persist::ByteReader& r)
 {
   if (r.get<uint32_t>() != kKernelMagic) throw persist::CorruptBytes("not an RG kernel state");
   if (const uint32_t f = r.get<uint32_t>(); f != kFormat)
-    throw persist::CorruptBytes("RG kernel state format " + std::to_string(f) + ", this build reads " + std::to_string(kFormat));
+    throw persist::CorruptBytes("RG kernel state format " + std::to_string(f) + ", this build reads " +
+                                std::to_string(kFormat));
   rgmap::RgMap map;
   try {
     map = get_map(r);

@@ -47,7 +47,8 @@ void apply(const persist::JournalRecord& rec, PersistedState* st)
   if (rec.tag == kScan) {
     const auto index = r.get<uint64_t>();
     if (index != nodes.size())
-      throw persist::CorruptBytes("it adds node " + std::to_string(index) + " to a state of " + std::to_string(nodes.size()));
+      throw persist::CorruptBytes("it adds node " + std::to_string(index) + " to a state of " +
+                                  std::to_string(nodes.size()));
     added = read_node(r);
   } else if (rec.tag == kEstimates) {
     estimates.resize(r.count(1, nodes.size()));

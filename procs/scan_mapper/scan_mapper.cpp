@@ -250,7 +250,8 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
     if (!r.ok || r.inlier_ratio < options_.min_accept_inlier_ratio) continue;
     // After a restart (wide) the guess's heading is no odometry's: nothing to check against.
     const double turn = normalize_angle(r.map_from_scan.theta() - guess.theta());
-    if (!wide && options_.turn_check_sigmas > 0.0 && std::fabs(turn) > options_.turn_check_sigmas * odometry_sigma_rot) {
+    const double max_turn = options_.turn_check_sigmas * odometry_sigma_rot;
+    if (!wide && options_.turn_check_sigmas > 0.0 && std::fabs(turn) > max_turn) {
       IcpOptions translation_only = options_.icp;
       translation_only.estimate_rotation = false;
       IcpResult held = icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, translation_only);

@@ -168,7 +168,8 @@ class ScanMapper
   // registration fails. A fit turned from guess by more than turn_check_sigmas x
   // odometry_sigma_rot [rad] that fits little better than guess's heading does is replaced by
   // the translation-only fit at guess's heading (ScanMapperOptions::turn_check_sigmas).
-  std::vector<IcpResult> register_locally(const ScanNode& scan, const Pose2& guess, bool wide, double odometry_sigma_rot);
+  std::vector<IcpResult> register_locally(const ScanNode& scan, const Pose2& guess, bool wide,
+                                          double odometry_sigma_rot);
   // Registers again from map_from_scan without the points on something that moved (seen through,
   // moving_points.h); nullopt when there were none (or too few points were left).
   std::optional<IcpResult> register_without_moving(const ScanNode& scan, const PointMap& map, const Pose2& map_from_scan);

@@ -102,7 +102,8 @@ void check_finite(const MapperState& state)
 {
   for (const auto& n : state.nodes) check_finite(n);
   for (const auto& e : state.edges)
-    if (!finite(e.from_from_to) || !e.information.allFinite()) throw persist::CorruptBytes("pose graph edge is not finite");
+    if (!finite(e.from_from_to) || !e.information.allFinite())
+      throw persist::CorruptBytes("pose graph edge is not finite");
 }
 
 }  // namespace rgnav::scan_mapper

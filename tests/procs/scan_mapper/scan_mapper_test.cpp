@@ -217,7 +217,8 @@ TEST(ScanMapper, ARoundBaySeenFromItsDoorDoesNotTurnTheEstimate)
     for (size_t i = 0; i < run.scans.size(); ++i) {
       mapper.add_odometry({run.scans[i].utime, run.odom[i]});
       if (mapper.add_scan(run.scans[i]).accepted)
-        worst = std::max(worst, std::fabs(sm::normalize_angle(mapper.nodes().back().map_from_base.theta() - run.truth[i].theta())));
+        worst = std::max(
+            worst, std::fabs(sm::normalize_angle(mapper.nodes().back().map_from_base.theta() - run.truth[i].theta())));
     }
     return std::make_pair(worst * 180 / M_PI, mapper.stats().turns_held);
   };
