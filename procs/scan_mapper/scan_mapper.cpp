@@ -243,6 +243,8 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
     else found.push_back(again);
   }
   std::vector<IcpResult> accepted;
+  std::optional<IcpResult> held;   // the translation-only fit at the guess's heading, if needed
+  bool held_used = false;
   for (IcpResult& r : found) {
     if (!r.ok) continue;
     if (options_.moving_points.margin_m > 0.0)
@@ -252,21 +254,27 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
     const double turn = normalize_angle(r.map_from_scan.theta() - guess.theta());
     const double max_turn = options_.turn_check_sigmas * odometry_sigma_rot;
     if (!wide && options_.turn_check_sigmas > 0.0 && std::fabs(turn) > max_turn) {
-      IcpOptions translation_only = options_.icp;
-      translation_only.estimate_rotation = false;
-      IcpResult held = icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, translation_only);
-      if (held.ok && held.inlier_ratio + options_.turn_min_inlier_gain > r.inlier_ratio) {
-        // The scan does not hold the turn: keep odometry's heading, unmeasured by the fit.
-        held.covariance.row(2).setZero();
-        held.covariance.col(2).setZero();
-        held.covariance(2, 2) = kUnmeasuredHeadingVariance;
-        held.fit_covariance = held.covariance;
-        ++stats_.turns_held;
-        r = held;
+      // The fit at odometry's heading, once per scan however many candidates turned.
+      if (!held) {
+        IcpOptions translation_only = options_.icp;
+        translation_only.estimate_rotation = false;
+        held = icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, translation_only);
+        // Its heading is odometry's, unmeasured by the fit.
+        held->covariance.row(2).setZero();
+        held->covariance.col(2).setZero();
+        held->covariance(2, 2) = kUnmeasuredHeadingVariance;
+        held->fit_covariance = held->covariance;
+      }
+      if (held->ok && held->inlier_ratio + options_.turn_min_inlier_gain > r.inlier_ratio) {
+        // The scan does not hold the turn: the held fit stands in for it (once).
+        if (!held_used) accepted.push_back(*held);
+        held_used = true;
+        continue;
       }
     }
     accepted.push_back(r);
   }
+  if (held_used) ++stats_.turns_held;
   return accepted;
 }
 
