@@ -126,8 +126,10 @@ void Simulator::physics(int64_t t_end_us, StepOutput* out)
   true_v_ = dt > 0.0 ? motion.ds / dt : 0.0;
   true_omega_ = dt > 0.0 ? motion.dtheta / dt : 0.0;
   odometry_.integrate(motion);
-  people_.advance(dt, options_.people_block_robot ? std::optional<Circle>(Circle{Vec2(truth_.x, truth_.y), r})
-                                                 : std::nullopt);
+  const HeightBand band{options_.robot.ground_clearance, options_.robot.height};
+  people_.advance(dt,
+                  options_.people_block_robot ? std::optional<Circle>(Circle{Vec2(truth_.x, truth_.y), r}) : std::nullopt,
+                  [&](const Vec2& p, double search) { return scene_.clearance(p, search, band, door_open_).distance; });
   now_us_ = t_end_us;
   update_doors();
 }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -91,6 +92,10 @@ struct Person
   // rather than come closer than this to it, surface to surface, as people let a robot
   // pass; 0: only rather than touch it.
   double personal_space = 0.0;  // [m]
+  // Having waited for the robot this long, the person steps around it where the walls leave
+  // room (and passes it closer than the personal space), as people do with a robot that stands
+  // in a hallway; no room: waits on. Infinite (the default): waits for the robot, however long.
+  double patience = std::numeric_limits<double>::infinity();  // [s]
 };
 
 enum class RegionKind { kRoom, kHallway, kLobby, kOther };

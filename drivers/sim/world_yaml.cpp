@@ -208,6 +208,7 @@ World parse_world_yaml(const config::Config& cfg, const std::string& base_dir)
     p.height = c.number("height", p.height, 0.5, 2.5);
     p.start_delay = c.number("start_delay", p.start_delay, 0.0, 1e7);
     p.personal_space = c.number("personal_space", p.personal_space, 0.0, 5.0);
+    if (c.has("patience")) p.patience = c.number("patience", 5.0, 0.0, 1e9);
     world.people.push_back(p);
   }
   std::set<std::string> region_names;
@@ -313,7 +314,8 @@ std::string world_to_yaml(const World& w)
     o << "  - {name: " << quoted(p.name) << ", path: " << points_text(p.path) << ", speed: " << num(p.speed)
       << ", loop: " << (p.loop ? "true" : "false") << ", radius: " << num(p.radius) << ", height: " << num(p.height)
       << ", start_delay: " << num(p.start_delay)
-      << (p.personal_space > 0.0 ? ", personal_space: " + num(p.personal_space) : std::string()) << "}\n";
+      << (p.personal_space > 0.0 ? ", personal_space: " + num(p.personal_space) : std::string())
+      << (std::isfinite(p.patience) ? ", patience: " + num(p.patience) : std::string()) << "}\n";
   if (!w.regions.empty()) o << "regions:\n";
   for (const auto& r : w.regions)
     o << "  - {name: " << quoted(r.name) << ", kind: " << to_string(r.kind) << ", polygon: " << points_text(r.polygon) << "}\n";

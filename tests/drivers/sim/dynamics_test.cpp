@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "sim/simulator.h"
 #include "sim/synchro_drive.h"
@@ -275,6 +276,59 @@ TEST(People, WaitForTheRobotAtTheirPersonalSpace)
   Simulator sim(w, quiet_options());
   sim.step(microseconds(2'000'000));
   EXPECT_NEAR(sim.people()[0].center.x(), -3.2, 1e-6);
+}
+
+// A hallway along x, `width` wide, 16 m long, the robot standing in its middle at (-2, 0).
+World hallway_with_robot(double width)
+{
+  World w;
+  for (const double y : {-0.5 * width, 0.5 * width}) {
+    Wall wall;
+    wall.a = {-8, y};
+    wall.b = {8, y};
+    w.walls.push_back(wall);
+  }
+  w.start = {-2, 0, 0};
+  return w;
+}
+
+TEST(People, StepAroundTheRobotAfterTheirPatienceWhereThereIsRoom)
+{
+  // Someone walking down a 2 m hallway at the robot standing in its middle waits at the
+  // personal space for their patience, then steps around it, passes it without touching,
+  // and is back on their line further on. In a 1.2 m hallway there is no room: they wait on.
+  for (const double width : {2.0, 1.2}) {
+    World w = hallway_with_robot(width);
+    Person p;
+    p.path = {{4, 0}, {-7.5, 0}};
+    p.speed = 1.0;
+    p.loop = false;
+    p.personal_space = 0.4;
+    p.patience = 3.0;
+    w.people.push_back(p);
+    Simulator sim(w, quiet_options());
+    // 5.1 m to the personal space (~5.1 s), then 3 s of patience.
+    sim.step(microseconds(7'500'000));
+    const double waiting_gap = (sim.people()[0].center - Vec2(-2, 0)).norm() - p.radius - 0.26;
+    EXPECT_NEAR(waiting_gap, 0.4, 0.05) << width;
+    double closest = std::numeric_limits<double>::infinity(), widest = 0.0;
+    for (int k = 0; k < 100; ++k) {
+      sim.step(microseconds(100'000));
+      const Vec2 c = sim.people()[0].center;
+      closest = std::min(closest, (c - Vec2(-2, 0)).norm() - p.radius - 0.26);
+      widest = std::max(widest, std::fabs(c.y()) + p.radius);
+    }
+    EXPECT_EQ(sim.collisions(), 0) << width;
+    EXPECT_GE(closest, 0.0) << width;
+    EXPECT_LE(widest, 0.5 * width) << width << ": never into a wall";
+    if (width > 1.5) {
+      EXPECT_LT(sim.people()[0].center.x(), -3.0) << "passed the robot";
+      sim.step(microseconds(3'000'000));
+      EXPECT_NEAR(sim.people()[0].center.y(), 0.0, 1e-6) << "back on the line";
+    } else {
+      EXPECT_GE(closest, 0.4 - 1e-9) << "still waiting at the personal space";
+    }
+  }
 }
 
 TEST(People, ThatDoNotBlockTheRobotAreSeenAndPassedThrough)
