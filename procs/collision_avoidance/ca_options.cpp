@@ -109,6 +109,7 @@ CaNodeOptions load_ca_options(const config::Config& root)
   c.scan_timeout = be.number("scan_timeout_s", c.scan_timeout, 0.05, 10.0);
   c.update_period = be.number("update_period_s", c.update_period, 0.0, 2.0);
   c.refresh_period = be.number("refresh_period_s", c.refresh_period, 0.05, 10.0);
+  c.resend_tolerance = be.number("resend_tolerance_m", c.resend_tolerance, 0.0, 2.0);
   c.replan_cross_track = be.number("replan_cross_track_m", c.replan_cross_track, 0.02, 2.0);
   return o;
 }

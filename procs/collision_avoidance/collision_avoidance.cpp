@@ -27,8 +27,17 @@ CollisionAvoidance::CollisionAvoidance(const CaOptions& options)
 
 void CollisionAvoidance::set_targets(const Targets& targets)
 {
+  // The same goal re-sent (the tour runner does at 2 Hz, re-expressed with the newest
+  // localization) with its targets where they were is no reason to plan anew: a replan every
+  // 0.5 s flipped the robot between detours left and right of an obstacle, turning on the
+  // spot for 15 s. Targets that moved (a loop closure) or a new goal are.
+  bool same = has_targets_ && targets.goal_id != 0 && targets.goal_id == targets_.goal_id &&
+              targets.final_is_goal == targets_.final_is_goal && targets.poses.size() == targets_.poses.size();
+  for (size_t i = 0; same && i < targets.poses.size(); ++i)
+    same = (targets.poses[i].translation() - targets_.poses[i].translation()).norm() <= options_.resend_tolerance;
   targets_ = targets;
   has_targets_ = !targets.poses.empty();
+  if (same) return;
   targets_changed_ = true;
   next_ = 0;
 }
@@ -172,8 +181,11 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   // running every back-off to its end cost the obstacle courses seven of 47 goals, in time).
   // Giving way goes on while the targets are re-sent for the same goal (re-expressed as the
   // localization corrects the odometry, which it does during every turn on the spot): that
-  // cut every give-way short in its first turn. A new goal ends it too.
-  const bool keeps_going = giving_way_now_ ? targets_.goal_id == backoff_goal_id_ : !targets_changed_;
+  // cut every give-way short in its first turn. A new goal ends it too. Targets re-sent for
+  // the same identified goal (goal id not 0: the tour runner re-sends at 2 Hz) are no new
+  // targets: they cut every plain back-off short within half a second in the demo.
+  const bool same_goal = targets_.goal_id != 0 && targets_.goal_id == backoff_goal_id_;
+  const bool keeps_going = giving_way_now_ ? targets_.goal_id == backoff_goal_id_ : (!targets_changed_ || same_goal);
   if (backoff_id_ && active_ && active_->id == *backoff_id_ && keeps_going) {
     const bool ours = has_feedback_ && feedback_.trajectory_id == *backoff_id_;
     const bool ended = ours && (feedback_.state == 2 || feedback_.state == 0);

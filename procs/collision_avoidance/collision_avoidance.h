@@ -37,6 +37,7 @@ struct CaOptions
   double scan_timeout = 0.5;       // [s] no scan this long: stop
   double update_period = 0.1;      // [s] decisions at most this often (message time)
   double refresh_period = 0.5;     // [s] re-send the active trajectory (keep-alive for the lld)
+  double resend_tolerance = 0.15;  // [m] targets of the same goal re-sent within this are no new targets
   double replan_cross_track = 0.2; // [m] the drive is this far off the chain: replan
   double fallback_wait = 1.5;      // [s] blocked: stand this long (people pass) before turning away
   double backoff_length = 0.4;     // [m] too close to something: drive away this far
@@ -117,6 +118,11 @@ class CollisionAvoidance
   // A person who walked up and stopped stands within `reach` (people_tracker.h LastSeenMover).
   bool someone_waits_near(double reach) const;
   bool targets_changed_goal() const { return targets_.goal_id != give_way_goal_id_; }
+  // A reactive turn on the spot, sent now, runs to its end (kept alive for the lld) unless a
+  // chain to the targets turns up first.
+  std::optional<trajectory::Trajectory> send_reactive_turn(double angle, time::Time now, const std::string& why);
+  // The reactive turn under way (nullopt: none, or it ended); a keep-alive when one is due.
+  std::optional<std::optional<trajectory::Trajectory>> reactive_turn_under_way(time::Time now);
   std::optional<trajectory::Trajectory> commit_backoff(std::optional<trajectory::Trajectory> t, time::Time now,
                                                        double duration);
   std::vector<Pose2> goals() const;
@@ -160,6 +166,8 @@ class CollisionAvoidance
   bool has_progress_pose_ = false;
   Eigen::Vector2d progress_pose_ = Eigen::Vector2d::Zero();
   time::Time progress_since_{};
+  std::optional<int64_t> reactive_turn_id_;  // the reactive turn under way ...
+  time::Time reactive_turn_until_{};         // ... and when it should have ended
   bool blocked_since_set_ = false;
   time::Time blocked_since_{};
   Mode mode_ = Mode::kIdle;

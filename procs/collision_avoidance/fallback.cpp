@@ -106,9 +106,44 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::commit_backoff(std::op
   return t;
 }
 
+std::optional<trajectory::Trajectory> CollisionAvoidance::send_reactive_turn(double angle, time::Time now,
+                                                                            const std::string& why)
+{
+  const double t = trajectory::turn_duration(angle, options_.omega_max, 1.0);
+  status_ = why;
+  auto sent = send_new(Chain({Segment::turn(pose_, angle)}), now, t, Mode::kReactive);
+  if (sent) {
+    reactive_turn_id_ = sent->id;
+    // Its predicted duration plus the acceleration phases and some slack.
+    reactive_turn_until_ = now + time::Duration(static_cast<int64_t>((t + 1.0) * 1e6));
+  }
+  return sent;
+}
+
+std::optional<std::optional<trajectory::Trajectory>> CollisionAvoidance::reactive_turn_under_way(time::Time now)
+{
+  if (!reactive_turn_id_) return std::nullopt;
+  const bool current = active_ && active_->id == *reactive_turn_id_ && !stopped_ && mode_ == Mode::kReactive;
+  const bool ours = has_feedback_ && feedback_.trajectory_id == *reactive_turn_id_;
+  const bool ended = ours && (feedback_.state == 2 || feedback_.state == 0);
+  if (!current || ended || now >= reactive_turn_until_) {
+    reactive_turn_id_.reset();
+    return std::nullopt;
+  }
+  if (time::to_seconds(now - last_sent_) >= options_.refresh_period) {
+    last_sent_ = now;
+    return active_;  // keep-alive
+  }
+  return std::optional<trajectory::Trajectory>();
+}
+
 std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time now)
 {
   ++fallbacks_;
+  // A turn decided below runs to its end: deciding anew 100 ms later, the stop-and-wait at
+  // the top cut every "turn toward the target" short, and the robot stood facing away from
+  // its target for minutes (a demo stuck in a doorway), turning and stopping every 1.5 s.
+  if (auto turning = reactive_turn_under_way(now)) return *turning;
   const Pose2 target = goals().empty() ? pose_ : goals().front();
   const Eigen::Vector2d d = pose_.inverse() * target.translation();
   const double bearing = std::atan2(d.y(), d.x());
@@ -170,11 +205,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time no
   }
   const ReactiveDecision dec = decide(readings, bearing, standing, options_.reactive);
   if (dec.action == ReactiveDecision::Action::kTurn) {
-    Chain c({Segment::turn(pose_, dec.heading)});
-    status_ = "reactive fallback: turning toward free space";
-    const double t = trajectory::turn_duration(dec.heading, options_.omega_max, 1.0);
-    if (active_ && !stopped_ && mode_ == Mode::kReactive && time::to_seconds(now - last_sent_) < t) return std::nullopt;
-    return send_new(std::move(c), now, t, Mode::kReactive);
+    return send_reactive_turn(dec.heading, now, "reactive fallback: turning toward free space");
   }
   // Free space leads away from the target (back down the corridor the robot came along):
   // driving there only loses ground. Face the target's side and plan again from there.
@@ -182,11 +213,9 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time no
       std::fabs(geometry::normalize_angle(dec.heading - bearing)) > M_PI_2) {
     if (!standing) return stop(now, Mode::kReactive, "reactive fallback: free space leads away, stopping");
     const double turn = std::clamp(bearing, -options_.reactive.max_turn, options_.reactive.max_turn);
-    const double t = trajectory::turn_duration(turn, options_.omega_max, 1.0);
-    if (active_ && !stopped_ && mode_ == Mode::kReactive && time::to_seconds(now - last_sent_) < t) return std::nullopt;
-    status_ = "reactive fallback: turning toward the target";
-    blocked_since_ = now;
-    return send_new(Chain({Segment::turn(pose_, turn)}), now, t, Mode::kReactive);
+    // Once it faces that side, wait again before the next try (people there may walk on).
+    blocked_since_ = now + time::Duration(static_cast<int64_t>(trajectory::turn_duration(turn, options_.omega_max, 1.0) * 1e6));
+    return send_reactive_turn(turn, now, "reactive fallback: turning toward the target");
   }
   if (dec.action == ReactiveDecision::Action::kDrive) {
     const double L = options_.reactive.step_length;

@@ -147,7 +147,7 @@ void TourRunnerNode::publish_targets(int64_t utime)
 {
   target_list_t t;
   t.utime = utime;
-  t.goal_id = 0;
+  t.goal_id = sequencer_->goal_id();
   for (const auto& p : sequencer_->upcoming())
     t.odom_from_target.push_back(msg::to_msg(geometry::Pose2(odom_from_map_ * p, 0.0)));
   t.ntargets = static_cast<int32_t>(t.odom_from_target.size());

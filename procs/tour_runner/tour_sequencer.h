@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <vector>
 
 #include "geometry/pose2.h"
@@ -29,6 +30,10 @@ class TourSequencer
   bool done() const { return next_ >= targets_.size(); }
   size_t reached() const { return next_; }
   size_t size() const { return targets_.size(); }
+  // Names the goal the upcoming targets serve (target_list_t.goal_id): the 1-based index of the
+  // target being driven to. Re-sent lists for the same target carry the same id, so collision
+  // avoidance can tell a new goal from the same targets re-expressed.
+  int64_t goal_id() const { return static_cast<int64_t>(next_) + 1; }
 
  private:
   const SequencerOptions options_;

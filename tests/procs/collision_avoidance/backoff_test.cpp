@@ -64,6 +64,48 @@ TEST(BackOff, TurnsAwayThenDrivesOut)
   EXPECT_NEAR(out->chain[0].start().theta(), away, 0.3);
 }
 
+// The tour runner re-sends its targets at 2 Hz with the goal id of the target it drives to:
+// the same goal re-expressed is no new goal, and the back-off under way runs on (cut short
+// by every re-send, the demo's back-offs lasted 0.2 s).
+TEST(BackOff, RunsOnWhileTheSameGoalIsReSent)
+{
+  CaOptions o;
+  CollisionAvoidance ca(o);
+  Targets t;
+  t.goal_id = 12;
+  t.poses = {Pose2(3.0, 0.0, 0.0)};
+  ca.set_targets(t);
+  int64_t us = 1'000'000;
+  std::optional<trajectory::Trajectory> turn;
+  for (int i = 0; i < 40 && !(turn && !turn->chain.empty()); ++i) {
+    us += 100'000;
+    ca.on_odometry(time::from_utime(us), Pose2(), 0.0);
+    ca.on_scan(time::from_utime(us), person_front_left(), 8.0);
+    ca.on_drive_feedback({0, 0, 0.0, 0.0, 0.0});
+    turn = ca.update(time::from_utime(us));
+  }
+  ASSERT_TRUE(turn && !turn->chain.empty()) << ca.status();
+  ASSERT_NE(ca.status().find("backing off"), std::string::npos) << ca.status();
+  for (int i = 0; i < 10; ++i) {
+    us += 100'000;
+    ca.set_targets(t);
+    ca.on_odometry(time::from_utime(us), Pose2(), 0.0);
+    ca.on_scan(time::from_utime(us), person_front_left(), 8.0);
+    ca.on_drive_feedback({turn->id, 1, 0.1, 0.0, 0.0});
+    const auto out = ca.update(time::from_utime(us));
+    if (out) EXPECT_EQ(out->id, turn->id) << "at " << i << ": " << ca.status();
+  }
+  // A new goal ends it: the robot decides anew toward it.
+  us += 100'000;
+  Targets next = t;
+  next.goal_id = 13;
+  ca.set_targets(next);
+  ca.on_odometry(time::from_utime(us), Pose2(), 0.0);
+  ca.on_drive_feedback({turn->id, 1, 0.1, 0.0, 0.0});
+  const auto out = ca.update(time::from_utime(us));
+  ASSERT_TRUE(out);
+  EXPECT_NE(out->id, turn->id);
+}
 
 // Someone stands 0.6 m ahead across the whole view (a person waiting at their personal space in
 // a narrow passage): nothing is within the clearance, so the plain back-off never starts, and
@@ -103,6 +145,64 @@ TEST(BackOff, YieldsAfterNoHeadway)
   }
   EXPECT_TRUE(yielded) << ca.status();
   EXPECT_FALSE(yielded_early);
+}
+
+// The target lies behind the robot, at a wall it saw before it turned around (out of
+// view now, in the local map's memory); ahead is free. No chain reaches the target, and free
+// space leads away from it, so the fallback turns toward the target's side. That turn runs to
+// its end: the stop-and-wait that starts every fallback cut it short 100 ms after it was sent,
+// every 1.5 s, and a demo robot stood for minutes in a doorway facing away from its target.
+TEST(BackOff, ATurnTowardTheTargetRunsToItsEnd)
+{
+  CaOptions o;
+  CollisionAvoidance ca(o);
+  std::vector<PolarReading> wall, open;
+  for (int i = -90; i <= 90; ++i) {
+    const double b = i * M_PI / 180.0;
+    wall.push_back({b, std::min(8.0, 2.2 / std::max(0.05, std::cos(b)))});
+    open.push_back({b, 8.0});
+  }
+  int64_t us = 1'000'000;
+  const Pose2 facing_wall(0.0, 0.0, M_PI);
+  for (int i = 0; i < 30; ++i, us += 100'000) {  // long enough for the wall to count as static
+    ca.on_odometry(time::from_utime(us), facing_wall, 0.0);
+    ca.on_scan(time::from_utime(us), wall, 8.0);
+  }
+  Targets t;
+  t.goal_id = 7;
+  t.poses = {Pose2(-2.0, 0.0, M_PI)};  // 0.2 m from the wall: no chain keeps the clearance there
+  ca.set_targets(t);
+  std::optional<trajectory::Trajectory> turn;
+  for (int i = 0; i < 40 && !turn; ++i, us += 100'000) {
+    ca.on_odometry(time::from_utime(us), Pose2(), 0.0);
+    ca.on_scan(time::from_utime(us), open, 8.0);
+    ca.on_drive_feedback({0, 0, 0.0, 0.0, 0.0});
+    if (i % 5 == 0) ca.set_targets(t);  // re-sent at 2 Hz, as the tour runner does
+    const auto out = ca.update(time::from_utime(us));
+    if (out && !out->chain.empty() && ca.status() == "reactive fallback: turning toward the target") turn = out;
+  }
+  ASSERT_TRUE(turn) << ca.status();
+  ASSERT_EQ(turn->chain[0].kind(), trajectory::Kind::kTurn);
+  const double angle = turn->chain[0].turn_angle();
+  EXPECT_NEAR(std::fabs(angle), o.reactive.max_turn, 1e-9);
+  // While the lld turns (2 s for 90 degrees at 1 rad/s with its ramps), nothing replaces the
+  // turn: no stop, no other manoeuvre; keep-alives of the same trajectory only.
+  for (int i = 0; i < 15; ++i) {
+    us += 100'000;
+    const double progress = std::min(1.0, (i + 1) / 16.0);
+    ca.on_odometry(time::from_utime(us), Pose2(0.0, 0.0, progress * angle), 0.0);
+    ca.on_scan(time::from_utime(us), open, 8.0);
+    ca.on_drive_feedback({turn->id, 1, progress * std::fabs(angle), 0.0, 0.0});
+    if (i % 5 == 0) ca.set_targets(t);
+    const auto out = ca.update(time::from_utime(us));
+    if (out) EXPECT_EQ(out->id, turn->id) << "at " << i << ": " << ca.status();
+  }
+  // Done: the robot faces the target's side and decides anew.
+  us += 100'000;
+  ca.on_odometry(time::from_utime(us), Pose2(0.0, 0.0, angle), 0.0);
+  ca.on_drive_feedback({turn->id, 2, std::fabs(angle), 0.0, 0.0});
+  ca.update(time::from_utime(us));
+  EXPECT_NE(ca.status(), "reactive fallback: turning toward the target");
 }
 
 }  // namespace
