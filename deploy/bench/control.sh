@@ -2,14 +2,17 @@
 # Closed-loop control benchmark: lld tracking and collision avoidance around the simulated
 # B21r (control_bench), plus the period jitter of the real 20 Hz loop of the `lld` executable
 # while the machine is loaded. Writes logs/bench/control.json.
-#   control.sh [--courses N] [--chains N] [--jitter-seconds S] [--out FILE]
+# The office world's tour is driven --tours times as the demo drives it (tour runner cadence,
+# people shifted 7 s per run), measuring whether the robot gets through its doors and halls.
+#   control.sh [--courses N] [--chains N] [--tours N] [--jitter-seconds S] [--out FILE]
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"
-courses=50 chains=6 jitter_s=60 out_file=
+courses=50 chains=6 tours=6 jitter_s=60 out_file=
 while [ $# -gt 0 ]; do
   case "$1" in
     --courses) courses="$2"; shift 2 ;;
+    --tours) tours="$2"; shift 2 ;;
     --chains) chains="$2"; shift 2 ;;
     --jitter-seconds) jitter_s="$2"; shift 2 ;;
     --out) out_file="$2"; shift 2 ;;
@@ -59,7 +62,8 @@ done
 # 2. Tracking and obstacle courses on the simulator (part of the load at first; it goes on
 #    alone once the jitter measurement is over).
 "$BUILD/bin/control_bench" --config-dir "$ROOT/config" --out "$tmp/sim.json" \
-  --courses "$courses" --chains "$chains" --personal-space 0.4 --oblivious-too > /dev/null &
+  --courses "$courses" --chains "$chains" --personal-space 0.4 --oblivious-too \
+  --tours "$tours" --tour-world "$ROOT/config/worlds/office.yaml" > /dev/null 2>&1 &
 bench_pid=$!
 sleep "$jitter_s"
 kill -TERM "$lld_pid"
@@ -98,10 +102,14 @@ out = {
              "the robot), so for a person the gap's closing over the last 1 and 3 s is split into the robot's "
              "and the person's part ('closed_by'), with the robot's true and commanded speed just before. "
              "Loop stalls ('loop.evidence'): every stall of the lld is matched against bare canary loops pinned "
-             "one per CPU at the same priority; see loop.evidence.verdict.",
+             "one per CPU at the same priority; see loop.evidence.verdict. Tours ('tours'): the office "
+             "world's tour as the demo drives it (targets re-sent at 2 Hz with the tour runner's goal ids, a "
+             "perfect localizer), people starting 7 s later per run; longest_stall_s is the longest time "
+             "between two targets reached.",
     "tracking": sim["tracking"],
     "obstacle_courses": sim["obstacle_courses"],
     "obstacle_courses_oblivious_people": sim.get("obstacle_courses_oblivious_people"),
+    "tours": sim.get("tours"),
     "loop": loop,
 }
 json.dump(out, open(sys.argv[3], "w"), indent=2)

@@ -23,10 +23,13 @@
 #include "lld/follower.h"
 #include "lld/lld_options.h"
 #include "sim/simulator.h"
+#include "sim/tour_planner.h"
+#include "sim/world_yaml.h"
 #include "trajectory/construct.h"
 
 #include "contact_report.h"
 #include "obstacle_course.h"
+#include "office_tour.h"
 
 using namespace rgnav;
 using trajectory::Chain;
@@ -357,13 +360,64 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
           {"contacts", contacts}};
 }
 
+// The world's tour, driven `n` times with the people starting 0, 7, 14, ... s later (so
+// that they meet the robot at other doors), each run with its own noise seed.
+nlohmann::json tours(const lld::LldOptions& lo, const collision_avoidance::CaOptions& co, const std::string& world_path,
+                     int n, uint64_t seed, int only)
+{
+  const sim::World world = sim::load_world(world_path);
+  // The demo's tour: the world's own, or the one `rgnav tour` plans for it.
+  const std::vector<Eigen::Vector2d> waypoints =
+      world.tour.empty() ? sim::plan_tour(world, sim::RobotOptions{}).waypoints : world.tour;
+  nlohmann::json runs = nlohmann::json::array();
+  int completed = 0;
+  double time_sum = 0.0, worst_stall = 0.0;
+  size_t reached = 0, targets = 0;
+  int64_t collisions = 0;
+  for (int k = 0; k < n; ++k) {
+    if (only >= 0 && k != only) continue;
+    bench::TourRunOptions o;
+    o.seed = seed + 1000 + static_cast<uint64_t>(k);
+    o.people_delay_s = 7.0 * k;
+    o.trace = getenv("CB_DEBUG") != nullptr;
+    const bench::TourRunResult r = bench::run_tour(world, waypoints, lo, co, o);
+    std::cerr << "tour " << k << ": " << r.reached << "/" << r.targets << " in " << r.time_s << " s, longest stall "
+              << r.longest_stall_s << " s at " << r.stall_at.x() << "," << r.stall_at.y() << "\n";
+    runs.push_back({{"run", k},
+                    {"people_delay_s", o.people_delay_s},
+                    {"reached", r.reached},
+                    {"targets", r.targets},
+                    {"completed", r.completed()},
+                    {"time_s", r.time_s},
+                    {"longest_stall_s", r.longest_stall_s},
+                    {"stall_at", {r.stall_at.x(), r.stall_at.y()}},
+                    {"stall_target", r.stall_target},
+                    {"collisions", r.collisions},
+                    {"fallbacks", r.fallbacks}});
+    completed += r.completed() ? 1 : 0;
+    if (r.completed()) time_sum += r.time_s;
+    worst_stall = std::max(worst_stall, r.longest_stall_s);
+    reached += r.reached;
+    targets += r.targets;
+    collisions += r.collisions;
+  }
+  return {{"world", world_path},
+          {"runs", runs},
+          {"completed", completed},
+          {"targets_reached_ratio", targets ? static_cast<double>(reached) / targets : 0.0},
+          {"mean_time_s", completed ? time_sum / completed : -1.0},
+          {"worst_stall_s", worst_stall},
+          {"collisions", collisions}};
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
 {
   CLI::App app("control_bench");
   std::string config_dir = "config", out_path;
-  int chains = 6, ncourses = 50, only = -1;
+  int chains = 6, ncourses = 50, only = -1, ntours = 0;
+  std::string tour_world = "config/worlds/office.yaml";
   double personal_space = 0.4;
   bool oblivious_too = false;
   uint64_t seed = 1;
@@ -374,6 +428,8 @@ int main(int argc, char** argv)
   app.add_option("--only", only,
                  "run only this course (debugging; CB_DEBUG=1: a trace, CB_DEBUG_NEAREST=1: the nearest obstacles)");
   app.add_option("--seed", seed);
+  app.add_option("--tours", ntours, "drive the tour world's tour this many times (people shifted 7 s each time)");
+  app.add_option("--tour-world", tour_world, "world file with a tour (default config/worlds/office.yaml)");
   app.add_option("--personal-space", personal_space,
                  "people walking toward the robot wait this far from it [m] (0: only rather than touch it)");
   app.add_flag("--oblivious-too", oblivious_too, "also run the courses with people who wait only rather than touch the robot");
@@ -403,6 +459,7 @@ int main(int argc, char** argv)
     oj["personal_space_m"] = 0.0;
     j["obstacle_courses_oblivious_people"] = oj;
   }
+  if (ntours > 0) j["tours"] = tours(lo, co.ca, tour_world, ntours, seed, only);
   j["courses"] = cj["courses"];
   j["collisions"] = cj["collisions"];
   j["reached_ratio"] = cj["reached_ratio"];

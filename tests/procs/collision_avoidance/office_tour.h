@@ -1,0 +1,52 @@
+// A whole tour through a simulated building for control_bench and the tests: the simulated
+// B21r (walking people, ray-cast LMS 2xx, drifting odometry), collision avoidance and the lld
+// follower in lock-step, fed the way the demo feeds them. The tour runner's sequencer hands
+// on the next targets when one is reached and re-sends them every 0.5 s (as tour_runner does
+// on its 2 Hz cadence, with the goal id it publishes); a perfect localizer re-expresses them
+// in the odometry frame. What it measures is whether the robot gets through the building's
+// doors and halls past the people, and how long it stood without reaching a target.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+#include "collision_avoidance/ca_options.h"
+#include "lld/lld_options.h"
+#include "sim/world.h"
+
+namespace rgnav::bench {
+
+struct TourRunOptions
+{
+  uint64_t seed = 1;              // odometry and laser noise
+  double people_delay_s = 0.0;    // added to every person's start delay (shifts where they meet the robot)
+  double time_limit_s = 1500.0;   // [s] simulated
+  double resend_period_s = 0.5;   // [s] tour_runner's cadence
+  double max_spacing_m = 1.5;     // tour_runner's densify spacing
+  double reach_radius_m = 0.35;   // tour_runner's sequencer
+  double max_speed = 0.6;         // [m/s]
+  bool trace = false;             // one line per second to stderr
+};
+
+struct TourRunResult
+{
+  size_t targets = 0;
+  size_t reached = 0;
+  double time_s = 0.0;              // simulated time at the end (tour done or time limit)
+  double longest_stall_s = 0.0;     // longest time between two targets reached
+  Eigen::Vector2d stall_at{0, 0};   // world position where that stall began
+  size_t stall_target = 0;          // index (1-based) of the target it waited for
+  int64_t collisions = 0;
+  int64_t fallbacks = 0;
+  bool completed() const { return reached == targets; }
+};
+
+// Drives `world_points` (world frame, the tour's waypoints; densified like tour_runner) from
+// the world's start pose.
+TourRunResult run_tour(const sim::World& world, const std::vector<Eigen::Vector2d>& world_points,
+                       const lld::LldOptions& lld_options, const collision_avoidance::CaOptions& ca_options,
+                       const TourRunOptions& options);
+
+}  // namespace rgnav::bench
