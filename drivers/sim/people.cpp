@@ -119,11 +119,12 @@ void People::drift_back(size_t i, const std::optional<Circle>& robot, double dt,
   if (off < 1e-12) return;
   const Vec2 aside = st.aside * (1.0 - std::min(off, kSideSpeed * p.speed * dt) / off);
   const Vec2 to = position(i, st.s) + aside;
-  // Not back in front of the robot (that would be waiting again) nor into a wall.
+  // Not back in front of the robot (that would be waiting again), nor nearer a wall than
+  // people keep (unless the path itself runs that near: then no nearer than now).
   if (robot && (to - robot->center).norm() < p.radius + robot->radius + std::max(p.personal_space, kPassMargin) + 0.3)
     return;
-  if (clearance(to, p.radius + kWallMargin + 0.1) < p.radius + kWallMargin && clearance(to, 1.0) < clearance(centre(i), 1.0))
-    return;
+  const double need = p.radius + kWallMargin;
+  if (clearance(to, need + 0.1) < need && clearance(to, 1.0) < clearance(centre(i), 1.0)) return;
   st.aside = aside;
 }
 
