@@ -6,6 +6,8 @@
 //     reached, time. People keep a personal space from the robot walking toward it
 //     (--personal-space, default 0.4 m; --oblivious-too repeats the courses with people who
 //     only avoid touching it). Targets follow the odometry drift as a localizer would.
+//   - tours (--tours N): the office world's whole tour driven as the demo drives it
+//     (office_tour.h); targets reached, time, the longest stall between two targets.
 // Loop timing of the real lld executable is measured by deploy/bench/control.sh.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -16,6 +18,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <stdexcept>
 
 #include "collision_avoidance/ca_options.h"
 #include "collision_avoidance/collision_avoidance.h"
@@ -23,7 +26,6 @@
 #include "lld/follower.h"
 #include "lld/lld_options.h"
 #include "sim/simulator.h"
-#include "sim/tour_planner.h"
 #include "sim/world_yaml.h"
 #include "trajectory/construct.h"
 
@@ -366,9 +368,8 @@ nlohmann::json tours(const lld::LldOptions& lo, const collision_avoidance::CaOpt
                      int n, uint64_t seed, int only)
 {
   const sim::World world = sim::load_world(world_path);
-  // The demo's tour: the world's own, or the one `rgnav tour` plans for it.
-  const std::vector<Eigen::Vector2d> waypoints =
-      world.tour.empty() ? sim::plan_tour(world, sim::RobotOptions{}).waypoints : world.tour;
+  const std::vector<Eigen::Vector2d> waypoints = bench::demo_tour(world);
+  if (waypoints.empty()) throw std::runtime_error(world_path + ": no tour through this world");
   nlohmann::json runs = nlohmann::json::array();
   int completed = 0;
   double time_sum = 0.0, worst_stall = 0.0;
@@ -429,7 +430,7 @@ int main(int argc, char** argv)
                  "run only this course (debugging; CB_DEBUG=1: a trace, CB_DEBUG_NEAREST=1: the nearest obstacles)");
   app.add_option("--seed", seed);
   app.add_option("--tours", ntours, "drive the tour world's tour this many times (people shifted 7 s each time)");
-  app.add_option("--tour-world", tour_world, "world file with a tour (default config/worlds/office.yaml)");
+  app.add_option("--tour-world", tour_world, "world file; its tour, or the one the demo plans (default config/worlds/office.yaml)");
   app.add_option("--personal-space", personal_space,
                  "people walking toward the robot wait this far from it [m] (0: only rather than touch it)");
   app.add_flag("--oblivious-too", oblivious_too, "also run the courses with people who wait only rather than touch the robot");

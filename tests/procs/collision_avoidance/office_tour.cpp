@@ -8,6 +8,7 @@
 #include "collision_avoidance/collision_avoidance.h"
 #include "lld/follower.h"
 #include "sim/simulator.h"
+#include "sim/tour_planner.h"
 #include "tour_runner/tour.h"
 #include "tour_runner/tour_sequencer.h"
 
@@ -45,6 +46,15 @@ std::string people_text(const sim::Simulator& sim)
 }
 
 }  // namespace
+
+std::vector<Eigen::Vector2d> demo_tour(const sim::World& world)
+{
+  if (!world.tour.empty()) return world.tour;
+  sim::TourOptions o;
+  o.margin = 0.15;  // deploy/cli/demo.sh
+  const sim::Tour tour = sim::plan_tour(world, sim::RobotOptions{}, o);
+  return tour.collision_free ? tour.waypoints : std::vector<Eigen::Vector2d>{};
+}
 
 TourRunResult run_tour(const sim::World& world_in, const std::vector<Eigen::Vector2d>& world_points,
                        const lld::LldOptions& lld_options, const collision_avoidance::CaOptions& ca_options,

@@ -43,6 +43,10 @@ struct TourRunResult
   bool completed() const { return reached == targets; }
 };
 
+// The world's tour as the demo has it: the world's own, or the one `rgnav demo` plans
+// (sim_tour with --margin 0.15, deploy/cli/demo.sh). Empty: no tour through the world.
+std::vector<Eigen::Vector2d> demo_tour(const sim::World& world);
+
 // Drives `world_points` (world frame, the tour's waypoints; densified like tour_runner) from
 // the world's start pose.
 TourRunResult run_tour(const sim::World& world, const std::vector<Eigen::Vector2d>& world_points,

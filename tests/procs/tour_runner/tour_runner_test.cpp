@@ -63,8 +63,10 @@ TEST(TourSequencer, AdvancesAndSkipsCutCorners)
   TourSequencer s({0.3, 3}, {Vector2d(1, 0), Vector2d(2, 0), Vector2d(3, 0)});
   EXPECT_FALSE(s.update(geometry::Pose2(0, 0, 0)));
   EXPECT_EQ(s.upcoming().size(), 3u);
+  EXPECT_EQ(s.goal_id(), 1);
   EXPECT_TRUE(s.update(geometry::Pose2(1.9, 0.1, 0)));  // target 2 reached first: 1 skipped
   EXPECT_EQ(s.reached(), 2u);
+  EXPECT_EQ(s.goal_id(), 3);  // a new goal: collision avoidance decides anew
   EXPECT_TRUE(s.update(geometry::Pose2(3, 0, 0)));
   EXPECT_TRUE(s.done());
   EXPECT_TRUE(s.upcoming().empty());
@@ -176,6 +178,7 @@ TEST(TourRunnerNode, TargetsAreInTheOdomFrameAndRunEnds)
   EXPECT_NEAR(targets.back().odom_from_target[1].x, 2.0, 1e-9);
   EXPECT_NEAR(targets.back().odom_from_target[1].y, 0.0, 1e-9);
   EXPECT_TRUE(targets.back().final_is_goal);
+  EXPECT_EQ(targets.back().goal_id, 1);  // names the target driven to (re-sends keep it)
   h.odometry(2'000'000, 1.0, 0, 0, 1);
   h.odometry(3'000'000, 2.0, 0, 0, 2);
   EXPECT_TRUE(h.node->stop_requested());
