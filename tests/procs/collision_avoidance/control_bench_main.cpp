@@ -43,20 +43,6 @@ namespace {
 constexpr double kPeriod = 0.05;
 const auto kPeriodUs = std::chrono::microseconds(50'000);
 
-sim::SimulatorOptions sim_options(uint64_t seed, bool laser)
-{
-  sim::SimulatorOptions o;
-  o.seed = seed;
-  o.laser_enabled = laser;
-  o.odometry.scale_translation = 0.01;
-  o.odometry.scale_rotation = -0.02;
-  o.odometry.bias_rotation_per_m = 0.005;
-  o.odometry.sigma_translation = 0.01;
-  o.odometry.sigma_rotation = 0.02;
-  o.odometry.sigma_rotation_per_m = 0.005;
-  return o;
-}
-
 Pose2 to_pose(const sim::Pose2& p) { return Pose2(p.x, p.y, p.theta); }
 
 // A mixed G2 chain: lines, clothoid-arc-clothoid turns both ways, a clothoid S-bend.
@@ -107,7 +93,7 @@ nlohmann::json tracking(const lld::LldOptions& lo, double v, int chains, uint64_
   for (int k = 0; k < chains; ++k) {
     sim::World world;
     world.name = "empty";
-    sim::Simulator sim(world, sim_options(seed + k, false));
+    sim::Simulator sim(world, bench::control_sim_options(seed + k, false));
     sim::TimedCommandSource cmd;
     sim.set_command_source(&cmd);
     lld::Follower f(lo.follower);
@@ -226,7 +212,7 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
       for (const auto& p : course.world.people)
         std::cerr << "person from " << p.path[0].x() << "," << p.path[0].y() << " speed " << p.speed << " delay " << p.start_delay << "\n";
     }
-    sim::Simulator sim(course.world, sim_options(seed + 100 + k, true));
+    sim::Simulator sim(course.world, bench::control_sim_options(seed + 100 + k, true));
     sim::TimedCommandSource cmd;
     sim.set_command_source(&cmd);
     lld::Follower f(lo.follower);

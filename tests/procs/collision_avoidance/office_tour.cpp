@@ -23,21 +23,6 @@ const auto kPeriodUs = std::chrono::microseconds(50'000);
 
 Pose2 to_pose(const sim::Pose2& p) { return Pose2(p.x, p.y, p.theta); }
 
-sim::SimulatorOptions simulator_options(uint64_t seed)
-{
-  // control_bench's odometry error (drift the targets must follow through the localizer).
-  sim::SimulatorOptions o;
-  o.seed = seed;
-  o.laser_enabled = true;
-  o.odometry.scale_translation = 0.01;
-  o.odometry.scale_rotation = -0.02;
-  o.odometry.bias_rotation_per_m = 0.005;
-  o.odometry.sigma_translation = 0.01;
-  o.odometry.sigma_rotation = 0.02;
-  o.odometry.sigma_rotation_per_m = 0.005;
-  return o;
-}
-
 std::string people_text(const sim::Simulator& sim)
 {
   std::string s;
@@ -46,6 +31,20 @@ std::string people_text(const sim::Simulator& sim)
 }
 
 }  // namespace
+
+sim::SimulatorOptions control_sim_options(uint64_t seed, bool laser)
+{
+  sim::SimulatorOptions o;
+  o.seed = seed;
+  o.laser_enabled = laser;
+  o.odometry.scale_translation = 0.01;
+  o.odometry.scale_rotation = -0.02;
+  o.odometry.bias_rotation_per_m = 0.005;
+  o.odometry.sigma_translation = 0.01;
+  o.odometry.sigma_rotation = 0.02;
+  o.odometry.sigma_rotation_per_m = 0.005;
+  return o;
+}
 
 std::vector<Eigen::Vector2d> demo_tour(const sim::World& world)
 {
@@ -69,7 +68,7 @@ TourRunResult run_tour(const sim::World& world_in, const std::vector<Eigen::Vect
   so.reach_radius = options.reach_radius_m;
   tour_runner::TourSequencer sequencer(so, targets);
 
-  sim::Simulator sim(world, simulator_options(options.seed));
+  sim::Simulator sim(world, control_sim_options(options.seed, true));
   sim::TimedCommandSource cmd;
   sim.set_command_source(&cmd);
   lld::Follower follower(lld_options.follower);

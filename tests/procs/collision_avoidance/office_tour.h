@@ -14,6 +14,7 @@
 
 #include "collision_avoidance/ca_options.h"
 #include "lld/lld_options.h"
+#include "sim/simulator.h"
 #include "sim/world.h"
 
 namespace rgnav::bench {
@@ -42,6 +43,10 @@ struct TourRunResult
   int64_t fallbacks = 0;
   bool completed() const { return reached == targets; }
 };
+
+// The simulator as control_bench runs it: its odometry error (systematic and random; the
+// targets must follow that drift through the localizer), the laser on or off.
+sim::SimulatorOptions control_sim_options(uint64_t seed, bool laser);
 
 // The world's tour as the demo has it: the world's own, or the one `rgnav demo` plans
 // (sim_tour with --margin 0.15, deploy/cli/demo.sh). Empty: no tour through the world.
