@@ -244,17 +244,7 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
           std::cerr << "course " << k << " collision at t=" << sim.time_s() << " " << contacts.back().dump() << "\n";
       }
       if (!out.odometry.empty()) true_v_before = out.odometry.back().true_v;
-      for (const auto& o : out.odometry) {
-        odi = {to_pose(o.odom_from_base), o.v, o.omega, time::from_utime(o.utime)};
-        have = true;
-        ca.on_odometry(odi.stamp, odi.pose, o.v);
-      }
-      for (const auto& s : out.scans) {
-        std::vector<collision_avoidance::PolarReading> r;
-        for (size_t b = 0; b < s.ranges.size(); ++b)
-          if (s.ranges[b] > s.range_min) r.push_back({s.angle_min + b * s.angle_increment, s.ranges[b]});
-        ca.on_scan(time::from_utime(s.utime), r, s.range_max);
-      }
+      if (bench::feed_collision_avoidance(out, ca, &odi)) have = true;
       const auto now = time::from_utime(sim.now_utime());
       // Targets are given in the world; the odometry drifts (turning on the spot most: 2 %
       // rotation scale error). Without a localizer an odometry-frame goal ends up in a wall

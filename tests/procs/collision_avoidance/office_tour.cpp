@@ -46,6 +46,22 @@ sim::SimulatorOptions control_sim_options(uint64_t seed, bool laser)
   return o;
 }
 
+bool feed_collision_avoidance(const sim::StepOutput& out, collision_avoidance::CollisionAvoidance& ca,
+                              lld::OdometryInput* odometry)
+{
+  for (const auto& o : out.odometry) {
+    *odometry = {to_pose(o.odom_from_base), o.v, o.omega, time::from_utime(o.utime)};
+    ca.on_odometry(odometry->stamp, odometry->pose, o.v);
+  }
+  for (const auto& s : out.scans) {
+    std::vector<collision_avoidance::PolarReading> readings;
+    for (size_t b = 0; b < s.ranges.size(); ++b)
+      if (s.ranges[b] > s.range_min) readings.push_back({s.angle_min + b * s.angle_increment, s.ranges[b]});
+    ca.on_scan(time::from_utime(s.utime), readings, s.range_max);
+  }
+  return !out.odometry.empty();
+}
+
 std::vector<Eigen::Vector2d> demo_tour(const sim::World& world)
 {
   if (!world.tour.empty()) return world.tour;
@@ -84,17 +100,7 @@ TourRunResult run_tour(const sim::World& world_in, const std::vector<Eigen::Vect
   const int steps = static_cast<int>(options.time_limit_s / kPeriod);
   for (int i = 0; i < steps && !sequencer.done(); ++i) {
     const auto out = sim.step(kPeriodUs);
-    for (const auto& o : out.odometry) {
-      odi = {to_pose(o.odom_from_base), o.v, o.omega, time::from_utime(o.utime)};
-      have = true;
-      ca.on_odometry(odi.stamp, odi.pose, o.v);
-    }
-    for (const auto& s : out.scans) {
-      std::vector<collision_avoidance::PolarReading> readings;
-      for (size_t b = 0; b < s.ranges.size(); ++b)
-        if (s.ranges[b] > s.range_min) readings.push_back({s.angle_min + b * s.angle_increment, s.ranges[b]});
-      ca.on_scan(time::from_utime(s.utime), readings, s.range_max);
-    }
+    if (feed_collision_avoidance(out, ca, &odi)) have = true;
     if (!have) continue;
     const auto now = time::from_utime(sim.now_utime());
     const Pose2 world_from_base = to_pose(sim.truth());

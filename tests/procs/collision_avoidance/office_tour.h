@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "collision_avoidance/ca_options.h"
+#include "collision_avoidance/collision_avoidance.h"
+#include "lld/follower.h"
 #include "lld/lld_options.h"
 #include "sim/simulator.h"
 #include "sim/world.h"
@@ -47,6 +49,11 @@ struct TourRunResult
 // The simulator as control_bench runs it: its odometry error (systematic and random; the
 // targets must follow that drift through the localizer), the laser on or off.
 sim::SimulatorOptions control_sim_options(uint64_t seed, bool laser);
+
+// Hands one simulator step's odometry and scans to collision avoidance, as its node does;
+// `odometry` becomes the newest odometry sample. Returns whether there was one.
+bool feed_collision_avoidance(const sim::StepOutput& out, collision_avoidance::CollisionAvoidance& ca,
+                              lld::OdometryInput* odometry);
 
 // The world's tour as the demo has it: the world's own, or the one `rgnav demo` plans
 // (sim_tour with --margin 0.15, deploy/cli/demo.sh). Empty: no tour through the world.
