@@ -63,7 +63,7 @@ done
 #    alone once the jitter measurement is over).
 "$BUILD/bin/control_bench" --config-dir "$ROOT/config" --out "$tmp/sim.json" \
   --courses "$courses" --chains "$chains" --personal-space 0.4 --oblivious-too \
-  --tours "$tours" --tour-world "$ROOT/config/worlds/office.yaml" > /dev/null 2>&1 &
+  --tours "$tours" --tour-world "$ROOT/config/worlds/office.yaml" > /dev/null &
 bench_pid=$!
 sleep "$jitter_s"
 kill -TERM "$lld_pid"

@@ -208,7 +208,7 @@ World parse_world_yaml(const config::Config& cfg, const std::string& base_dir)
     p.height = c.number("height", p.height, 0.5, 2.5);
     p.start_delay = c.number("start_delay", p.start_delay, 0.0, 1e7);
     p.personal_space = c.number("personal_space", p.personal_space, 0.0, 5.0);
-    if (c.has("patience")) p.patience = c.number("patience", 5.0, 0.0, 1e9);
+    if (c.has("patience")) p.patience = c.required_number("patience", 0.0, 1e9);  // absent: waits for good
     world.people.push_back(p);
   }
   std::set<std::string> region_names;

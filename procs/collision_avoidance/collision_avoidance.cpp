@@ -30,14 +30,16 @@ void CollisionAvoidance::set_targets(const Targets& targets)
   // The same goal re-sent (the tour runner does at 2 Hz, re-expressed with the newest
   // localization) with its targets where they were is no reason to plan anew: a replan every
   // 0.5 s flipped the robot between detours left and right of an obstacle, turning on the
-  // spot for 15 s. Targets that moved (a loop closure) or a new goal are.
+  // spot for 15 s. Targets that moved (a loop closure) or a new goal are. Compared with the
+  // list last taken as a change, so that small moves do not add up unnoticed.
   bool same = has_targets_ && targets.goal_id != 0 && targets.goal_id == targets_.goal_id &&
-              targets.final_is_goal == targets_.final_is_goal && targets.poses.size() == targets_.poses.size();
+              targets.final_is_goal == targets_.final_is_goal && targets.poses.size() == changed_to_.size();
   for (size_t i = 0; same && i < targets.poses.size(); ++i)
-    same = (targets.poses[i].translation() - targets_.poses[i].translation()).norm() <= options_.resend_tolerance;
+    same = (targets.poses[i].translation() - changed_to_[i].translation()).norm() <= options_.resend_tolerance;
   targets_ = targets;
   has_targets_ = !targets.poses.empty();
   if (same) return;
+  changed_to_ = targets.poses;
   targets_changed_ = true;
   next_ = 0;
 }

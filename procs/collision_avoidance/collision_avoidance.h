@@ -134,6 +134,7 @@ class CollisionAvoidance
   Targets targets_;
   bool has_targets_ = false;
   bool targets_changed_ = false;
+  std::vector<Pose2> changed_to_;  // the targets when they last counted as changed
   size_t next_ = 0;
   bool has_pose_ = false;
   Pose2 pose_;

@@ -107,6 +107,41 @@ TEST(BackOff, RunsOnWhileTheSameGoalIsReSent)
   EXPECT_NE(out->id, turn->id);
 }
 
+// The same goal re-sent with its target where it was keeps the chain under way (a replan at
+// every 2 Hz re-send flipped detours); once the re-sent target has moved more than
+// resend_tolerance from where it was when last planned for, in small steps too, it is planned
+// for anew.
+TEST(Targets, TheSameGoalReSentIsNoReplanUntilItHasMoved)
+{
+  CaOptions o;
+  CollisionAvoidance ca(o);
+  std::vector<PolarReading> open;
+  for (int i = -90; i <= 90; ++i) open.push_back({i * M_PI / 180.0, 8.0});
+  Targets t;
+  t.goal_id = 4;
+  t.poses = {Pose2(3.0, 0.0, 0.0)};
+  ca.set_targets(t);
+  int64_t us = 1'000'000;
+  auto step = [&](int64_t id) {
+    us += 100'000;
+    ca.on_odometry(time::from_utime(us), Pose2(), 0.0);
+    ca.on_scan(time::from_utime(us), open, 8.0);
+    ca.on_drive_feedback({id, id ? 1 : 0, 0.0, 0.0, 0.0});
+    return ca.update(time::from_utime(us));
+  };
+  const auto first = step(0);
+  ASSERT_TRUE(first && !first->chain.empty()) << ca.status();
+  // Re-sent in steps of 0.06 m: the first two (0.06, 0.12 m) are the same targets.
+  int64_t replanned_at = -1;
+  for (int k = 1; k <= 4 && replanned_at < 0; ++k) {
+    t.poses = {Pose2(3.0, 0.06 * k, 0.0)};
+    ca.set_targets(t);
+    const auto out = step(first->id);
+    if (out && out->id != first->id) replanned_at = k;
+  }
+  EXPECT_EQ(replanned_at, 3) << "0.18 m from the target planned for is beyond resend_tolerance " << o.resend_tolerance;
+}
+
 // Someone stands 0.6 m ahead across the whole view (a person waiting at their personal space in
 // a narrow passage): nothing is within the clearance, so the plain back-off never starts, and
 // the person will not walk on while the robot stands there. Without headway for yield_after,

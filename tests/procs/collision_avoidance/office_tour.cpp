@@ -1,8 +1,10 @@
 #include "office_tour.h"
 
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "collision_avoidance/collision_avoidance.h"
@@ -25,9 +27,10 @@ Pose2 to_pose(const sim::Pose2& p) { return Pose2(p.x, p.y, p.theta); }
 
 std::string people_text(const sim::Simulator& sim)
 {
-  std::string s;
-  for (const auto& d : sim.people()) s += " " + std::to_string(d.center.x()).substr(0, 5) + "," + std::to_string(d.center.y()).substr(0, 5);
-  return s;
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2);
+  for (const auto& d : sim.people()) s << " " << d.center.x() << "," << d.center.y();
+  return s.str();
 }
 
 }  // namespace
