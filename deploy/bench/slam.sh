@@ -17,6 +17,8 @@
 # live demo's situation (config registration.moving_points). Relations metric
 # (Kuemmerle et al.) and ATE against the true poses. Each world is capped at SLAM_SIM_MAX_S
 # simulated seconds (default 1800); a capped run says so ("capped": true) in the JSON.
+# odometry_trans_scale (every log and world): the scale on config odometry_noise's translation
+# sigmas that the scan mapper learned from its matches (1: the odometry is as good as configured).
 # Every world is also driven with each simulator seed of SLAM_SIM_SEEDS (default 1,2,3; "" for
 # none): sim_seeds.<map> holds the figures per seed, their mean and the worst, since one seed's
 # odometry noise can hide or provoke an error (sim.<map> stays the config's seed).

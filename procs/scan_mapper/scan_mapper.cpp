@@ -101,13 +101,28 @@ MapperUpdate ScanMapper::add_scan(const Scan& scan)
   return process(scan, *odom);
 }
 
-Eigen::Matrix3d ScanMapper::odometry_covariance(const Pose2& inc) const
+Eigen::Matrix3d ScanMapper::odometry_covariance(const Pose2& inc, double trans_scale) const
 {
   const auto& n = options_.odometry_noise;
   const double d = translation_norm(inc);
-  const double st = n.min_trans_m + n.trans_per_m * d;
+  const double st = trans_scale * (n.min_trans_m + n.trans_per_m * d);
   const double sr = n.min_rot_rad + n.rot_per_rad * std::fabs(inc.theta()) + n.rot_per_m * d;
   return Eigen::Vector3d(st * st, st * st, sr * sr).asDiagonal();
+}
+
+void ScanMapper::learn_odometry_noise(const Pose2& increment, const Eigen::Vector3d& innovation,
+                                      const Eigen::Matrix3d& R)
+{
+  const auto& n = options_.odometry_noise;
+  if (n.adapt_window_scans <= 0) return;
+  const Eigen::Matrix2d S = odometry_covariance(increment, 1.0).topLeftCorner<2, 2>() + R.topLeftCorner<2, 2>();
+  const Eigen::Vector2d e = innovation.head<2>();
+  // Per axis; one wrong match counts as a 5-sigma one at most.
+  const double k = std::min(0.5 * e.dot(S.ldlt().solve(e)), 25.0);
+  ++innovation_samples_;
+  innovation_ratio_ +=
+      (k - innovation_ratio_) / static_cast<double>(std::min<int64_t>(innovation_samples_, n.adapt_window_scans));
+  stats_.odometry_trans_scale = std::sqrt(std::clamp(innovation_ratio_, 1.0, n.adapt_max_scale * n.adapt_max_scale));
 }
 
 MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
@@ -139,7 +154,7 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
   node.scan = scan;
   prepare_points(&node);
   const Eigen::Matrix3d Q = relocalize ? Eigen::Matrix3d(Eigen::Vector3d(1.0, 1.0, 0.5).asDiagonal())
-                                       : odometry_covariance(u);
+                                       : odometry_covariance(u, stats_.odometry_trans_scale);
   const Pose2 guess = prev.map_from_base * u;
 
   Pose2 fused = u;
@@ -161,6 +176,11 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
     fused = pose_from_vector(to_vector(u) + K * innov);
     P = (Eigen::Matrix3d::Identity() - K) * Q;
     P = 0.5 * (P + P.transpose());
+    // Where the fit holds both translation directions, its difference from odometry measures
+    // odometry's translation error.
+    const double weak_limit = options_.icp.degenerate_min_points;
+    if (!relocalize && (weak_limit <= 0.0 || icp.weakest_translation_points >= weak_limit))
+      learn_odometry_noise(u, innov, R);
     up.matched = true;
     ++stats_.matched;
     break;
@@ -265,7 +285,10 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
         held->covariance(2, 2) = kUnmeasuredHeadingVariance;
         held->fit_covariance = held->covariance;
       }
-      if (held->ok && held->inlier_ratio + options_.turn_min_inlier_gain > r.inlier_ratio) {
+      const bool few_gained = held->inlier_ratio + options_.turn_min_inlier_gain > r.inlier_ratio;
+      const bool less_precise =
+          options_.turn_max_rms_ratio > 0.0 && r.surface_rms_m > options_.turn_max_rms_ratio * held->surface_rms_m;
+      if (held->ok && (few_gained || less_precise)) {
         // The scan does not hold the turn: the held fit stands in for it (once).
         if (!held_used) accepted.push_back(*held);
         held_used = true;

@@ -108,6 +108,7 @@ struct MapperStats
   int64_t loop_ambiguous = 0;        // loop searches whose best fit had a near-equal rival elsewhere
   int64_t moving_points = 0;  // points left out of local registration as seen through
   int64_t turns_held = 0;     // fits whose turn the scan did not hold: odometry's heading kept
+  double odometry_trans_scale = 1.0;  // learned scale on the translation sigmas (OdometryNoise::adapt_*)
 };
 
 // Everything needed to resume: nodes and graph edges.
@@ -162,7 +163,11 @@ class ScanMapper
   void prepare_points(ScanNode* node) const;
   // The node's surface normals, oriented toward its laser.
   void compute_normals(ScanNode* node) const;
-  Eigen::Matrix3d odometry_covariance(const Pose2& increment) const;
+  // With the translation sigmas scaled by trans_scale.
+  Eigen::Matrix3d odometry_covariance(const Pose2& increment, double trans_scale) const;
+  // Updates the learned translation noise scale from a fused match's innovation (the
+  // increments' difference, in the previous node's frame) and its covariance R.
+  void learn_odometry_noise(const Pose2& increment, const Eigen::Vector3d& innovation, const Eigen::Matrix3d& R);
   // Registers the scan's points (base frame) against the local map from guess: the acceptable
   // fits, best first (the fit from guess and, when it was poor, a correlative search's); none if
   // registration fails. A fit turned from guess by more than turn_check_sigmas x
@@ -188,6 +193,8 @@ class ScanMapper
   PoseGraph graph_;
   MapperStats stats_;
   bool relocalize_next_ = false;
+  double innovation_ratio_ = 1.0;  // running mean normalised translation innovation (per axis) ...
+  int64_t innovation_samples_ = 0;  // ... of this many matches (a plain mean until the window is full)
   int since_loop_try_ = 0;
   std::map<int, Submap> submaps_;   // by anchor node; small LRU
   std::list<int> submap_lru_;

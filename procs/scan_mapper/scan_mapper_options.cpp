@@ -33,6 +33,7 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   o.max_innovation_chi2 = reg.number("max_innovation_chi2", o.max_innovation_chi2, 0.1, 1e9);
   o.turn_check_sigmas = reg.number("turn_check_sigmas", o.turn_check_sigmas, 0.0, 100.0);
   o.turn_min_inlier_gain = reg.number("turn_min_inlier_gain", o.turn_min_inlier_gain, 0.0, 1.0);
+  o.turn_max_rms_ratio = reg.number("turn_max_rms_ratio", o.turn_max_rms_ratio, 0.0, 100.0);
   const auto icp = reg.section("icp");
   o.icp.max_iterations = static_cast<int>(icp.integer("max_iterations", o.icp.max_iterations, 1, 500));
   o.icp.initial_max_distance_m = icp.number("initial_max_distance_m", o.icp.initial_max_distance_m, 0.01, 5.0);
@@ -61,6 +62,10 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   o.odometry_noise.rot_per_m = odo.number("rot_per_m", o.odometry_noise.rot_per_m, 0.0, 10.0);
   o.odometry_noise.min_trans_m = odo.number("min_trans_m", o.odometry_noise.min_trans_m, 1e-6, 10.0);
   o.odometry_noise.min_rot_rad = odo.number("min_rot_deg", o.odometry_noise.min_rot_rad / kDeg, 1e-4, 180.0) * kDeg;
+  const auto adapt = odo.section("adapt");
+  o.odometry_noise.adapt_window_scans =
+      static_cast<int>(adapt.integer("window_scans", o.odometry_noise.adapt_window_scans, 0, 100000));
+  o.odometry_noise.adapt_max_scale = adapt.number("max_scale", o.odometry_noise.adapt_max_scale, 1.0, 100.0);
 
   const auto lc = c.section("loop_closure");
   auto& l = o.loop;

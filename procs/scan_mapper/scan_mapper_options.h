@@ -21,6 +21,18 @@ struct OdometryNoise
   double rot_per_m = 0.05;         // [rad/m]
   double min_trans_m = 0.01;       // floor
   double min_rot_rad = 0.01;       // floor
+  // The translation sigmas above describe good odometry; a robot's own is learned from the scan
+  // matches: the mean normalised translation innovation of well-constrained matches (expected 1
+  // per axis for a consistent filter) over about adapt_window_scans scans scales the
+  // translation variance, between 1 and max_scale^2. A too loose model lets loop closures slide
+  // the graph along a hallway: such a closure holds only across the hallway, and where the two
+  // passes' hallway directions differ by a fraction of a degree, the optimiser eases that
+  // tension by sliding the loosely held chain along the axis (office_c, 0.01 m + 0.1 m/m for an
+  // odometry good to ~1 %: 0.1-0.9 m per closure, 8 m over a 40 m drive that odometry alone got
+  // within 0.4 m). A too tight model trusts a poor odometry over the scans (Intel: learned 2.3).
+  // Not persisted: after a restart it is learned again. 0: off.
+  int adapt_window_scans = 0;
+  double adapt_max_scale = 4.0;
 };
 
 struct LoopClosureOptions
@@ -92,8 +104,13 @@ struct ScanMapperOptions
   // from its door is an arc that fits any heading; turning it to where the local map's arc ends
   // gains a few inliers, and the Hessian, held by the jambs, claimed 0.25 deg for fits 15-20 deg
   // off (issue 6: office_c). 0: off.
+  // Such a turned fit must also fit the surfaces about as precisely as odometry's heading does:
+  // surface rms at most turn_max_rms_ratio x the held fit's. A turn bought with inliers at the
+  // 10 cm scale fits the arc at twice the range noise (office_c: 20 deg turns passed the inlier
+  // test with 0.022 m against 0.010 m at odometry's heading). 0: off.
   double turn_check_sigmas = 3.0;
   double turn_min_inlier_gain = 0.05;
+  double turn_max_rms_ratio = 1.25;
   OdometryNoise odometry_noise;
   LoopClosureOptions loop;
   OptimizerOptions optimizer;

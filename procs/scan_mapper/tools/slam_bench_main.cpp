@@ -91,6 +91,7 @@ nlohmann::json evaluate_real(const RealLog& spec, sm::ScanMapperOptions options,
   j["correlative_retries"] = r.stats.correlative_retries;
   j["match_rejected"] = r.stats.match_rejected;
   j["turns_held"] = r.stats.turns_held;
+  j["odometry_trans_scale"] = r.stats.odometry_trans_scale;
   j["map_png"] = maps_dir + "/" + spec.name + "/map.png";
   if (!log.reference.empty()) {
     std::map<int64_t, const sm::ScanEstimate*> by_id;
@@ -181,6 +182,7 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["loop_ambiguous"] = r.stats.loop_ambiguous;
   j["correlative_retries"] = r.stats.correlative_retries;
   j["turns_held"] = r.stats.turns_held;
+  j["odometry_trans_scale"] = r.stats.odometry_trans_scale;
   j["loop_attempts"] = r.stats.loop_attempts;
   return j;
 }
