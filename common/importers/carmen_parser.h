@@ -18,9 +18,9 @@ struct CarmenOptions
   // reference record (for logs whose poses come from a SLAM solution, laser/corrected/).
   bool flaser_pose_is_reference = false;
   // FLASER/RLASER beams span the 180 deg field of view inclusive of both ends (increment
-  // fov / (n - 1)) whatever n is. CARMEN's own convention for 180 beams is [-90, 89] deg at
-  // 1 deg; logs decoded from MRPT rawlogs (CObservation2DRangeScan: aperture / (n - 1)) need
-  // this, or every scan is bent by 0.56 % in angle and straight corridors come out curved.
+  // fov / (n - 1)) whatever n is, as MRPT's CObservation2DRangeScan spreads them. CARMEN's own
+  // convention for 180 beams is [-90, 89] deg at 1 deg, and logs that came from CARMEN keep it
+  // even when decoded from an MRPT rawlog (the raw Intel log: deploy/bench/slam.sh).
   bool fov_inclusive = false;
 };
 

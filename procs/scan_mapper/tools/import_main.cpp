@@ -49,7 +49,7 @@ int main(int argc, char** argv)
   app.add_option("--reference-from", reference_from, "corrected CARMEN log of the same run: reference poses for identical scans")
       ->check(CLI::ExistingFile);
   app.add_flag("--fov-inclusive", fov_inclusive,
-               "FLASER beams span 180 deg inclusive (fov/(n-1)), as in logs decoded from MRPT rawlogs");
+               "FLASER beams span 180 deg inclusive (fov/(n-1)), as MRPT spreads them (not for logs that came from CARMEN)");
   app.add_option("--max-range", max_range, "range limit for FLASER/RLASER (no limit in the format) [m]");
   app.add_option("--odometry-delay-scans", odometry_delay_scans,
                  "the log pairs each scan with the odometry of N scans later: give each scan the earlier pose")
