@@ -47,7 +47,8 @@ imp="$BUILD/bin/rgnav_import"
 # Intel and CSAIL logs give scans in the robot frame; the Mines rover's URG sits 145 mm ahead
 # of the axle (BreezySLAM examples/mines.py, offset_mm=145). The raw Intel log's timestamps
 # are synthetic (194 s for every 5th scan of a 2691 s recording, Hess et al. 2016 Table V):
-# "#2691" also reports the realtime factor on the recording's true duration.
+# "#2691": realtime_factor is taken on the recording's true duration (as Hess et al. take
+# theirs); realtime_factor_synthetic_timestamps on the 194 s the timestamps span.
 "$BUILD/bin/rgnav_slam_bench" --config "$ROOT/config/scan_mapper.yaml" --json "$OUT/slam.json" --maps "$WORK" \
   --real "intel=$WORK/intel.lcmlog@0,0,0#2691" \
   --real "mines_exp1=$WORK/mines_exp1.lcmlog@0.145,0,0" \

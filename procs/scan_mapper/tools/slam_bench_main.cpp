@@ -72,12 +72,16 @@ nlohmann::json evaluate_real(const RealLog& spec, sm::ScanMapperOptions options,
   const double consistency = sm::write_outputs(r, options, maps_dir + "/" + spec.name);
   nlohmann::json j;
   j["consistency"] = consistency;
-  j["realtime_factor"] = r.cpu_seconds > 0 ? r.log_seconds / r.cpu_seconds : 0.0;
+  const auto factor = [&](double seconds) { return r.cpu_seconds > 0 ? seconds / r.cpu_seconds : 0.0; };
   j["log_seconds"] = r.log_seconds;
   if (spec.true_seconds > 0) {
-    // The log's timestamps are synthetic: also the factor on the recording's real duration.
+    // The log's timestamps are synthetic: its duration is the recording's, which the headline
+    // factor is taken on (as Hess et al. take theirs); the timestamps' own factor beside it.
+    j["realtime_factor"] = factor(spec.true_seconds);
     j["true_log_seconds"] = spec.true_seconds;
-    j["realtime_factor_true_duration"] = r.cpu_seconds > 0 ? spec.true_seconds / r.cpu_seconds : 0.0;
+    j["realtime_factor_synthetic_timestamps"] = factor(r.log_seconds);
+  } else {
+    j["realtime_factor"] = factor(r.log_seconds);
   }
   j["cpu_seconds"] = r.cpu_seconds;
   j["scans"] = r.stats.scans_in;
