@@ -42,10 +42,13 @@ Eigen::Vector3d difference(const Pose2& a, const Pose2& b)
 
 }  // namespace
 
-ScanMapper::ScanMapper(ScanMapperOptions options) : options_(std::move(options)) {}
+ScanMapper::ScanMapper(ScanMapperOptions options)
+    : options_(std::move(options)), odometry_scale_(options_.odometry_scale)
+{
+}
 
 ScanMapper::ScanMapper(ScanMapperOptions options, MapperState state)
-    : options_(std::move(options)), nodes_(std::move(state.nodes))
+    : options_(std::move(options)), nodes_(std::move(state.nodes)), odometry_scale_(options_.odometry_scale)
 {
   for (auto& n : nodes_) {
     if (n.normals.size() != n.points.size()) compute_normals(&n);
@@ -146,10 +149,12 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
   const ScanNode& prev = nodes_.back();
   const bool relocalize = relocalize_next_;
   // After a restart the odometry origin is unknown: assume the robot is where it was.
-  const Pose2 u = relocalize ? Pose2{} : between(prev.odom_from_base, odom);
-  if (!relocalize && translation_norm(u) < options_.min_travel_m && std::fabs(u.theta()) < options_.min_rotation_rad)
+  const Pose2 raw = relocalize ? Pose2{} : between(prev.odom_from_base, odom);
+  if (!relocalize && translation_norm(raw) < options_.min_travel_m && std::fabs(raw.theta()) < options_.min_rotation_rad)
     return up;
   relocalize_next_ = false;
+  // Odometry's increment with its learned scale error taken out.
+  const Pose2 u = odometry_scale_.corrected(raw);
 
   node.scan = scan;
   prepare_points(&node);
@@ -179,8 +184,11 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
     // Where the fit holds both translation directions, its difference from odometry measures
     // odometry's translation error.
     const double weak_limit = options_.icp.degenerate_min_points;
-    if (!relocalize && (weak_limit <= 0.0 || icp.weakest_translation_points >= weak_limit))
+    if (!relocalize && (weak_limit <= 0.0 || icp.weakest_translation_points >= weak_limit)) {
       learn_odometry_noise(u, innov, R);
+      odometry_scale_.add(raw, z);
+      stats_.odometry_scale = odometry_scale_.scale();
+    }
     up.matched = true;
     ++stats_.matched;
     break;

@@ -13,6 +13,9 @@
 //     and ICP runs again from its fit (moving_points.h).
 //  3. Kalman fusion: the scan-matched increment and the odometry increment are combined
 //     weighted by their covariances (in a corridor ICP is weak along it; odometry is not).
+//     Odometry's translation scale is learned from the matches that hold both directions
+//     and taken out of every increment first, so that a hallway's axis, left to odometry, is
+//     not a percent long (odometry_scale.h).
 //  4. Global correlation: every few scans, an older scan whose relative uncertainty (read off
 //     the graph, loop_search.h) allows it to be here is searched with the correlative matcher
 //     over a window of that uncertainty (a submap around it) and verified with ICP (enough
@@ -47,6 +50,7 @@
 #include "scan_mapper/correlative_matcher.h"
 #include "scan_mapper/loop_search.h"
 #include "scan_mapper/odometry_buffer.h"
+#include "scan_mapper/odometry_scale.h"
 #include "scan_mapper/point_map.h"
 #include "scan_mapper/pose_graph.h"
 #include "scan_mapper/scan_mapper_options.h"
@@ -109,6 +113,7 @@ struct MapperStats
   int64_t moving_points = 0;  // points left out of local registration as seen through
   int64_t turns_held = 0;     // fits whose turn the scan did not hold: odometry's heading kept
   double odometry_trans_scale = 1.0;  // learned scale on the translation sigmas (OdometryNoise::adapt_*)
+  double odometry_scale = 1.0;        // learned odometry translation scale (true / odometry; odometry_scale.h)
 };
 
 // Everything needed to resume: nodes and graph edges.
@@ -195,6 +200,7 @@ class ScanMapper
   bool relocalize_next_ = false;
   double innovation_ratio_ = 1.0;  // running mean normalised translation innovation (per axis) ...
   int64_t innovation_samples_ = 0;  // ... of this many matches (a plain mean until the window is full)
+  OdometryScale odometry_scale_;    // learned from the same matches; not persisted (learned again)
   int since_loop_try_ = 0;
   std::map<int, Submap> submaps_;   // by anchor node; small LRU
   std::list<int> submap_lru_;

@@ -66,6 +66,11 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   o.odometry_noise.adapt_window_scans =
       static_cast<int>(adapt.integer("window_scans", o.odometry_noise.adapt_window_scans, 0, 100000));
   o.odometry_noise.adapt_max_scale = adapt.number("max_scale", o.odometry_noise.adapt_max_scale, 1.0, 100.0);
+  const auto scale = c.section("odometry_scale");
+  o.odometry_scale.window_m = scale.number("window_m", o.odometry_scale.window_m, 0.0, 1e6);
+  o.odometry_scale.min_step_m = scale.number("min_step_m", o.odometry_scale.min_step_m, 0.0, 10.0);
+  o.odometry_scale.min_travel_m = scale.number("min_travel_m", o.odometry_scale.min_travel_m, 0.0, 1e6);
+  o.odometry_scale.max_error = scale.number("max_error", o.odometry_scale.max_error, 0.0, 0.5);
 
   const auto lc = c.section("loop_closure");
   auto& l = o.loop;

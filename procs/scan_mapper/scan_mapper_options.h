@@ -7,6 +7,7 @@
 #include "scan_mapper/icp.h"
 #include "scan_mapper/loop_search.h"
 #include "scan_mapper/moving_points.h"
+#include "scan_mapper/odometry_scale.h"
 #include "scan_mapper/pose_math.h"
 #include "scan_mapper/pose_graph.h"
 #include "scan_mapper/scan_points.h"
@@ -112,6 +113,7 @@ struct ScanMapperOptions
   double turn_min_inlier_gain = 0.05;
   double turn_max_rms_ratio = 1.25;
   OdometryNoise odometry_noise;
+  OdometryScaleOptions odometry_scale;
   LoopClosureOptions loop;
   OptimizerOptions optimizer;
   double republish_min_change_m = 0.005;     // corrections smaller than this are not republished

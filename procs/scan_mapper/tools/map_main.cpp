@@ -42,6 +42,7 @@ int main(int argc, char** argv)
               << " matches rejected, " << s.turns_held << " turns held to odometry's heading, " << s.no_odometry
               << " without odometry, " << s.moving_points << " points left out as moving\n"
               << "odometry translation noise: " << s.odometry_trans_scale << " x the configured (learned)\n"
+              << "odometry translation scale: " << s.odometry_scale << " (learned: true / odometry)\n"
               << "loop closures: " << s.loop_closures << " of " << s.loop_attempts << " attempts ("
               << s.loop_rejected_after_opt << " removed as inconsistent)\n"
               << "processing: " << r.cpu_seconds << " s CPU (" << r.wall_seconds << " s wall) for " << r.log_seconds
