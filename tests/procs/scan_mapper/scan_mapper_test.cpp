@@ -76,6 +76,15 @@ sm::ScanMapperOptions test_options()
   return o;
 }
 
+// Every scan of the run with its odometry, in order.
+void feed(const SyntheticRun& run, sm::ScanMapper* mapper)
+{
+  for (size_t i = 0; i < run.scans.size(); ++i) {
+    mapper->add_odometry({run.scans[i].utime, run.odom[i]});
+    mapper->add_scan(run.scans[i]);
+  }
+}
+
 }  // namespace
 
 TEST(OdometryBuffer, InterpolatesAndHoldsBriefly)
@@ -176,10 +185,7 @@ TEST(ScanMapper, HallwayClosuresDoNotDragTheEstimateAlongTheHallway)
   o.icp.degenerate_variance_m2 = 1.0;
   o.loop.degenerate_variance_m2 = 100.0;
   sm::ScanMapper mapper(o);
-  for (size_t i = 0; i < run.scans.size(); ++i) {
-    mapper.add_odometry({run.scans[i].utime, run.odom[i]});
-    mapper.add_scan(run.scans[i]);
-  }
+  feed(run, &mapper);
   EXPECT_GT(mapper.stats().loop_closures, 0);
   // Back at the start, 48 m of 2 %-long odometry later. With 1 m^2 along the axis (the
   // sequential matches' figure) the 30-odd closures, each to a stretch a little off, added up to
@@ -217,10 +223,7 @@ TEST(ScanMapper, LearnsOdometrysScaleWhereTheScansHoldItAndUsesItAlongAHallway)
     o.icp.degenerate_variance_m2 = 1.0;
     o.odometry_scale.window_m = window_m;
     sm::ScanMapper mapper(o);
-    for (size_t i = 0; i < run.scans.size(); ++i) {
-      mapper.add_odometry({run.scans[i].utime, run.odom[i]});
-      mapper.add_scan(run.scans[i]);
-    }
+    feed(run, &mapper);
     return std::make_pair(mapper.nodes().back().map_from_base.x() - run.truth.back().x(), mapper.stats().odometry_scale);
   };
   const auto [learned_error, learned_scale] = run_with(50.0);
@@ -310,10 +313,7 @@ TEST(ScanMapper, LearnsHowNoisyTheOdometryIs)
     o.odometry_noise.min_trans_m = 0.002;
     o.odometry_noise.adapt_window_scans = window;
     sm::ScanMapper mapper(o);
-    for (size_t i = 0; i < run.scans.size(); ++i) {
-      mapper.add_odometry({run.scans[i].utime, run.odom[i]});
-      mapper.add_scan(run.scans[i]);
-    }
+    feed(run, &mapper);
     return mapper.stats().odometry_trans_scale;
   };
   const double clean = learned_scale(0.0, 100);
@@ -329,10 +329,7 @@ TEST(ScanMapper, IsDeterministic)
   const SyntheticRun run = make_run();
   auto once = [&] {
     sm::ScanMapper mapper(test_options());
-    for (size_t i = 0; i < run.scans.size(); ++i) {
-      mapper.add_odometry({run.scans[i].utime, run.odom[i]});
-      mapper.add_scan(run.scans[i]);
-    }
+    feed(run, &mapper);
     return mapper.nodes();
   };
   const auto a = once(), b = once();
