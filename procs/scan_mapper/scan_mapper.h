@@ -86,12 +86,16 @@ struct OptimizationJob
   // How much the optimisation raised the cost of the edges that were there before the
   // closures (what the closures force the rest of the map to give).
   double strain = 0.0;
-  void run()
-  {
-    const double before = graph.edges_cost(0, first_closure, options);
-    summary = graph.optimize(options);
-    strain = graph.edges_cost(0, first_closure, options) - before;
-  }
+  // Earlier closures the optimised graph disagrees with by more than this chi2 are taken out
+  // and the graph optimised again (0: none), once the new closures hold: each within
+  // prune_chi2, and the strain on the edges that stay at most max_strain per new closure. A
+  // false closure adopted while the graph could not yet tell otherwise stays for good, held
+  // down only by the robust kernel, and counts in the strain of every true closure that
+  // contradicts it (strain then also leaves it out).
+  double prune_chi2 = 0.0;
+  double max_strain = 0.0;
+  std::vector<std::pair<int, int>> pruned;  // (from, to) of the closures taken out
+  void run();
 };
 
 struct MapperUpdate
@@ -110,6 +114,7 @@ struct MapperStats
           match_rejected = 0, loop_attempts = 0, loop_closures = 0, loop_rejected_after_opt = 0, invalid = 0;
   int64_t loop_rejected_strain = 0;  // of loop_rejected_after_opt: for the strain on the graph
   int64_t loop_ambiguous = 0;        // loop searches whose best fit had a near-equal rival elsewhere
+  int64_t loop_pruned = 0;           // closures taken out later, when the graph disagreed (OptimizationJob)
   int64_t moving_points = 0;  // points left out of local registration as seen through
   int64_t turns_held = 0;     // fits whose turn the scan did not hold: odometry's heading kept
   double odometry_trans_scale = 1.0;  // learned scale on the translation sigmas (OdometryNoise::adapt_*)

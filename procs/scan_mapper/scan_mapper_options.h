@@ -69,6 +69,9 @@ struct LoopClosureOptions
   int confirm_within_nodes = 30;
   ConsistencyTolerance consistency;
   double max_residual_chi2 = 25.0; // after optimising, a closure this inconsistent is removed
+  // ... and so is an earlier closure, once new closures that hold show it this inconsistent
+  // (OptimizationJob::prune_chi2).
+  bool prune_earlier_closures = false;
   // ... and so is a batch that strains the rest of the graph: the cost of the edges it did
   // not add rises by more than this per closure (chi2). A look-alike place (a row of equal
   // rooms) fits its closure edge perfectly; it is the odometry chain that must bend for it.

@@ -92,6 +92,7 @@ nlohmann::json evaluate_real(const RealLog& spec, sm::ScanMapperOptions options,
   j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
   j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
   j["loop_ambiguous"] = r.stats.loop_ambiguous;
+  j["loop_pruned"] = r.stats.loop_pruned;
   j["correlative_retries"] = r.stats.correlative_retries;
   j["match_rejected"] = r.stats.match_rejected;
   j["turns_held"] = r.stats.turns_held;
@@ -185,6 +186,7 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
   j["loop_closures_wrong"] = r.loop_closures_wrong;
   j["loop_ambiguous"] = r.stats.loop_ambiguous;
+  j["loop_pruned"] = r.stats.loop_pruned;
   j["correlative_retries"] = r.stats.correlative_retries;
   j["turns_held"] = r.stats.turns_held;
   j["odometry_trans_scale"] = r.stats.odometry_trans_scale;

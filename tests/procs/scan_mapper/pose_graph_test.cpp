@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <random>
+#include <tuple>
 
 #include "scan_mapper/pose_graph.h"
 #include "scan_mapper/scan_mapper.h"
@@ -132,4 +134,33 @@ TEST(OptimizationJob, StrainSeparatesATrueClosureFromALookAlike)
   EXPECT_LT(true_residual, loop.max_residual_chi2);
   EXPECT_LT(false_residual, loop.max_residual_chi2);  // the residual test alone lets it in
   EXPECT_GT(false_strain, 3.0 * loop.max_strain_chi2);
+}
+
+// A false closure adopted earlier (here: node 15 on node 35, 5 m apart) stays in the graph,
+// held down by the robust kernel but still pulling. Once a true closure comes that holds, the
+// job takes the false one out and optimises again.
+TEST(OptimizationJob, TakesOutAnEarlierClosureThatNoLongerHolds)
+{
+  const sm::LoopClosureOptions loop;
+  auto run = [&](double prune_chi2) {
+    auto b = build(false, true);
+    b.graph.optimize({});  // as adopted back then
+    sm::OptimizationJob job;
+    job.graph = b.graph;
+    job.first_closure = job.graph.edges().size();
+    const int last = static_cast<int>(b.truth.size()) - 1;
+    job.graph.add_edge({0, last, sm::between(b.truth[0], b.truth[last]), info(0.01, 0.005), true});
+    job.prune_chi2 = prune_chi2;
+    job.max_strain = loop.max_strain_chi2;
+    job.run();
+    return std::make_tuple(job.pruned, max_error(job.graph, b.truth), job.graph.edges().size() - job.first_closure);
+  };
+  const auto [pruned, pruned_error, batch] = run(loop.max_residual_chi2);
+  const auto [kept, kept_error, kept_batch] = run(0.0);
+  ASSERT_EQ(pruned.size(), 1u);
+  EXPECT_EQ(pruned[0], std::make_pair(15, 35));
+  EXPECT_EQ(batch, 1u);  // the new closure stays, and first_closure still points at it
+  EXPECT_TRUE(kept.empty());
+  EXPECT_LT(pruned_error, 0.5 * kept_error);
+  std::cout << "max error with the false closure taken out " << pruned_error << " m, kept " << kept_error << " m\n";
 }
