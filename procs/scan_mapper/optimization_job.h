@@ -24,16 +24,24 @@ struct OptimizationJob
   // How much the optimisation raised the cost of the edges that were there before the
   // closures (what the closures force the rest of the map to give).
   double strain = 0.0;
-  // Earlier closures the optimised graph disagrees with by more than this chi2 are taken out
-  // and the graph optimised again (0: none), once the new closures hold: each within
-  // prune_chi2, and the strain on the edges that stay at most max_strain per new closure. A
-  // false closure adopted while the graph could not yet tell otherwise stays for good, held
-  // down only by the robust kernel, and counts in the strain of every true closure that
-  // contradicts it (strain then also leaves it out).
-  double prune_chi2 = 0.0;
-  double max_strain = 0.0;
-  std::vector<std::pair<int, int>> pruned;  // (from, to) of the closures taken out
+  // Acceptance (LoopClosureOptions): a new closure the optimised graph still disagrees with
+  // (chi2 above max_residual_chi2), or a batch the rest of the graph has to bend for (strain
+  // above max_strain_chi2 per closure), is most likely false: a look-alike place.
+  double max_residual_chi2 = 25.0;
+  double max_strain_chi2 = 100.0;
+  // With prune_earlier, a batch that holds also takes out earlier closures the optimised graph
+  // disagrees with by more than max_residual_chi2, and the graph is optimised again. A false
+  // closure adopted while the graph could not yet tell otherwise stays for good, held down
+  // only by the robust kernel, and counts in the strain of every true closure that
+  // contradicts it (the strain that decides leaves it out).
+  bool prune_earlier = false;
+  enum class Verdict { kHolds, kInconsistent, kStrained };
+  Verdict verdict = Verdict::kHolds;        // of the new closures, set by run()
+  std::vector<std::pair<int, int>> pruned;  // (from, to) of the earlier closures taken out
   void run();
+
+ private:
+  Verdict judge() const;
 };
 
 }  // namespace rgnav::scan_mapper

@@ -47,11 +47,15 @@ int PoseGraph::add_node(const Pose2& p)
 
 void PoseGraph::add_edge(const PoseGraphEdge& e) { edges_.push_back(e); }
 
+double PoseGraph::edge_chi2(const PoseGraphEdge& e) const
+{
+  const Eigen::Vector3d r = edge_error(pose(e.from), pose(e.to), e.from_from_to);
+  return r.dot(e.information * r);
+}
+
 double PoseGraph::edge_weight(const PoseGraphEdge& e, const OptimizerOptions& o) const
 {
-  if (!e.robust) return 1.0;
-  const Eigen::Vector3d r = edge_error(pose(e.from), pose(e.to), e.from_from_to);
-  return robust_weight(r.dot(e.information * r), o);
+  return e.robust ? robust_weight(edge_chi2(e), o) : 1.0;
 }
 
 double PoseGraph::edges_cost(size_t first, size_t last, const OptimizerOptions& o) const
@@ -59,8 +63,7 @@ double PoseGraph::edges_cost(size_t first, size_t last, const OptimizerOptions& 
   double c = 0.0;
   for (size_t k = first; k < last && k < edges_.size(); ++k) {
     const auto& e = edges_[k];
-    const Eigen::Vector3d r = edge_error(pose(e.from), pose(e.to), e.from_from_to);
-    const double s = r.dot(e.information * r);
+    const double s = edge_chi2(e);
     c += e.robust ? robust_rho(s, o) : s;
   }
   return c;

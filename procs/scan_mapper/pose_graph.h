@@ -49,6 +49,8 @@ class PoseGraph
   void set_pose(int i, const Pose2& p) { poses_[static_cast<size_t>(i)] = p; }
   const std::vector<Pose2>& poses() const { return poses_; }
   const std::vector<PoseGraphEdge>& edges() const { return edges_; }
+  // The edge's squared Mahalanobis error at the current poses.
+  double edge_chi2(const PoseGraphEdge& e) const;
   // Robust weight an edge currently gets (1 for non-robust edges).
   double edge_weight(const PoseGraphEdge& e, const OptimizerOptions& options) const;
   // The optimiser's cost of edges [first, last) at the current poses (chi2, robust edges

@@ -520,8 +520,9 @@ bool ScanMapper::try_loop_closure(int n, MapperUpdate* up)
   job.anchor = accept.back().anchor;
   job.closure_covariance = accept.back().covariance;
   job.options = options_.optimizer;
-  job.prune_chi2 = l.prune_earlier_closures ? l.max_residual_chi2 : 0.0;
-  job.max_strain = l.max_strain_chi2;
+  job.max_residual_chi2 = l.max_residual_chi2;
+  job.max_strain_chi2 = l.max_strain_chi2;
+  job.prune_earlier = l.prune_earlier_closures;
   if (deferred_) {
     job_ = std::move(job);
     in_flight_ = true;
@@ -550,24 +551,12 @@ MapperUpdate ScanMapper::apply_optimization(const OptimizationJob& done)
 
 bool ScanMapper::adopt(const OptimizationJob& job, MapperUpdate* up, int unpublished)
 {
-  const auto& l = options_.loop;
   const PoseGraph& g = job.graph;
-  // A new closure the rest of the graph still disagrees with, or one the rest of the graph
-  // has to bend for, is most likely false (a look-alike place): the whole batch is dropped
-  // and the estimate stays as it was.
-  const size_t batch = g.edges().size() - job.first_closure;
-  if (job.strain > l.max_strain_chi2 * static_cast<double>(batch)) {
+  // A batch the job judged false is dropped whole and the estimate stays as it was.
+  if (job.verdict != OptimizationJob::Verdict::kHolds) {
     ++stats_.loop_rejected_after_opt;
-    ++stats_.loop_rejected_strain;
+    if (job.verdict == OptimizationJob::Verdict::kStrained) ++stats_.loop_rejected_strain;
     return false;
-  }
-  for (size_t k = job.first_closure; k < g.edges().size(); ++k) {
-    const auto& e = g.edges()[k];
-    const Eigen::Vector3d r = edge_error(g.pose(e.from), g.pose(e.to), e.from_from_to);
-    if (r.dot(e.information * r) > l.max_residual_chi2) {
-      ++stats_.loop_rejected_after_opt;
-      return false;
-    }
   }
   // Earlier closures the job took out (in deferred mode graph_ has gained sequential edges
   // since, never closures: only adopt() adds those).

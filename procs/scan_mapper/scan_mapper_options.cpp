@@ -104,8 +104,8 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   l.min_inlier_ratio = lc.number("min_inlier_ratio", l.min_inlier_ratio, 0.0, 1.0);
   l.max_rms_m = lc.number("max_rms_m", l.max_rms_m, 0.001, 1.0);
   l.max_residual_chi2 = lc.number("max_residual_chi2", l.max_residual_chi2, 0.1, 1e9);
-  l.prune_earlier_closures = lc.boolean("prune_earlier_closures", l.prune_earlier_closures);
   l.max_strain_chi2 = lc.number("max_strain_chi2", l.max_strain_chi2, 0.1, 1e9);
+  l.prune_earlier_closures = lc.boolean("prune_earlier_closures", l.prune_earlier_closures);
   l.covariance_scale = lc.number("covariance_scale", l.covariance_scale, 1.0, 1e6);
   l.degenerate_variance_m2 = lc.number("degenerate_variance_m2", l.degenerate_variance_m2, 1e-4, 1e6);
   l.point_spacing_m = lc.number("point_spacing_m", l.point_spacing_m, 0.0, 1.0);

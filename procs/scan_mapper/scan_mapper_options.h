@@ -69,13 +69,13 @@ struct LoopClosureOptions
   int confirm_within_nodes = 30;
   ConsistencyTolerance consistency;
   double max_residual_chi2 = 25.0; // after optimising, a closure this inconsistent is removed
-  // ... and so is an earlier closure, once new closures that hold show it this inconsistent
-  // (OptimizationJob::prune_chi2).
-  bool prune_earlier_closures = false;
   // ... and so is a batch that strains the rest of the graph: the cost of the edges it did
   // not add rises by more than this per closure (chi2). A look-alike place (a row of equal
   // rooms) fits its closure edge perfectly; it is the odometry chain that must bend for it.
   double max_strain_chi2 = 100.0;
+  // A batch that holds also takes out earlier closures the optimised graph disagrees with by
+  // more than max_residual_chi2 (OptimizationJob::prune_earlier).
+  bool prune_earlier_closures = false;
   double covariance_scale = 4.0;   // loop edges are trusted less than sequential ones
   // Variance [m^2] (before covariance_scale) a loop closure's match gets along a direction held
   // by fewer than icp.degenerate_min_points surface points. Larger than the sequential matches'

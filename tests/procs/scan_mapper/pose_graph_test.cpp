@@ -142,7 +142,7 @@ TEST(OptimizationJob, StrainSeparatesATrueClosureFromALookAlike)
 TEST(OptimizationJob, TakesOutAnEarlierClosureThatNoLongerHolds)
 {
   const sm::LoopClosureOptions loop;
-  auto run = [&](double prune_chi2) {
+  auto run = [&](bool prune_earlier) {
     auto b = build(false, true);
     b.graph.optimize({});  // as adopted back then
     sm::OptimizationJob job;
@@ -150,13 +150,18 @@ TEST(OptimizationJob, TakesOutAnEarlierClosureThatNoLongerHolds)
     job.first_closure = job.graph.edges().size();
     const int last = static_cast<int>(b.truth.size()) - 1;
     job.graph.add_edge({0, last, sm::between(b.truth[0], b.truth[last]), info(0.01, 0.005), true});
-    job.prune_chi2 = prune_chi2;
-    job.max_strain = loop.max_strain_chi2;
+    job.max_residual_chi2 = loop.max_residual_chi2;
+    job.max_strain_chi2 = loop.max_strain_chi2;
+    job.prune_earlier = prune_earlier;
     job.run();
-    return std::make_tuple(job.pruned, max_error(job.graph, b.truth), job.graph.edges().size() - job.first_closure);
+    return std::make_tuple(job.pruned, max_error(job.graph, b.truth), job.graph.edges().size() - job.first_closure,
+                           job.verdict);
   };
-  const auto [pruned, pruned_error, batch] = run(loop.max_residual_chi2);
-  const auto [kept, kept_error, kept_batch] = run(0.0);
+  const auto [pruned, pruned_error, batch, verdict] = run(true);
+  const auto [kept, kept_error, kept_batch, kept_verdict] = run(false);
+  EXPECT_EQ(verdict, sm::OptimizationJob::Verdict::kHolds);
+  // Without pruning the false closure's resistance counts as strain: the true closure is refused.
+  EXPECT_EQ(kept_verdict, sm::OptimizationJob::Verdict::kStrained);
   ASSERT_EQ(pruned.size(), 1u);
   EXPECT_EQ(pruned[0], std::make_pair(15, 35));
   EXPECT_EQ(batch, 1u);  // the new closure stays, and first_closure still points at it
