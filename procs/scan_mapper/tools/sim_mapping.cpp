@@ -143,6 +143,10 @@ SimMappingResult run_sim_mapping(const std::string& world_path, const sim::Simul
     if (!e.robust) continue;   // robust edges are the loop closures (scan_mapper.cpp)
     const Pose2 truth_rel = between(truth_at_node[static_cast<size_t>(e.from)], truth_at_node[static_cast<size_t>(e.to)]);
     if ((truth_rel.translation() - e.from_from_to.translation()).norm() > 0.1) ++res.loop_closures_wrong;
+    // Off by what its own information says matters (a hallway closure is free along the axis).
+    const Eigen::Vector3d r = edge_error(truth_at_node[static_cast<size_t>(e.from)], truth_at_node[static_cast<size_t>(e.to)],
+                                         e.from_from_to);
+    if (r.dot(e.information * r) > mapper_options.loop.max_residual_chi2) ++res.loop_closures_inconsistent;
   }
   return res;
 }

@@ -43,6 +43,9 @@ struct SimMappingResult
   // Loop-closure edges of the final graph whose measured relative pose is more than 0.1 m off
   // the true one (false closures: a look-alike place, a hallway's doors at regular spacing).
   int loop_closures_wrong = 0;
+  // Those of them whose error at the true poses, weighed by the edge's own information, is
+  // above loop.max_residual_chi2 (a hallway closure off along the axis costs little).
+  int loop_closures_inconsistent = 0;
   std::vector<ScanNode> nodes;
   std::vector<Pose2> truth;          // true pose at each node's scan
 };

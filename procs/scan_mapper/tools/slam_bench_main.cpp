@@ -185,6 +185,7 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
   j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
   j["loop_closures_wrong"] = r.loop_closures_wrong;
+  j["loop_closures_inconsistent"] = r.loop_closures_inconsistent;
   j["loop_ambiguous"] = r.stats.loop_ambiguous;
   j["loop_pruned"] = r.stats.loop_pruned;
   j["correlative_retries"] = r.stats.correlative_retries;
