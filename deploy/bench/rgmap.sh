@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # ./rgnav bench rgmap: evaluation of RG maps (dissertation 6.1, Table 6.1) built by the offline
 # pipeline (scan mapper + gateway detector + RG kernel, rgnav_rgmap_offline's code) with the
-# configs of config/. Writes logs/bench/rgmap.json; maps and pictures under logs/bench/rgmap/<name>/.
+# configs of config/. Writes logs/bench/rgmap.json; maps and pictures under logs/bench/rgmap/<name>/
+# (with truth_pairs.txt: the true pose and the scan mapper's final estimate at every accepted scan).
 #
 # worlds.<name> — simulated tour (lock-step simulator, config/sim.yaml odometry error and laser,
 #   one lap of a closed tour entering every reachable labelled room; walking people left out, the

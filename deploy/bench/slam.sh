@@ -3,8 +3,10 @@
 # (Intel with raw odometry + reference poses from the corrected Intel log, Mines exp1/exp2,
 # MIT CSAIL) with one parameter set (config/scan_mapper.yaml). Writes logs/bench/slam.json and
 # maps/trajectories under logs/bench/slam/<log>/ (with reference_pairs.txt: reference and
-# estimate at every scan with a reference pose; sim_<map>/truth_pairs.txt: truth and estimate
-# at every accepted scan). Scans the mapper did not accept are registered between their
+# estimate at every scan with a reference pose; sim_<map>/truth_pairs.txt: truth, final and
+# online estimate (when the scan was added) at every accepted scan, and whether it closed a
+# loop; sim_<map>/closures.txt: every loop closure of the final graph, its error at the true
+# poses and the chi2 of that error). Scans the mapper did not accept are registered between their
 # accepted neighbours for the reference comparison (offline_mapping.cpp).
 # Simulated part (sim.*, exact ground truth): the lock-step simulator (drivers/sim, odometry
 # error and laser of config/sim.yaml) drives two laps of a closed tour through six IPA building

@@ -468,6 +468,15 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
   h.anchor = anchor;
   h.anchor_from_node = icp.map_from_scan;
   h.covariance = l.covariance_scale * rot3(-h.anchor_from_node.theta()) * icp.covariance * rot3(-h.anchor_from_node.theta()).transpose();
+  if (icp.weakest_translation_points < options_.icp.degenerate_min_points) {
+    // The fit does not hold its weakest direction (a hallway's axis; scan_mapper_options.h).
+    if (l.degenerate_keeps_graph_axis) {
+      const Eigen::Vector2d& v = icp.weakest_direction;
+      const Eigen::Vector2d t = icp.map_from_scan.translation() - v.dot(icp.map_from_scan.translation() - guess.translation()) * v;
+      h.anchor_from_node = Pose2(t.x(), t.y(), icp.map_from_scan.theta());
+    }
+    h.covariance *= l.degenerate_covariance_scale;
+  }
   // Where the graph already knows the relative pose well, a match that agrees with it needs
   // no second witness.
   h.direct = false;

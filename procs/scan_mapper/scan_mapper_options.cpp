@@ -108,6 +108,8 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   l.prune_earlier_closures = lc.boolean("prune_earlier_closures", l.prune_earlier_closures);
   l.covariance_scale = lc.number("covariance_scale", l.covariance_scale, 1.0, 1e6);
   l.degenerate_variance_m2 = lc.number("degenerate_variance_m2", l.degenerate_variance_m2, 1e-4, 1e6);
+  l.degenerate_keeps_graph_axis = lc.boolean("degenerate_keeps_graph_axis", l.degenerate_keeps_graph_axis);
+  l.degenerate_covariance_scale = lc.number("degenerate_covariance_scale", l.degenerate_covariance_scale, 1.0, 1e6);
   l.point_spacing_m = lc.number("point_spacing_m", l.point_spacing_m, 0.0, 1.0);
   const auto lcor = lc.section("correlative");
   l.correlative.resolution_m = lcor.number("resolution_m", l.correlative.resolution_m, 0.01, 0.5);

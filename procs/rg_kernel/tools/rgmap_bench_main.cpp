@@ -58,6 +58,21 @@ void print_gateway_diagnosis(const rp::WorldScore& score, const rp::GroundTruth&
                 << score.gateway_found_positions[k].y() << ")\n";
 }
 
+// The estimate next to the truth at every accepted scan (the format of the SLAM bench's
+// truth_pairs.txt), to look into where the scan mapper's errors arise on a tour.
+void write_truth_pairs(const rp::SimRgMapRun& run, const std::string& path)
+{
+  std::ofstream pairs(path);
+  pairs << "# scan_id utime_us true_x true_y true_theta est_x est_y est_theta\n";
+  for (size_t k = 0; k < run.run.nodes.size() && k < run.truth_at_node.size(); ++k) {
+    const auto& n = run.run.nodes[k];
+    const auto& t = run.truth_at_node[k];
+    pairs << n.scan.scan_id << ' ' << n.scan.utime << ' ' << t.x() << ' ' << t.y() << ' ' << t.theta() << ' '
+          << n.map_from_base.x() << ' ' << n.map_from_base.y() << ' ' << n.map_from_base.theta() << '\n';
+  }
+  if (!pairs) throw std::runtime_error("cannot write " + path);
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -123,6 +138,7 @@ int main(int argc, char** argv)
             w["poses"] = on_truth ? "true" : "scan_mapper";
             const std::string dir = out_dir + "/" + name + (on_truth ? "/true_poses" : "");
             rp::write_run_outputs(run.run, loaded.options, dir);
+            write_truth_pairs(run, dir + "/truth_pairs.txt");
             w["pictures"] = {dir + "/rgmap.svg", dir + "/rgmap.png"};
             j[section][name] = w;
             if (diagnose) {

@@ -1,5 +1,7 @@
 #include "sim_mapping.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <ctime>
 #include <stdexcept>
 
@@ -117,7 +119,9 @@ SimMappingResult run_sim_mapping(const std::string& world_path, const sim::Simul
         if (!t) throw std::runtime_error("no ground truth at a scan");
         truth_at_node.push_back(*t);
         odom_at_node.push_back(mapper.nodes().back().odom_from_base);
+        res.online.push_back(mapper.nodes().back().map_from_base);
       }
+      if (up.loop_closed) res.loop_closed_at.push_back(static_cast<int>(mapper.nodes().size()) - 1);
     }
     for (; oi < out.odometry.size(); ++oi)
       mapper.add_odometry({out.odometry[oi].utime, to_pose(out.odometry[oi].odom_from_base)});
@@ -146,7 +150,10 @@ SimMappingResult run_sim_mapping(const std::string& world_path, const sim::Simul
     // Off by what its own information says matters (a hallway closure is free along the axis).
     const Eigen::Vector3d r = edge_error(truth_at_node[static_cast<size_t>(e.from)], truth_at_node[static_cast<size_t>(e.to)],
                                          e.from_from_to);
-    if (r.dot(e.information * r) > mapper_options.loop.max_residual_chi2) ++res.loop_closures_inconsistent;
+    const double chi2 = r.dot(e.information * r);
+    if (chi2 > mapper_options.loop.max_residual_chi2) ++res.loop_closures_inconsistent;
+    const Eigen::Matrix2d cov = e.information.inverse().topLeftCorner<2, 2>();
+    res.closures.push_back({e.from, e.to, r, chi2, std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov).eigenvalues().maxCoeff())});
   }
   return res;
 }

@@ -46,8 +46,19 @@ struct SimMappingResult
   // Those of them whose error at the true poses, weighed by the edge's own information, is
   // above loop.max_residual_chi2 (a hallway closure off along the axis costs little).
   int loop_closures_inconsistent = 0;
+  // Every loop-closure edge of the final graph against the truth (closures.txt of the bench).
+  struct ClosureCheck
+  {
+    int64_t from = 0, to = 0;
+    Eigen::Vector3d error_at_truth = Eigen::Vector3d::Zero();   // edge_error at the true poses
+    double chi2_at_truth = 0.0;                                 // weighed by the edge's information
+    double sigma_max_m = 0.0;                                   // along its weakest direction
+  };
+  std::vector<ClosureCheck> closures;
   std::vector<ScanNode> nodes;
   std::vector<Pose2> truth;          // true pose at each node's scan
+  std::vector<Pose2> online;         // each node's estimate when it was added (before later closures)
+  std::vector<int> loop_closed_at;   // nodes whose scan closed a loop
 };
 
 SimMappingResult run_sim_mapping(const std::string& world_path, const sim::SimulatorOptions& sim_options,

@@ -11,6 +11,7 @@
 // to hide or provoke an error, so robustness is judged over several. --sim-people drives the
 // same tour with the world's people walking (the robot's body passes through them): moving
 // legs in the scans.
+#include <algorithm>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -153,13 +154,24 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   {
     // Estimate next to truth at every accepted scan, for looking into where errors arise.
     std::ofstream pairs(dir + "/truth_pairs.txt");
-    pairs << "# scan_id utime_us true_x true_y true_theta est_x est_y est_theta\n";
-    for (size_t k = 0; k < r.nodes.size() && k < r.truth.size(); ++k) {
+    // est: the final estimate; online: the estimate when the scan was added.
+    pairs << "# scan_id utime_us true_x true_y true_theta est_x est_y est_theta online_x online_y online_theta loop_closed\n";
+    for (size_t k = 0; k < r.nodes.size() && k < r.truth.size() && k < r.online.size(); ++k) {
       const auto& n = r.nodes[k];
+      const bool closed = std::binary_search(r.loop_closed_at.begin(), r.loop_closed_at.end(), static_cast<int>(k));
       pairs << n.scan.scan_id << ' ' << n.scan.utime << ' ' << r.truth[k].x() << ' ' << r.truth[k].y() << ' '
             << r.truth[k].theta() << ' ' << n.map_from_base.x() << ' ' << n.map_from_base.y() << ' '
-            << n.map_from_base.theta() << '\n';
+            << n.map_from_base.theta() << ' ' << r.online[k].x() << ' ' << r.online[k].y() << ' '
+            << r.online[k].theta() << ' ' << closed << '\n';
     }
+  }
+  {
+    // Every loop closure of the final graph against the truth, to find the false ones.
+    std::ofstream closures(dir + "/closures.txt");
+    closures << "# from to err_x err_y err_theta chi2_at_truth sigma_max_m (err: edge error at the true poses)\n";
+    for (const auto& c : r.closures)
+      closures << c.from << ' ' << c.to << ' ' << c.error_at_truth.x() << ' ' << c.error_at_truth.y() << ' '
+               << c.error_at_truth.z() << ' ' << c.chi2_at_truth << ' ' << c.sigma_max_m << '\n';
   }
   j["trans_mean_m"] = r.relations.trans_mean_m;
   j["trans_std_m"] = r.relations.trans_std_m;

@@ -115,6 +115,13 @@ TEST(ScanMapperOptions, LoadsAndRejectsBadValues)
   EXPECT_DOUBLE_EQ(so.loop.max_rms_m, 0.03);
   const auto hall = rgnav::config::Config::parse("scan_mapper:\n  loop_closure:\n    degenerate_variance_m2: 50\n", "test");
   EXPECT_DOUBLE_EQ(sm::load_scan_mapper_options(hall.section("scan_mapper")).loop.degenerate_variance_m2, 50.0);
+  const auto witness = rgnav::config::Config::parse(
+      "scan_mapper:\n  loop_closure:\n    degenerate_keeps_graph_axis: true\n    degenerate_covariance_scale: 16\n", "test");
+  const auto wo = sm::load_scan_mapper_options(witness.section("scan_mapper"));
+  EXPECT_TRUE(wo.loop.degenerate_keeps_graph_axis);
+  EXPECT_DOUBLE_EQ(wo.loop.degenerate_covariance_scale, 16.0);
+  const auto stronger = rgnav::config::Config::parse("scan_mapper:\n  loop_closure:\n    degenerate_covariance_scale: 0.5\n", "test");
+  EXPECT_THROW(sm::load_scan_mapper_options(stronger.section("scan_mapper")), rgnav::config::ConfigError);
   const auto blunt = rgnav::config::Config::parse("scan_mapper:\n  registration:\n    icp:\n      max_normal_angle_deg: 200\n", "test");
   EXPECT_THROW(sm::load_scan_mapper_options(blunt.section("scan_mapper")), rgnav::config::ConfigError);
   const auto scaled = rgnav::config::Config::parse("scan_mapper:\n  odometry_scale:\n    window_m: 20\n", "test");
@@ -193,6 +200,47 @@ TEST(ScanMapper, HallwayClosuresDoNotDragTheEstimateAlongTheHallway)
   const sm::Pose2 last = mapper.nodes().back().map_from_base;
   EXPECT_LT(std::fabs(last.x() - run.truth.back().x()), 1.2);
   EXPECT_LT(std::fabs(last.y() - run.truth.back().y()), 0.1);
+}
+
+TEST(ScanMapper, HallwayClosuresKeepTheGraphsAxisAndCountAsOneWitness)
+{
+  // The hallway above, driven out and back twice. A closure's fit does not hold the axis: where
+  // it ends up along it is where the search slid to. Kept from the graph, and weighed as the
+  // repeated witness it is, the closures correct across the axis and in heading only.
+  std::vector<sm::testing::Segment> world = {{{-2, -1}, {40, -1}}, {{-2, 1}, {40, 1}}, {{-2, -1}, {-2, 1}},
+                                             {{40, -1}, {40, 1}}};
+  for (const double x : {4.0, 11.0, 19.5, 26.0, 34.0}) {
+    const double side = x < 15.0 || x > 30.0 ? 1.0 : -1.0;
+    world.push_back({{x, side}, {x, side * 1.4}});
+    world.push_back({{x + 1.0, side}, {x + 1.0, side * 1.4}});
+    world.push_back({{x, side * 1.4}, {x + 1.0, side * 1.4}});
+  }
+  sm::testing::LaserModel m;
+  m.noise_m = 0.01;
+  m.max_range = 6.0;
+  const SyntheticRun run = make_run(world, {{0, 0}, {24, 0}, {0, 0}}, 2, m);
+  auto along_axis_error = [&](bool keep_axis, double scale) {
+    auto o = test_options();
+    o.icp.degenerate_min_points = 60.0;
+    o.icp.degenerate_variance_m2 = 1.0;
+    o.loop.degenerate_variance_m2 = 100.0;
+    o.loop.degenerate_keeps_graph_axis = keep_axis;
+    o.loop.degenerate_covariance_scale = scale;
+    sm::ScanMapper mapper(o);
+    feed(run, &mapper);
+    EXPECT_GT(mapper.stats().loop_closures, 0);
+    double worst = 0.0;
+    size_t j = 0;   // nodes are a subset of the scans, in order
+    for (const auto& n : mapper.nodes()) {
+      while (run.scans[j].scan_id != n.scan.scan_id) ++j;
+      worst = std::max(worst, std::fabs(n.map_from_base.x() - run.truth[j].x()));
+    }
+    return worst;
+  };
+  const double before = along_axis_error(false, 1.0);
+  const double after = along_axis_error(true, 16.0);
+  std::cout << "worst error along the hallway: " << before << " m as measured, " << after << " m axis kept\n";
+  EXPECT_LT(after, 0.5 * before);
 }
 
 TEST(ScanMapper, LearnsOdometrysScaleWhereTheScansHoldItAndUsesItAlongAHallway)
