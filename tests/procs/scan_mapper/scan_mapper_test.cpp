@@ -76,6 +76,24 @@ sm::ScanMapperOptions test_options()
   return o;
 }
 
+// A 2 m wide hallway with a few door niches, 42 m long, driven from its end 24 m out and back
+// `laps` times (a 6 m laser: most scans see the walls and a jamb or two).
+SyntheticRun hallway_out_and_back(int laps)
+{
+  std::vector<sm::testing::Segment> world = {{{-2, -1}, {40, -1}}, {{-2, 1}, {40, 1}}, {{-2, -1}, {-2, 1}},
+                                             {{40, -1}, {40, 1}}};
+  for (const double x : {4.0, 11.0, 19.5, 26.0, 34.0}) {
+    const double side = x < 15.0 || x > 30.0 ? 1.0 : -1.0;
+    world.push_back({{x, side}, {x, side * 1.4}});
+    world.push_back({{x + 1.0, side}, {x + 1.0, side * 1.4}});
+    world.push_back({{x, side * 1.4}, {x + 1.0, side * 1.4}});
+  }
+  sm::testing::LaserModel m;
+  m.noise_m = 0.01;
+  m.max_range = 6.0;
+  return make_run(world, {{0, 0}, {24, 0}, {0, 0}}, laps, m);
+}
+
 // Every scan of the run with its odometry, in order.
 void feed(const SyntheticRun& run, sm::ScanMapper* mapper)
 {
@@ -175,18 +193,7 @@ TEST(ScanMapper, HallwayClosuresDoNotDragTheEstimateAlongTheHallway)
 {
   // A 2 m wide hallway with a few door niches, driven out and back: closures on the way back
   // mostly see the walls and a jamb or two, too few points to hold the hallway's axis.
-  std::vector<sm::testing::Segment> world = {{{-2, -1}, {40, -1}}, {{-2, 1}, {40, 1}}, {{-2, -1}, {-2, 1}},
-                                             {{40, -1}, {40, 1}}};
-  for (const double x : {4.0, 11.0, 19.5, 26.0, 34.0}) {
-    const double side = x < 15.0 || x > 30.0 ? 1.0 : -1.0;
-    world.push_back({{x, side}, {x, side * 1.4}});
-    world.push_back({{x + 1.0, side}, {x + 1.0, side * 1.4}});
-    world.push_back({{x, side * 1.4}, {x + 1.0, side * 1.4}});
-  }
-  sm::testing::LaserModel m;
-  m.noise_m = 0.01;
-  m.max_range = 6.0;
-  const SyntheticRun run = make_run(world, {{0, 0}, {24, 0}, {0, 0}}, 1, m);
+  const SyntheticRun run = hallway_out_and_back(1);
   auto o = test_options();
   o.icp.degenerate_min_points = 60.0;
   o.icp.degenerate_variance_m2 = 1.0;
@@ -204,21 +211,11 @@ TEST(ScanMapper, HallwayClosuresDoNotDragTheEstimateAlongTheHallway)
 
 TEST(ScanMapper, HallwayClosuresKeepTheGraphsAxisAndCountAsOneWitness)
 {
-  // The hallway above, driven out and back twice. A closure's fit does not hold the axis: where
-  // it ends up along it is where the search slid to. Kept from the graph, and weighed as the
-  // repeated witness it is, the closures correct across the axis and in heading only.
-  std::vector<sm::testing::Segment> world = {{{-2, -1}, {40, -1}}, {{-2, 1}, {40, 1}}, {{-2, -1}, {-2, 1}},
-                                             {{40, -1}, {40, 1}}};
-  for (const double x : {4.0, 11.0, 19.5, 26.0, 34.0}) {
-    const double side = x < 15.0 || x > 30.0 ? 1.0 : -1.0;
-    world.push_back({{x, side}, {x, side * 1.4}});
-    world.push_back({{x + 1.0, side}, {x + 1.0, side * 1.4}});
-    world.push_back({{x, side * 1.4}, {x + 1.0, side * 1.4}});
-  }
-  sm::testing::LaserModel m;
-  m.noise_m = 0.01;
-  m.max_range = 6.0;
-  const SyntheticRun run = make_run(world, {{0, 0}, {24, 0}, {0, 0}}, 2, m);
+  // The hallway, driven out and back twice. A closure's fit does not hold the axis: where it
+  // ends up along it is where the search stopped. With the axis kept from the graph and the
+  // closures weighed as the one repeated witness they are, they correct across the axis and the
+  // heading only. (Each setting alone, measured: 2.08 m axis kept, 0.61 m scaled.)
+  const SyntheticRun run = hallway_out_and_back(2);
   auto along_axis_error = [&](bool keep_axis, double scale) {
     auto o = test_options();
     o.icp.degenerate_min_points = 60.0;
@@ -239,7 +236,8 @@ TEST(ScanMapper, HallwayClosuresKeepTheGraphsAxisAndCountAsOneWitness)
   };
   const double before = along_axis_error(false, 1.0);
   const double after = along_axis_error(true, 16.0);
-  std::cout << "worst error along the hallway: " << before << " m as measured, " << after << " m axis kept\n";
+  std::cout << "worst error along the hallway: " << before << " m as measured, " << after
+            << " m with the axis kept and the closures weighed as one witness\n";
   EXPECT_LT(after, 0.5 * before);
 }
 
