@@ -257,7 +257,9 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
   const std::vector<int64_t> late = scans_past_gateway(from, e);
   for (const int64_t id : late) builders_.at(from).remove_scan(id);
   // Finalise the region we leave, now that its gateways (the new one too) filter its beams.
+  if (progress_) progress_();
   builders_.at(from).describe(cur, gateway_lines(from), true, foreign_sides(from));
+  if (progress_) progress_();
   dirty_.erase(from);
   cur->state = Region::State::kFinalised;
   cur->utime = e.utime;
@@ -268,6 +270,7 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
     next = KnownPlaces(map_, builders_, from, options_.known_place, e.gateway_points)
                .region_holding(e.map_from_base.translation());
     if (next) spdlog::info("gateway {} leads from region {} into known region {}", g->id, from, next);
+    if (progress_) progress_();
   }
   if (next == 0) next = open_region(e.map_from_base, e.utime);
   if (g->region_b == 0 && map_.resolve(g->region_a) == from)

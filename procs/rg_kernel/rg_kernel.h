@@ -97,6 +97,10 @@ class RgKernel
   // corrected; between_regions (if set) is called after each, so that a process can show it is
   // alive meanwhile.
   const rgmap::RgMap& refreshed_map(const std::function<void()>& between_regions = {});
+  // Called between the steps of a gateway traversal (finalising the region left, looking for
+  // the known region beyond), each up to a few hundred ms on a loaded core, so that a process
+  // can show it is alive meanwhile (the demo's supervisor once took the kernel for hung there).
+  void set_progress(std::function<void()> progress) { progress_ = std::move(progress); }
   size_t stale_regions() const { return dirty_.size(); }
   // Same, computed from scratch for every region (tests, offline tools).
   rgmap::RgMap described_map() const;
@@ -155,6 +159,7 @@ class RgKernel
   std::map<int64_t, int64_t> entered_utime_;    // track id -> ENTERED time, for traversal times
   int scans_since_entering_ = 0;
   std::set<int64_t> dirty_;                     // regions whose description is stale
+  std::function<void()> progress_;   // set_progress
 };
 
 }  // namespace rgnav::rg_kernel

@@ -107,6 +107,7 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
 RgKernelNode::RgKernelNode(runtime::Node& node, NodeConfig config)
     : node_(node), config_(std::move(config)), kernel_(config_.kernel)
 {
+  kernel_.set_progress([this] { heartbeat_while_busy(); });
   if (!config_.state_dir.empty()) restore();
   node_.subscribe<aligned_scan_t>(config_.aligned_scan, [this](const aligned_scan_t& m) { on_scan(m, true); });
   node_.subscribe<gateway_event_t>(config_.gateway_events, [this](const gateway_event_t& m) { on_event(m, true); });

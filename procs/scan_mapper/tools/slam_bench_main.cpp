@@ -11,10 +11,10 @@
 // to hide or provoke an error, so robustness is judged over several. --sim-people drives the
 // same tour with the world's people walking (the robot's body passes through them): moving
 // legs in the scans.
-#include <algorithm>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <map>

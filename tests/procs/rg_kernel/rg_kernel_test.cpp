@@ -46,6 +46,20 @@ TEST(RgKernel, DoorSplitsTwoRoomsAndFiltersBeamsThroughIt)
   EXPECT_GT(stats.compression, 20.0);
 }
 
+TEST(RgKernel, ReportsProgressWhileFinalisingTheRegionItLeaves)
+{
+  // The node beats its heartbeat from this callback: finalising a region and looking for the
+  // known one beyond take long enough on a loaded core for a supervisor to take it for hung.
+  Drive d;
+  int calls = 0;
+  d.kernel.set_progress([&calls] { ++calls; });
+  for (double x = 1.0; x < 3.9; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
+  EXPECT_EQ(calls, 0);
+  d.traverse_door(4.3, 0);
+  ASSERT_EQ(d.kernel.map().regions().size(), 2u);
+  EXPECT_GE(calls, 3);   // before and after finalising region 1, after the known-place search
+}
+
 TEST(RgKernel, CrossingBackReentersTheKnownRegion)
 {
   Drive d;
