@@ -6,7 +6,8 @@
 # estimate at every scan with a reference pose; sim_<map>/truth_pairs.txt: truth, final and
 # online estimate (when the scan was added) at every accepted scan, and whether it closed a
 # loop; sim_<map>/closures.txt: every loop closure of the final graph, its error at the true
-# poses and the chi2 of that error). Scans the mapper did not accept are registered between their
+# poses and the chi2 of that error; deploy/tools/truth_pairs_errors.py and
+# reference_pair_errors.py read the pairs). Scans the mapper did not accept are registered between their
 # accepted neighbours for the reference comparison (offline_mapping.cpp).
 # Simulated part (sim.*, exact ground truth): the lock-step simulator (drivers/sim, odometry
 # error and laser of config/sim.yaml) drives two laps of a closed tour through six IPA building

@@ -10,6 +10,7 @@
 
 #include "bench_summary.h"
 #include "importers/lcm_log_io.h"
+#include "offline_mapping.h"
 #include "offline_run.h"
 #include "runtime/process_main.h"
 #include "sim/sim_options.h"
@@ -56,21 +57,6 @@ void print_gateway_diagnosis(const rp::WorldScore& score, const rp::GroundTruth&
     if (!f_hit[k])
       std::cerr << "  false gateway at (" << score.gateway_found_positions[k].x() << ", "
                 << score.gateway_found_positions[k].y() << ")\n";
-}
-
-// The estimate next to the truth at every accepted scan (the format of the SLAM bench's
-// truth_pairs.txt), to look into where the scan mapper's errors arise on a tour.
-void write_truth_pairs(const rp::SimRgMapRun& run, const std::string& path)
-{
-  std::ofstream pairs(path);
-  pairs << "# scan_id utime_us true_x true_y true_theta est_x est_y est_theta\n";
-  for (size_t k = 0; k < run.run.nodes.size() && k < run.truth_at_node.size(); ++k) {
-    const auto& n = run.run.nodes[k];
-    const auto& t = run.truth_at_node[k];
-    pairs << n.scan.scan_id << ' ' << n.scan.utime << ' ' << t.x() << ' ' << t.y() << ' ' << t.theta() << ' '
-          << n.map_from_base.x() << ' ' << n.map_from_base.y() << ' ' << n.map_from_base.theta() << '\n';
-  }
-  if (!pairs) throw std::runtime_error("cannot write " + path);
 }
 
 }  // namespace
@@ -138,7 +124,7 @@ int main(int argc, char** argv)
             w["poses"] = on_truth ? "true" : "scan_mapper";
             const std::string dir = out_dir + "/" + name + (on_truth ? "/true_poses" : "");
             rp::write_run_outputs(run.run, loaded.options, dir);
-            write_truth_pairs(run, dir + "/truth_pairs.txt");
+            rgnav::scan_mapper::write_truth_pairs(dir + "/truth_pairs.txt", run.run.nodes, run.truth_at_node);
             w["pictures"] = {dir + "/rgmap.svg", dir + "/rgmap.png"};
             j[section][name] = w;
             if (diagnose) {

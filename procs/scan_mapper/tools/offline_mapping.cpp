@@ -168,4 +168,25 @@ double write_outputs(const OfflineResult& r, const ScanMapperOptions& options, c
   return grid.consistency(r.nodes, options.base_from_laser, 0.05);
 }
 
+void write_truth_pairs(const std::string& path, const std::vector<ScanNode>& nodes, const std::vector<Pose2>& truth,
+                       const std::vector<Pose2>* online, const std::vector<int>* loop_closed_at)
+{
+  std::ofstream out(path);
+  out << "# scan_id utime_us true_x true_y true_theta est_x est_y est_theta"
+      << (online ? " online_x online_y online_theta loop_closed" : "") << "\n";
+  const auto put = [&out](const Pose2& p) { out << ' ' << p.x() << ' ' << p.y() << ' ' << p.theta(); };
+  for (size_t k = 0; k < nodes.size() && k < truth.size() && (!online || k < online->size()); ++k) {
+    out << nodes[k].scan.scan_id << ' ' << nodes[k].scan.utime;
+    put(truth[k]);
+    put(nodes[k].map_from_base);
+    if (online) {
+      put((*online)[k]);
+      const bool closed = loop_closed_at && std::binary_search(loop_closed_at->begin(), loop_closed_at->end(), static_cast<int>(k));
+      out << ' ' << closed;
+    }
+    out << '\n';
+  }
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
 }  // namespace rgnav::scan_mapper

@@ -34,4 +34,11 @@ OfflineResult run_offline(const importers::ImportedLog& log, const ScanMapperOpt
 // (ALIGNED_SCAN of the final estimates), map.png; returns the consistency of that map.
 double write_outputs(const OfflineResult& result, const ScanMapperOptions& options, const std::string& dir);
 
+// truth_pairs.txt of the simulated benches: per accepted scan, scan_id utime, the true pose
+// (truth[k] for nodes[k]) and the final estimate; with `online` also each node's estimate when
+// it was added and whether its scan closed a loop (loop_closed_at: node indices, ascending).
+// deploy/tools/truth_pairs_errors.py reads it.
+void write_truth_pairs(const std::string& path, const std::vector<ScanNode>& nodes, const std::vector<Pose2>& truth,
+                       const std::vector<Pose2>* online = nullptr, const std::vector<int>* loop_closed_at = nullptr);
+
 }  // namespace rgnav::scan_mapper

@@ -14,7 +14,6 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -151,20 +150,8 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["seed"] = sim_options.seed;
   const std::string dir = maps_dir + "/sim_" + *name + suffix;
   j["consistency"] = sm::write_outputs(off, written, dir);
-  {
-    // Estimate next to truth at every accepted scan, for looking into where errors arise.
-    std::ofstream pairs(dir + "/truth_pairs.txt");
-    // est: the final estimate; online: the estimate when the scan was added.
-    pairs << "# scan_id utime_us true_x true_y true_theta est_x est_y est_theta online_x online_y online_theta loop_closed\n";
-    for (size_t k = 0; k < r.nodes.size() && k < r.truth.size() && k < r.online.size(); ++k) {
-      const auto& n = r.nodes[k];
-      const bool closed = std::binary_search(r.loop_closed_at.begin(), r.loop_closed_at.end(), static_cast<int>(k));
-      pairs << n.scan.scan_id << ' ' << n.scan.utime << ' ' << r.truth[k].x() << ' ' << r.truth[k].y() << ' '
-            << r.truth[k].theta() << ' ' << n.map_from_base.x() << ' ' << n.map_from_base.y() << ' '
-            << n.map_from_base.theta() << ' ' << r.online[k].x() << ' ' << r.online[k].y() << ' '
-            << r.online[k].theta() << ' ' << closed << '\n';
-    }
-  }
+  // Estimate next to truth at every accepted scan, for looking into where errors arise.
+  sm::write_truth_pairs(dir + "/truth_pairs.txt", r.nodes, r.truth, &r.online, &r.loop_closed_at);
   {
     // Every loop closure of the final graph against the truth, to find the false ones.
     std::ofstream closures(dir + "/closures.txt");

@@ -76,6 +76,16 @@ sm::ScanMapperOptions test_options()
   return o;
 }
 
+// test_options with the shipped config's hallway rule: a translation direction held by fewer
+// than 60 surface points is left to odometry (1 m^2 on the match).
+sm::ScanMapperOptions hallway_options()
+{
+  auto o = test_options();
+  o.icp.degenerate_min_points = 60.0;
+  o.icp.degenerate_variance_m2 = 1.0;
+  return o;
+}
+
 // A 2 m wide hallway with a few door niches, 42 m long, driven from its end 24 m out and back
 // `laps` times (a 6 m laser: most scans see the walls and a jamb or two).
 SyntheticRun hallway_out_and_back(int laps)
@@ -194,9 +204,7 @@ TEST(ScanMapper, HallwayClosuresDoNotDragTheEstimateAlongTheHallway)
   // A 2 m wide hallway with a few door niches, driven out and back: closures on the way back
   // mostly see the walls and a jamb or two, too few points to hold the hallway's axis.
   const SyntheticRun run = hallway_out_and_back(1);
-  auto o = test_options();
-  o.icp.degenerate_min_points = 60.0;
-  o.icp.degenerate_variance_m2 = 1.0;
+  auto o = hallway_options();
   o.loop.degenerate_variance_m2 = 100.0;
   sm::ScanMapper mapper(o);
   feed(run, &mapper);
@@ -217,9 +225,7 @@ TEST(ScanMapper, HallwayClosuresKeepTheGraphsAxisAndCountAsOneWitness)
   // heading only. (Each setting alone, measured: 2.08 m axis kept, 0.61 m scaled.)
   const SyntheticRun run = hallway_out_and_back(2);
   auto along_axis_error = [&](bool keep_axis, double scale) {
-    auto o = test_options();
-    o.icp.degenerate_min_points = 60.0;
-    o.icp.degenerate_variance_m2 = 1.0;
+    auto o = hallway_options();
     o.loop.degenerate_variance_m2 = 100.0;
     o.loop.degenerate_keeps_graph_axis = keep_axis;
     o.loop.degenerate_covariance_scale = scale;
@@ -264,9 +270,7 @@ TEST(ScanMapper, LearnsOdometrysScaleWhereTheScansHoldItAndUsesItAlongAHallway)
   const SyntheticRun run =
       make_run(world, {{-6, -2}, {-1, -2}, {-1, 2}, {-6, 2}, {-6, -2}, {-1, -2}, {-1, 0}, {22, 0}}, 1, m);
   auto run_with = [&](double window_m) {
-    auto o = test_options();
-    o.icp.degenerate_min_points = 60.0;
-    o.icp.degenerate_variance_m2 = 1.0;
+    auto o = hallway_options();
     o.odometry_scale.window_m = window_m;
     sm::ScanMapper mapper(o);
     feed(run, &mapper);
