@@ -120,4 +120,26 @@ double widest_opening(const Line& side, const std::vector<rgmap::LineSegment>& w
   return std::max(widest, length - reached);
 }
 
+bool OpeningTest::open(const EdgeFrame& side, const std::vector<rgmap::LineSegment>& walls) const
+{
+  return widest_opening(side.line, walls, tolerance) >= std::min(min_open, 0.8 * side.length);
+}
+
+std::vector<EdgeFrame> stems_entered(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach,
+                                     const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test)
+{
+  std::vector<EdgeFrame> out;
+  if (points.size() != 4) return out;
+  const std::vector<EdgeFrame> sides = edge_frames(points);
+  if (sides.size() != 4) return out;
+  for (size_t k = 0; k < 4; ++k) {
+    const EdgeFrame& s = sides[k];
+    if (std::none_of(origins.begin(), origins.end(), [&](const Vector2d& o) { return s.just_beyond(o, side_reach); })) continue;
+    if (test.open(sides[(k + 2) % 4], walls)) continue;   // the side opposite: a wall, not more hallway or branch
+    if (!test.open(sides[(k + 1) % 4], walls) || !test.open(sides[(k + 3) % 4], walls)) continue;   // a hallway past it
+    out.push_back(s);
+  }
+  return out;
+}
+
 }  // namespace rgnav::rg_kernel

@@ -60,4 +60,21 @@ double widest_opening(const Line& side, const std::vector<rgmap::LineSegment>& w
 std::vector<Line> clip_lines(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& origins,
                              double side_reach, double line_extension = 0.0);
 
+// What makes a side of a crossing's outline walled or open in a line map (widest_opening): open
+// over at least `min_open` (or 80 % of the side, if shorter), walls within `tolerance` of it.
+struct OpeningTest
+{
+  double min_open = 1.4;     // [m]
+  double tolerance = 0.25;   // [m]
+  bool open(const EdgeFrame& side, const std::vector<rgmap::LineSegment>& walls) const;
+};
+
+// The sides of a crossing's outline (four points) that a region whose robot stood at `origins`
+// lies beyond (as clip_lines opens them) and that are the stem of a T in `walls`: the side
+// opposite is walled and both sides beside it are open. A hallway runs past such a side and the
+// branch behind it (a room, a bay, a side hallway) ends there: the junction's square is the
+// hallway's (Bormann et al.'s ground truth ends rooms at the hallway wall's line). Outward normals.
+std::vector<EdgeFrame> stems_entered(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& origins,
+                                     double side_reach, const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test);
+
 }  // namespace rgnav::rg_kernel

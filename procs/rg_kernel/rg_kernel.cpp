@@ -94,16 +94,23 @@ Vector2d RgKernel::crossing_in_map(const Gateway& g) const
   return a->map_from_region * c;
 }
 
-std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t region_id, const Vector2d* robot) const
+std::vector<Vector2d> RgKernel::robot_origins(int64_t region_id, const Vector2d* robot) const
 {
-  // Every gateway of the map, not only the region's own: a hallway region's robot looks
-  // through the open doors of rooms it never entered, and what lies beyond a door is the room
-  // behind it once that door is a gateway (of whichever region found it).
-  std::vector<std::pair<Vector2d, Vector2d>> lines;
-  const Region* r = map_.region(region_id);
   std::vector<Vector2d> origins;
   if (auto b = builders_.find(region_id); b != builders_.end()) origins = b->second.laser_origins();
-  if (robot) origins.push_back(r->map_from_region.inverse() * *robot);
+  if (robot) origins.push_back(map_.region(region_id)->map_from_region.inverse() * *robot);
+  return origins;
+}
+
+std::vector<std::pair<std::vector<Vector2d>, std::vector<EdgeFrame>>> RgKernel::gateway_points_and_stems(int64_t region_id,
+                                                                                                    const Vector2d* robot) const
+{
+  std::vector<std::pair<std::vector<Vector2d>, std::vector<EdgeFrame>>> out;
+  const Region* r = map_.region(region_id);
+  const std::vector<Vector2d> origins = robot_origins(region_id, robot);
+  const auto b = builders_.find(region_id);
+  const std::vector<rgmap::LineSegment>* walls = b != builders_.end() ? &b->second.segments() : nullptr;
+  const OpeningTest opening{options_.min_branch_width, options_.branch_wall_tolerance};
   for (const auto& [id, g] : map_.gateways()) {
     if (g.neutralized || g.gateway_points.size() < 2) continue;
     const Region* a = map_.region(g.region_a);
@@ -111,7 +118,24 @@ std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t regio
     const geometry::Pose2 r_from_a = r->map_from_region.inverse() * a->map_from_region;
     std::vector<Vector2d> points;
     for (const auto& p : g.gateway_points) points.push_back(r_from_a * p);
+    std::vector<EdgeFrame> stems;
+    if (options_.stem_ends_branch && walls && options_.min_branch_width > 0)
+      stems = stems_entered(points, origins, options_.junction_side_reach, *walls, opening);
+    out.emplace_back(std::move(points), std::move(stems));
+  }
+  return out;
+}
+
+std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t region_id, const Vector2d* robot) const
+{
+  // Every gateway of the map, not only the region's own: a hallway region's robot looks
+  // through the open doors of rooms it never entered, and what lies beyond a door is the room
+  // behind it once that door is a gateway (of whichever region found it).
+  const std::vector<Vector2d> origins = robot_origins(region_id, robot);
+  std::vector<std::pair<Vector2d, Vector2d>> lines;
+  for (const auto& [points, stems] : gateway_points_and_stems(region_id, robot)) {
     for (const auto& l : clip_lines(points, origins, options_.junction_side_reach, options_.gateway_line_extension)) lines.push_back(l);
+    for (const EdgeFrame& e : stems) lines.push_back(e.line);   // the branch ends at the stem side
   }
   return lines;
 }
@@ -134,6 +158,18 @@ std::vector<ForeignSide> RgKernel::foreign_sides(int64_t region_id) const
     for (EdgeFrame e : edge_frames({r_from_a * g.gateway_points[0], r_from_a * g.gateway_points[1]})) {
       if (e.normal.dot(beyond) < 0) e.normal = -e.normal;
       out.push_back({e, options_.late_scan_reach});
+    }
+  }
+  // Inside a junction whose stem the region lies beyond: as deep as the junction (the sides
+  // beside the stem are as long).
+  for (const auto& [points, stems] : gateway_points_and_stems(region_id, nullptr)) {
+    const std::vector<EdgeFrame> sides = edge_frames(points);
+    for (EdgeFrame e : stems) {
+      double depth = 0;
+      for (const EdgeFrame& f : sides)
+        if (std::fabs(f.along.dot(e.along)) < 0.5) depth = std::max(depth, f.length);
+      e.normal = -e.normal;
+      out.push_back({e, depth});
     }
   }
   return out;

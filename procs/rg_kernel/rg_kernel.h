@@ -42,6 +42,11 @@ struct KernelOptions
   // side, for a junction (issue 8: spurious crossings cut hallways). Doors are at most 1.3 m.
   double min_branch_width = 1.4;
   double branch_wall_tolerance = 0.25;   // [m] a wall segment this near a side's line runs along it
+  // A region beyond the stem side of a T-junction (the side opposite walled, a hallway open past
+  // it, by min_branch_width in the region's line map) ends at that side, and its scans inside the
+  // junction carve nothing: the junction's square is the hallway's (issue 8: rooms and bays with
+  // wide openings onto a hallway took the hallway's junctions into their freespace).
+  bool stem_ends_branch = true;
   bool doorway_gateways = true;          // a doorway of the line map (build.doorways) the robot goes through is a gateway
   // [m] a gateway line (not an outline) ends beams this far beyond its points too: the detector's
   // and the line map's door points lie on the jambs' visible edges, and beams grazing past them
@@ -130,8 +135,15 @@ class RgKernel
   // positions (the region just entered has none yet).
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> gateway_lines(int64_t region_id,
                                                                          const Eigen::Vector2d* robot = nullptr) const;
-  // The far sides of the region's own traversed gateway lines, in its frame (region_builder.h).
+  // The far sides of the region's own traversed gateway lines, and the insides of the junctions
+  // whose stem it lies beyond (stems_entered), in its frame (region_builder.h).
   std::vector<ForeignSide> foreign_sides(int64_t region_id) const;
+  // The region's laser positions (its frame), and `robot` (map frame) if given.
+  std::vector<Eigen::Vector2d> robot_origins(int64_t region_id, const Eigen::Vector2d* robot) const;
+  // Every non-neutralized crossing's outline in region_id's frame, and the sides of it that are
+  // stems the region lies beyond (empty unless stem_ends_branch), with `robot` as in gateway_lines.
+  std::vector<std::pair<std::vector<Eigen::Vector2d>, std::vector<EdgeFrame>>> gateway_points_and_stems(
+      int64_t region_id, const Eigen::Vector2d* robot) const;
   void mark_regions_behind(const rgmap::Gateway& g);
   void walk_through_doorway(const Eigen::Vector2d& from, const ScanInput& s);
   bool repeats_entry(const rgmap::Gateway& g, int64_t current, double direction) const;

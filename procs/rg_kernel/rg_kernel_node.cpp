@@ -53,6 +53,7 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   c.kernel.junction_side_reach = k.number("junction_side_reach_m", c.kernel.junction_side_reach, 0.1, 10.0);
   c.kernel.min_branch_width = k.number("min_branch_width_m", c.kernel.min_branch_width, 0.0, 10.0);
   c.kernel.branch_wall_tolerance = k.number("branch_wall_tolerance_m", c.kernel.branch_wall_tolerance, 0.01, 1.0);
+  c.kernel.stem_ends_branch = k.boolean("stem_ends_branch", c.kernel.stem_ends_branch);
   c.kernel.gateway_line_extension = k.number("gateway_line_extension_m", c.kernel.gateway_line_extension, 0.0, 1.0);
   c.kernel.doorway_gateways = k.boolean("doorway_gateways", c.kernel.doorway_gateways);
   const auto lines = cfg.section("line_map");

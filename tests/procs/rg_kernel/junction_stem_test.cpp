@@ -1,0 +1,100 @@
+// A room or bay opening wide onto a hallway is entered through a T-junction's stem side; the
+// junction's square is the hallway's (issue 8, lab_c: the bays south of the hallway took the
+// hallway's junctions into their freespace, precision 0.75 on SLAM poses).
+#include <gtest/gtest.h>
+
+#include "kernel_drive.h"
+#include "procs/rg_kernel/gateway_geometry.h"
+
+namespace rgnav::rg_kernel {
+namespace {
+
+using Eigen::Vector2d;
+using testing::Drive;
+using testing::Wall;
+
+// A 2 m hallway y in [0, 2] along x in [0, 14]; a 3 m wide, 4 m deep bay south of it, open onto
+// it over its whole width (x in [5, 8]).
+std::vector<Wall> hallway_with_bay()
+{
+  return {{Vector2d(0, 0), Vector2d(0, 2)},   {Vector2d(14, 0), Vector2d(14, 2)}, {Vector2d(0, 2), Vector2d(14, 2)},
+          {Vector2d(0, 0), Vector2d(5, 0)},   {Vector2d(8, 0), Vector2d(14, 0)},  {Vector2d(5, 0), Vector2d(5, -4)},
+          {Vector2d(8, 0), Vector2d(8, -4)}, {Vector2d(5, -4), Vector2d(8, -4)}};
+}
+
+// The detector's junction: the hallway's width over the bay's opening.
+const std::vector<Vector2d> kJunction = {Vector2d(5, 2), Vector2d(5, 0), Vector2d(8, 0), Vector2d(8, 2)};
+
+// East along the hallway, right into the bay (traversed), to its back and out again, east on
+// (traversed): three regions, west hallway (1), bay (2), east hallway (3).
+void drive_into_the_bay_and_on(Drive& d)
+{
+  for (double x = 1.0; x < 6.4; x += 0.2) d.scan_at(geometry::Pose2(x, 1, 0));
+  for (double y = 0.8; y > 0.1; y -= 0.2) d.scan_at(geometry::Pose2(6.5, y, -M_PI / 2));
+  ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kRTCrossing, 1, geometry::Pose2(6.5, -0.1, -M_PI / 2), kJunction));
+  for (double y = -0.3; y > -3.3; y -= 0.2) d.scan_at(geometry::Pose2(6.5, y, -M_PI / 2));
+  for (double y = -3.2; y < 0.8; y += 0.2) d.scan_at(geometry::Pose2(6.5, y, M_PI / 2));
+  for (double x = 6.7; x < 7.9; x += 0.2) d.scan_at(geometry::Pose2(x, 1, 0));
+  ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kTCrossing, 2, geometry::Pose2(8.1, 1, 0), kJunction));
+  for (double x = 8.3; x < 13.0; x += 0.2) d.scan_at(geometry::Pose2(x, 1, 0));
+  d.traverse(rgmap::GatewayClass::kDoor, 3, geometry::Pose2(13.2, 1, 0), {Vector2d(13, 0), Vector2d(13, 2)});
+}
+
+// Free cells (0.1 m samples) of a region inside the junction's square.
+int junction_cells(const RgKernel& kernel, int64_t region)
+{
+  const rgmap::Region r = kernel.describe_region(region);
+  const geometry::Pose2 region_from_map = r.map_from_region.inverse();
+  int n = 0;
+  for (double x = 5.25; x < 7.8; x += 0.1)
+    for (double y = 0.25; y < 1.8; y += 0.1) n += r.freespace.is_free(region_from_map * Vector2d(x, y)) ? 1 : 0;
+  return n;
+}
+
+TEST(GatewayGeometry, StemOfATIsTheSideOppositeAWallWithTheHallwayOpenPastIt)
+{
+  const std::vector<rgmap::LineSegment> walls{{Vector2d(0, 2), Vector2d(14, 2), 0.01, 50},
+                                              {Vector2d(0, 0), Vector2d(5, 0), 0.01, 50},
+                                              {Vector2d(8, 0), Vector2d(14, 0), 0.01, 50}};
+  const OpeningTest test{1.4, 0.25};
+  // A position in the bay lies beyond the south side (y = 0): that side is the stem.
+  const auto stems = stems_entered(kJunction, {Vector2d(6.5, -1)}, 2.0, walls, test);
+  ASSERT_EQ(stems.size(), 1u);
+  EXPECT_NEAR(stems[0].mid.y(), 0.0, 1e-9);
+  EXPECT_LT(stems[0].normal.y(), -0.99);   // outward
+  // A position in the hallway west of it lies beyond the west side, which has more hallway
+  // (open) opposite: no stem.
+  EXPECT_TRUE(stems_entered(kJunction, {Vector2d(4, 1)}, 2.0, walls, test).empty());
+  // With a hallway going on behind the north side too (an X-crossing), the south side is no stem.
+  const std::vector<rgmap::LineSegment> x_walls{walls[1], walls[2], {Vector2d(0, 2), Vector2d(5, 2), 0.01, 50},
+                                                {Vector2d(8, 2), Vector2d(14, 2), 0.01, 50}};
+  EXPECT_TRUE(stems_entered(kJunction, {Vector2d(6.5, -1)}, 2.0, x_walls, test).empty());
+}
+
+TEST(RgKernel, BayEnteredThroughATJunctionsStemEndsAtItsSide)
+{
+  Drive d;
+  d.walls = hallway_with_bay();
+  drive_into_the_bay_and_on(d);
+  const auto& m = d.kernel.map();
+  ASSERT_GE(m.regions().size(), 3u);
+  EXPECT_TRUE(m.consistency_problems().empty());
+  const int junction = 25 * 16;   // samples in the square
+  // The bay ends at the hallway's wall line; the hallway regions keep the junction.
+  EXPECT_LT(junction_cells(d.kernel, 2), junction / 20);
+  EXPECT_GT(junction_cells(d.kernel, 1) + junction_cells(d.kernel, 3), junction / 2);
+  // The bay's own space is the bay's.
+  const rgmap::Region bay = d.kernel.describe_region(2);
+  EXPECT_TRUE(bay.freespace.is_free(bay.map_from_region.inverse() * Vector2d(6.5, -2.0)));
+
+  // As before the rule, the bay's beams pass the stem side and fill the junction.
+  KernelOptions off;
+  off.stem_ends_branch = false;
+  Drive before(off);
+  before.walls = hallway_with_bay();
+  drive_into_the_bay_and_on(before);
+  EXPECT_GT(junction_cells(before.kernel, 2), junction / 2);
+}
+
+}  // namespace
+}  // namespace rgnav::rg_kernel
