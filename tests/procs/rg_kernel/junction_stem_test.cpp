@@ -11,16 +11,6 @@ namespace {
 
 using Eigen::Vector2d;
 using testing::Drive;
-using testing::Wall;
-
-// A 2 m hallway y in [0, 2] along x in [0, 14]; a 3 m wide, 4 m deep bay south of it, open onto
-// it over its whole width (x in [5, 8]).
-std::vector<Wall> hallway_with_bay()
-{
-  return {{Vector2d(0, 0), Vector2d(0, 2)},   {Vector2d(14, 0), Vector2d(14, 2)}, {Vector2d(0, 2), Vector2d(14, 2)},
-          {Vector2d(0, 0), Vector2d(5, 0)},   {Vector2d(8, 0), Vector2d(14, 0)},  {Vector2d(5, 0), Vector2d(5, -4)},
-          {Vector2d(8, 0), Vector2d(8, -4)}, {Vector2d(5, -4), Vector2d(8, -4)}};
-}
 
 // The detector's junction: the hallway's width over the bay's opening.
 const std::vector<Vector2d> kJunction = {Vector2d(5, 2), Vector2d(5, 0), Vector2d(8, 0), Vector2d(8, 2)};
@@ -74,7 +64,7 @@ TEST(GatewayGeometry, StemOfATIsTheSideOppositeAWallWithTheHallwayOpenPastIt)
 TEST(RgKernel, BayEnteredThroughATJunctionsStemEndsAtItsSide)
 {
   Drive d;
-  d.walls = hallway_with_bay();
+  d.walls = testing::hallway_with_bay();
   drive_into_the_bay_and_on(d);
   const auto& m = d.kernel.map();
   ASSERT_GE(m.regions().size(), 3u);
@@ -91,7 +81,7 @@ TEST(RgKernel, BayEnteredThroughATJunctionsStemEndsAtItsSide)
   KernelOptions off;
   off.stem_ends_branch = false;
   Drive before(off);
-  before.walls = hallway_with_bay();
+  before.walls = testing::hallway_with_bay();
   drive_into_the_bay_and_on(before);
   EXPECT_GT(junction_cells(before.kernel, 2), junction / 2);
 }

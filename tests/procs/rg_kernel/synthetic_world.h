@@ -34,6 +34,15 @@ inline std::vector<Wall> hallway_with_crossing()
           {V(4, 6), V(6, 6)},   {V(4, 0), V(4, -4)},  {V(6, 0), V(6, -4)}, {V(4, -4), V(6, -4)}};
 }
 
+// A 2 m hallway y in [0, 2] along x in [0, 14]; a 3 m wide, 4 m deep bay south of it, open onto
+// it over its whole width (x in [5, 8]).
+inline std::vector<Wall> hallway_with_bay()
+{
+  using V = Eigen::Vector2d;
+  return {{V(0, 0), V(0, 2)}, {V(14, 0), V(14, 2)}, {V(0, 2), V(14, 2)}, {V(0, 0), V(5, 0)},
+          {V(8, 0), V(14, 0)}, {V(5, 0), V(5, -4)}, {V(8, 0), V(8, -4)}, {V(5, -4), V(8, -4)}};
+}
+
 // A round pillar.
 struct Pillar
 {
