@@ -76,6 +76,41 @@ void RgKernel::walk_through_doorway(const Vector2d& from, const ScanInput& s)
   add_gateway_event(e);
 }
 
+void RgKernel::walk_out_through_door(const Vector2d& from, const ScanInput& s)
+{
+  // A known door (a line gateway) of the current region that the robot's last step went through
+  // to its far side, unreported: the detector reports a door it has crossed before only if it
+  // recognises it again, and often does not as the robot leaves a room (office_g: rooms' regions
+  // ran on along the hallway for tens of metres, until the next gateway). The kernel knows the
+  // door and which side is whose; it crosses it as the detector would have reported it.
+  if (!options_.door_exits) return;
+  const int64_t rid = map_.current_region;
+  const Vector2d to = (s.map_from_base * s.base_from_laser).translation();
+  if ((to - from).norm() > options_.build.doorways.max_width) return;   // a jump (a gap in the scans), not a step
+  for (const auto& [id, g] : map_.gateways()) {
+    if (g.neutralized || g.gateway_points.size() != 2 || g.region_b == 0 || g.traversal_directions.empty()) continue;
+    const int64_t a = map_.resolve(g.region_a), b = map_.resolve(g.region_b);
+    if (a == b || (a != rid && b != rid)) continue;
+    const geometry::Pose2& map_from_a = map_.region(g.region_a)->map_from_region;
+    const Vector2d p = map_from_a * g.gateway_points[0], q = map_from_a * g.gateway_points[1];
+    if (!segments_cross(from, to, p, q)) continue;
+    const Vector2d beyond = (rid == a ? 1.0 : -1.0) * line_normal_to_b(g);   // towards the other region
+    if (beyond.dot(to - from) <= 0) continue;   // stepped back in from the far side
+    GatewayEventInput e;
+    e.utime = s.utime;
+    e.scan_id = s.scan_id;
+    e.kind = GatewayEventInput::Kind::kTraversed;
+    e.track_id = -s.scan_id;   // no detector track: never matches an ENTERED time
+    e.cls = g.cls;
+    e.map_from_base = s.map_from_base;
+    e.gateway_points = {p, q};
+    e.direction = std::atan2(beyond.y(), beyond.x());
+    spdlog::info("region {}: the robot went back through gateway {} (unreported)", rid, id);
+    add_gateway_event(e);
+    return;
+  }
+}
+
 bool RgKernel::repeats_entry(const Gateway& g, int64_t current, double direction) const
 {
   // A gateway crossed in the direction that leads into the current region does not lead out of

@@ -82,6 +82,7 @@ bool RgKernel::add_scan(const ScanInput& s)
   ++scans_since_entering_;
   ++map_.version;
   if (!before.empty()) walk_through_doorway(map_.region(rid)->map_from_region * before.back(), s);
+  if (!before.empty() && map_.current_region == rid) walk_out_through_door(map_.region(rid)->map_from_region * before.back(), s);
   maybe_merge_current(s.utime);
   return true;
 }

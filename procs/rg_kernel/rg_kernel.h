@@ -48,6 +48,7 @@ struct KernelOptions
   // wide openings onto a hallway took the hallway's junctions into their freespace).
   bool stem_ends_branch = true;
   bool doorway_gateways = true;          // a doorway of the line map (build.doorways) the robot goes through is a gateway
+  bool door_exits = true;                // a known door of the current region the robot goes through unreported is crossed
   // [m] a gateway line (not an outline) ends beams this far beyond its points too: the detector's
   // and the line map's door points lie on the jambs' visible edges, and beams grazing past them
   // into the room behind carved it into the region in front (issue 8: seen-through losses).
@@ -146,6 +147,9 @@ class RgKernel
       int64_t region_id, const Eigen::Vector2d* robot) const;
   void mark_regions_behind(const rgmap::Gateway& g);
   void walk_through_doorway(const Eigen::Vector2d& from, const ScanInput& s);
+  // The robot's last step (from, map frame, to the scan s) went through a known door of the current
+  // region to its far side, unreported: crossed as the detector would have reported it.
+  void walk_out_through_door(const Eigen::Vector2d& from, const ScanInput& s);
   bool repeats_entry(const rgmap::Gateway& g, int64_t current, double direction) const;
   // A traversed line gateway's unit normal (map frame) pointing to region_b's side: the side its
   // first traversal headed to.
