@@ -3,7 +3,8 @@
 // freespace from in-region beams: each beam ends at every gateway of the map and at the doorways
 // of the region's line map its robot never went through, gateway_geometry.h, doorways.h) and
 // opens the region beyond, or re-enters a known one; a doorway of the line map the robot does go
-// through where no gateway is known is crossed like a reported gateway (one the detector missed); a
+// through where no gateway is known is crossed like a reported gateway (one the detector missed),
+// and so is a known door of the current region gone back through unreported; a
 // region that turns out to be a known place (the robot's positions lie in a finalised
 // region's own space, seen by that region's robot: known_place.h) is merged into it and gateways with one region on both sides are
 // neutralized (diss. 6.1.1); republished scans (loop-closure corrections) update their region.
@@ -11,8 +12,10 @@
 // per gateway, the branches its first traversal took; left into another branch it gets a
 // gateway of its own with the same outline. A junction entered or left through a door just
 // crossed is that door's crossing reported again; a junction gone straight through whose sides
-// are walled in the line map has no branch (walled_crossing.cpp). Scans taken beyond one of the
-// region's own doors carve no freespace into it (region_builder.h, ForeignSide).
+// are walled in the line map has no branch (walled_crossing.cpp); a region beyond the stem of a
+// T-junction ends at that side (the junction is the hallway's). Scans taken beyond one of the
+// region's own doors, or inside such a junction, carve no freespace into it (region_builder.h,
+// ForeignSide).
 // Inputs are applied in the order given; with the same inputs the map is the same.
 #pragma once
 
