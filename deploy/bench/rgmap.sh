@@ -49,7 +49,9 @@
 # Env: RGMAP_SIM_MAX_S caps simulated seconds per world (default 2400: office_g's 742 m tour
 #   takes 1550 s); RGMAP_JSON and RGMAP_WORK write elsewhere (default logs/bench/rgmap.json,
 #   logs/bench/rgmap/); RGMAP_ONLY (space-separated names, e.g. "office lab_ipa") runs only those
-#   worlds and no real log unless named; RGMAP_TRUE_POSES=0 leaves out the true-pose runs.
+#   worlds and no real log unless named; RGMAP_TRUE_POSES=0 leaves out the true-pose runs;
+#   RGMAP_RG_CONFIG runs another RG kernel config (default config/rg_kernel.yaml), e.g. one with a
+#   rule switched off: build/bin/config_overlay config/rg_kernel.yaml OFF.yaml kernel.door_exits=false.
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"
@@ -89,6 +91,6 @@ done
 flags=()
 [ "${RGMAP_TRUE_POSES:-1}" = 0 ] || flags+=(--true-poses)
 exec "$bin" --config "$ROOT/config/scan_mapper.yaml" --gateway-config "$ROOT/config/gateway_detector_aligned.yaml" \
-  --rg-config "$ROOT/config/rg_kernel.yaml" --sim-config "$ROOT/config/sim.yaml" \
+  --rg-config "${RGMAP_RG_CONFIG:-$ROOT/config/rg_kernel.yaml}" --sim-config "$ROOT/config/sim.yaml" \
   --json "$JSON" --out "$WORK" --laps 1 --max-sim-s "${RGMAP_SIM_MAX_S:-2400}" \
   "${flags[@]}" "${sims[@]}" "${reals[@]}"

@@ -125,10 +125,10 @@ bool OpeningTest::open(const EdgeFrame& side, const std::vector<rgmap::LineSegme
   return widest_opening(side.line, walls, tolerance) >= std::min(min_open, 0.8 * side.length);
 }
 
-std::vector<EdgeFrame> stems_entered(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach,
-                                     const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test)
+std::vector<StemSide> stems_entered(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach,
+                                    const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test)
 {
-  std::vector<EdgeFrame> out;
+  std::vector<StemSide> out;
   if (points.size() != 4) return out;
   const std::vector<EdgeFrame> sides = edge_frames(points);
   if (sides.size() != 4) return out;
@@ -137,7 +137,7 @@ std::vector<EdgeFrame> stems_entered(const std::vector<Vector2d>& points, const 
     if (std::none_of(origins.begin(), origins.end(), [&](const Vector2d& o) { return s.just_beyond(o, side_reach); })) continue;
     if (test.open(sides[(k + 2) % 4], walls)) continue;   // the side opposite: a wall, not more hallway or branch
     if (!test.open(sides[(k + 1) % 4], walls) || !test.open(sides[(k + 3) % 4], walls)) continue;   // a hallway past it
-    out.push_back(s);
+    out.push_back({s, std::max(sides[(k + 1) % 4].length, sides[(k + 3) % 4].length)});
   }
   return out;
 }

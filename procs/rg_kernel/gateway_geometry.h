@@ -69,12 +69,20 @@ struct OpeningTest
   bool open(const EdgeFrame& side, const std::vector<rgmap::LineSegment>& walls) const;
 };
 
+// A side of a crossing's outline (outward normal) and the outline's depth behind it (the longer of
+// the sides beside it).
+struct StemSide
+{
+  EdgeFrame side;
+  double depth = 0.0;
+};
+
 // The sides of a crossing's outline (four points) that a region whose robot stood at `origins`
 // lies beyond (as clip_lines opens them) and that are the stem of a T in `walls`: the side
 // opposite is walled and both sides beside it are open. A hallway runs past such a side and the
 // branch behind it (a room, a bay, a side hallway) ends there: the junction's square is the
-// hallway's (Bormann et al.'s ground truth ends rooms at the hallway wall's line). Outward normals.
-std::vector<EdgeFrame> stems_entered(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& origins,
-                                     double side_reach, const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test);
+// hallway's (Bormann et al.'s ground truth ends rooms at the hallway wall's line).
+std::vector<StemSide> stems_entered(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& origins,
+                                    double side_reach, const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test);
 
 }  // namespace rgnav::rg_kernel

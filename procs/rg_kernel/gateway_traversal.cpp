@@ -46,48 +46,34 @@ bool past_gateway(const Vector2d& p, const std::vector<Vector2d>& points, double
 
 }  // namespace
 
-void RgKernel::walk_through_doorway(const Vector2d& from, const ScanInput& s)
+void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
 {
-  // A doorway of the current region's line map that the robot's last step went through and that
-  // no gateway stands in yet: a door the gateway detector missed (issue 8: missed gateways merge
-  // rooms). The kernel crosses it as the detector would have reported it.
-  if (!options_.doorway_gateways) return;
+  // The robot's last step went through a door the gateway detector did not report; the kernel
+  // crosses it as the detector would have reported it.
+  // - A known door (a line gateway) of the current region, to its far side: the detector reports
+  //   a door it has crossed before only if it recognises it again, and often does not as the
+  //   robot leaves a room (office_g: rooms' regions ran on along the hallway for tens of metres,
+  //   up to the next gateway). The kernel knows the door and which side is whose.
+  // - A doorway of the current region's line map that no gateway stands in yet: a door the
+  //   detector missed altogether (issue 8: missed gateways merge rooms).
   const int64_t rid = map_.current_region;
   const Region* r = map_.region(rid);
-  const geometry::Pose2 region_from_map = r->map_from_region.inverse();
-  const Vector2d to = (s.map_from_base * s.base_from_laser).translation();
-  const auto door =
-      doorway_stepped_through(builders_.at(rid).segments(), region_from_map * from, region_from_map * to, options_.build.doorways);
-  if (!door) return;
-  const Vector2d p = r->map_from_region * door->first, q = r->map_from_region * door->second;
-  for (const auto& [id, g] : map_.gateways())
-    if (!g.neutralized && (crossing_in_map(g) - 0.5 * (p + q)).norm() < options_.gateway_match_distance) return;
-  GatewayEventInput e;
-  e.utime = s.utime;
-  e.scan_id = s.scan_id;
-  e.kind = GatewayEventInput::Kind::kTraversed;
-  e.track_id = -s.scan_id;   // no detector track: never matches an ENTERED time
-  e.cls = rgmap::GatewayClass::kNarrowPassage;
-  e.map_from_base = s.map_from_base;
-  e.gateway_points = {p, q};
-  e.direction = std::atan2(to.y() - from.y(), to.x() - from.x());
-  spdlog::info("region {}: the robot went through a doorway of its line map at ({:.2f}, {:.2f})", rid, 0.5 * (p.x() + q.x()),
-               0.5 * (p.y() + q.y()));
-  add_gateway_event(e);
-}
-
-void RgKernel::walk_out_through_door(const Vector2d& from, const ScanInput& s)
-{
-  // A known door (a line gateway) of the current region that the robot's last step went through
-  // to its far side, unreported: the detector reports a door it has crossed before only if it
-  // recognises it again, and often does not as the robot leaves a room (office_g: rooms' regions
-  // ran on along the hallway for tens of metres, until the next gateway). The kernel knows the
-  // door and which side is whose; it crosses it as the detector would have reported it.
-  if (!options_.door_exits) return;
-  const int64_t rid = map_.current_region;
   const Vector2d to = (s.map_from_base * s.base_from_laser).translation();
   if ((to - from).norm() > options_.build.doorways.max_width) return;   // a jump (a gap in the scans), not a step
+  auto traversal = [&](rgmap::GatewayClass cls, const Vector2d& p, const Vector2d& q, const Vector2d& heading) {
+    GatewayEventInput e;
+    e.utime = s.utime;
+    e.scan_id = s.scan_id;
+    e.kind = GatewayEventInput::Kind::kTraversed;
+    e.track_id = -s.scan_id;   // no detector track: never matches an ENTERED time
+    e.cls = cls;
+    e.map_from_base = s.map_from_base;
+    e.gateway_points = {p, q};
+    e.direction = std::atan2(heading.y(), heading.x());
+    return e;
+  };
   for (const auto& [id, g] : map_.gateways()) {
+    if (!options_.door_exits) break;
     if (g.neutralized || g.gateway_points.size() != 2 || g.region_b == 0 || g.traversal_directions.empty()) continue;
     const int64_t a = map_.resolve(g.region_a), b = map_.resolve(g.region_b);
     if (a == b || (a != rid && b != rid)) continue;
@@ -96,19 +82,21 @@ void RgKernel::walk_out_through_door(const Vector2d& from, const ScanInput& s)
     if (!segments_cross(from, to, p, q)) continue;
     const Vector2d beyond = (rid == a ? 1.0 : -1.0) * line_normal_to_b(g);   // towards the other region
     if (beyond.dot(to - from) <= 0) continue;   // stepped back in from the far side
-    GatewayEventInput e;
-    e.utime = s.utime;
-    e.scan_id = s.scan_id;
-    e.kind = GatewayEventInput::Kind::kTraversed;
-    e.track_id = -s.scan_id;   // no detector track: never matches an ENTERED time
-    e.cls = g.cls;
-    e.map_from_base = s.map_from_base;
-    e.gateway_points = {p, q};
-    e.direction = std::atan2(beyond.y(), beyond.x());
     spdlog::info("region {}: the robot went back through gateway {} (unreported)", rid, id);
-    add_gateway_event(e);
+    add_gateway_event(traversal(g.cls, p, q, beyond));
     return;
   }
+  if (!options_.doorway_gateways) return;
+  const geometry::Pose2 region_from_map = r->map_from_region.inverse();
+  const auto door =
+      doorway_stepped_through(builders_.at(rid).segments(), region_from_map * from, region_from_map * to, options_.build.doorways);
+  if (!door) return;
+  const Vector2d p = r->map_from_region * door->first, q = r->map_from_region * door->second;
+  for (const auto& [id, g] : map_.gateways())
+    if (!g.neutralized && (crossing_in_map(g) - 0.5 * (p + q)).norm() < options_.gateway_match_distance) return;
+  spdlog::info("region {}: the robot went through a doorway of its line map at ({:.2f}, {:.2f})", rid, 0.5 * (p.x() + q.x()),
+               0.5 * (p.y() + q.y()));
+  add_gateway_event(traversal(rgmap::GatewayClass::kNarrowPassage, p, q, to - from));
 }
 
 bool RgKernel::repeats_entry(const Gateway& g, int64_t current, double direction) const
@@ -293,7 +281,7 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
   for (const int64_t id : late) builders_.at(from).remove_scan(id);
   // Finalise the region we leave, now that its gateways (the new one too) filter its beams.
   if (progress_) progress_();
-  builders_.at(from).describe(cur, gateway_lines(from), true, foreign_sides(from));
+  describe(from, cur, true);
   if (progress_) progress_();
   dirty_.erase(from);
   cur->state = Region::State::kFinalised;

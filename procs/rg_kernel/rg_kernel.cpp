@@ -42,7 +42,7 @@ void RgKernel::enter(int64_t region_id, int64_t utime, const Vector2d& robot)
   r->utime = utime;
   map_.current_region = region_id;
   scans_since_entering_ = 0;
-  builders_.at(region_id).set_gateway_lines(gateway_lines(region_id, &robot));
+  builders_.at(region_id).set_gateway_lines(beam_limits(region_id, &robot).lines);
 }
 
 bool RgKernel::add_scan(const ScanInput& s)
@@ -81,8 +81,7 @@ bool RgKernel::add_scan(const ScanInput& s)
   dirty_.insert(rid);
   ++scans_since_entering_;
   ++map_.version;
-  if (!before.empty()) walk_through_doorway(map_.region(rid)->map_from_region * before.back(), s);
-  if (!before.empty() && map_.current_region == rid) walk_out_through_door(map_.region(rid)->map_from_region * before.back(), s);
+  if (!before.empty()) walk_through_door(map_.region(rid)->map_from_region * before.back(), s);
   maybe_merge_current(s.utime);
   return true;
 }
@@ -95,85 +94,63 @@ Vector2d RgKernel::crossing_in_map(const Gateway& g) const
   return a->map_from_region * c;
 }
 
-std::vector<Vector2d> RgKernel::robot_origins(int64_t region_id, const Vector2d* robot) const
-{
-  std::vector<Vector2d> origins;
-  if (auto b = builders_.find(region_id); b != builders_.end()) origins = b->second.laser_origins();
-  if (robot) origins.push_back(map_.region(region_id)->map_from_region.inverse() * *robot);
-  return origins;
-}
-
-std::vector<std::pair<std::vector<Vector2d>, std::vector<EdgeFrame>>> RgKernel::gateway_points_and_stems(int64_t region_id,
-                                                                                                    const Vector2d* robot) const
-{
-  std::vector<std::pair<std::vector<Vector2d>, std::vector<EdgeFrame>>> out;
-  const Region* r = map_.region(region_id);
-  const std::vector<Vector2d> origins = robot_origins(region_id, robot);
-  const auto b = builders_.find(region_id);
-  const std::vector<rgmap::LineSegment>* walls = b != builders_.end() ? &b->second.segments() : nullptr;
-  const OpeningTest opening{options_.min_branch_width, options_.branch_wall_tolerance};
-  for (const auto& [id, g] : map_.gateways()) {
-    if (g.neutralized || g.gateway_points.size() < 2) continue;
-    const Region* a = map_.region(g.region_a);
-    // Gateway points are stored in region_a's frame: move them into this region's frame.
-    const geometry::Pose2 r_from_a = r->map_from_region.inverse() * a->map_from_region;
-    std::vector<Vector2d> points;
-    for (const auto& p : g.gateway_points) points.push_back(r_from_a * p);
-    std::vector<EdgeFrame> stems;
-    if (options_.stem_ends_branch && walls && options_.min_branch_width > 0)
-      stems = stems_entered(points, origins, options_.junction_side_reach, *walls, opening);
-    out.emplace_back(std::move(points), std::move(stems));
-  }
-  return out;
-}
-
-std::vector<std::pair<Vector2d, Vector2d>> RgKernel::gateway_lines(int64_t region_id, const Vector2d* robot) const
+BeamLimits RgKernel::beam_limits(int64_t region_id, const Vector2d* robot) const
 {
   // Every gateway of the map, not only the region's own: a hallway region's robot looks
   // through the open doors of rooms it never entered, and what lies beyond a door is the room
   // behind it once that door is a gateway (of whichever region found it).
-  const std::vector<Vector2d> origins = robot_origins(region_id, robot);
-  std::vector<std::pair<Vector2d, Vector2d>> lines;
-  for (const auto& [points, stems] : gateway_points_and_stems(region_id, robot)) {
-    for (const auto& l : clip_lines(points, origins, options_.junction_side_reach, options_.gateway_line_extension)) lines.push_back(l);
-    for (const EdgeFrame& e : stems) lines.push_back(e.line);   // the branch ends at the stem side
+  BeamLimits out;
+  const Region* r = map_.region(region_id);
+  const geometry::Pose2 region_from_map = r->map_from_region.inverse();
+  std::vector<Vector2d> origins;
+  const std::vector<rgmap::LineSegment>* walls = nullptr;
+  if (auto b = builders_.find(region_id); b != builders_.end()) {
+    origins = b->second.laser_origins();
+    walls = &b->second.segments();
   }
-  return lines;
-}
-
-std::vector<ForeignSide> RgKernel::foreign_sides(int64_t region_id) const
-{
+  if (robot) origins.push_back(region_from_map * *robot);
+  const OpeningTest opening{options_.min_branch_width, options_.branch_wall_tolerance};
+  const bool stems = options_.stem_ends_branch && options_.min_branch_width > 0 && walls;
+  for (const auto& [id, g] : map_.gateways()) {
+    if (g.neutralized || g.gateway_points.size() < 2) continue;
+    // Gateway points are stored in region_a's frame: move them into this region's frame.
+    const geometry::Pose2 r_from_a = region_from_map * map_.region(g.region_a)->map_from_region;
+    std::vector<Vector2d> points;
+    for (const auto& p : g.gateway_points) points.push_back(r_from_a * p);
+    for (const auto& l : clip_lines(points, origins, options_.junction_side_reach, options_.gateway_line_extension))
+      out.lines.push_back(l);
+    if (!stems) continue;
+    // A stem side the region lies beyond (clip_lines opened it) ends its beams after all, and its
+    // scans inside the junction (as deep as the sides beside the stem are long) carve nothing.
+    for (const StemSide& stem : stems_entered(points, origins, options_.junction_side_reach, *walls, opening)) {
+      out.lines.push_back(stem.side.line);
+      EdgeFrame inward = stem.side;
+      inward.normal = -inward.normal;
+      out.foreign.push_back({inward, stem.depth});
+    }
+  }
   // The region's own traversed lines (doors, narrow passages): the side its first traversal
   // headed to from region_a is region_b's (also while region_b is being opened), the other
   // region_a's.
-  std::vector<ForeignSide> out;
-  const Region* r = map_.region(region_id);
   for (const auto& [id, g] : map_.gateways()) {
     if (g.neutralized || g.gateway_points.size() != 2 || g.traversal_directions.empty()) continue;
     const int64_t a = map_.resolve(g.region_a), b = g.region_b ? map_.resolve(g.region_b) : 0;
     if (a == b || (a != region_id && b != region_id)) continue;
-    const Region* ra = map_.region(g.region_a);
-    const geometry::Pose2 r_from_a = r->map_from_region.inverse() * ra->map_from_region;
+    const geometry::Pose2 r_from_a = region_from_map * map_.region(g.region_a)->map_from_region;
     const double a_to_b = g.traversal_directions.front() + r_from_a.theta();
     const Vector2d beyond = (region_id == a ? 1.0 : -1.0) * Vector2d(std::cos(a_to_b), std::sin(a_to_b));
     for (EdgeFrame e : edge_frames({r_from_a * g.gateway_points[0], r_from_a * g.gateway_points[1]})) {
       if (e.normal.dot(beyond) < 0) e.normal = -e.normal;
-      out.push_back({e, options_.late_scan_reach});
-    }
-  }
-  // Inside a junction whose stem the region lies beyond: as deep as the junction (the sides
-  // beside the stem are as long).
-  for (const auto& [points, stems] : gateway_points_and_stems(region_id, nullptr)) {
-    const std::vector<EdgeFrame> sides = edge_frames(points);
-    for (EdgeFrame e : stems) {
-      double depth = 0;
-      for (const EdgeFrame& f : sides)
-        if (std::fabs(f.along.dot(e.along)) < 0.5) depth = std::max(depth, f.length);
-      e.normal = -e.normal;
-      out.push_back({e, depth});
+      out.foreign.push_back({e, options_.late_scan_reach});
     }
   }
   return out;
+}
+
+void RgKernel::describe(int64_t region_id, Region* region, bool exact) const
+{
+  const BeamLimits limits = beam_limits(region_id);
+  builders_.at(region_id).describe(region, limits.lines, exact, limits.foreign);
 }
 
 void RgKernel::mark_regions_behind(const Gateway& g)
@@ -232,7 +209,7 @@ rgmap::Region RgKernel::describe_region(int64_t id) const
 {
   Region r = *map_.region(id);
   auto it = builders_.find(id);
-  if (it != builders_.end()) it->second.describe(&r, gateway_lines(id), r.state == Region::State::kFinalised, foreign_sides(id));
+  if (it != builders_.end()) describe(id, &r, r.state == Region::State::kFinalised);
   return r;
 }
 

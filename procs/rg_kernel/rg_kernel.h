@@ -30,6 +30,13 @@
 
 namespace rgnav::rg_kernel {
 
+// RgKernel::beam_limits.
+struct BeamLimits
+{
+  RegionBuilder::GatewayLines lines;
+  std::vector<ForeignSide> foreign;
+};
+
 struct KernelOptions
 {
   RegionBuildOptions build;
@@ -134,25 +141,19 @@ class RgKernel
   int64_t open_region(const geometry::Pose2& map_from_region, int64_t utime);
   void enter(int64_t region_id, int64_t utime, const Eigen::Vector2d& robot);
   void maybe_merge_current(int64_t utime);
-  // The lines of every non-neutralized gateway of the map (gateway_geometry.h) that end the
-  // beams of region_id, in its frame; `robot` (map frame), if given, counts as one of its robot
-  // positions (the region just entered has none yet).
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> gateway_lines(int64_t region_id,
-                                                                         const Eigen::Vector2d* robot = nullptr) const;
-  // The far sides of the region's own traversed gateway lines, and the insides of the junctions
-  // whose stem it lies beyond (stems_entered), in its frame (region_builder.h).
-  std::vector<ForeignSide> foreign_sides(int64_t region_id) const;
-  // The region's laser positions (its frame), and `robot` (map frame) if given.
-  std::vector<Eigen::Vector2d> robot_origins(int64_t region_id, const Eigen::Vector2d* robot) const;
-  // Every non-neutralized crossing's outline in region_id's frame, and the sides of it that are
-  // stems the region lies beyond (empty unless stem_ends_branch), with `robot` as in gateway_lines.
-  std::vector<std::pair<std::vector<Eigen::Vector2d>, std::vector<EdgeFrame>>> gateway_points_and_stems(
-      int64_t region_id, const Eigen::Vector2d* robot) const;
+  // What bounds region_id's beams (its frame): the lines of every non-neutralized gateway of the
+  // map (gateway_geometry.h) that end them, and the places where its scans carve nothing (the far
+  // sides of its own traversed doors, the insides of the junctions whose stem it lies beyond).
+  // `robot` (map frame), if given, counts as one of its robot positions (the region just entered
+  // has none yet).
+  BeamLimits beam_limits(int64_t region_id, const Eigen::Vector2d* robot = nullptr) const;
+  // The region's description (RegionBuilder::describe) within its beam limits.
+  void describe(int64_t region_id, rgmap::Region* region, bool exact) const;
   void mark_regions_behind(const rgmap::Gateway& g);
-  void walk_through_doorway(const Eigen::Vector2d& from, const ScanInput& s);
-  // The robot's last step (from, map frame, to the scan s) went through a known door of the current
-  // region to its far side, unreported: crossed as the detector would have reported it.
-  void walk_out_through_door(const Eigen::Vector2d& from, const ScanInput& s);
+  // The robot's last step (from, map frame, to the scan s) went through a door unreported: a known
+  // door of the current region to its far side (door_exits), or a doorway of its line map no
+  // gateway stands in (doorway_gateways); crossed as the detector would have reported it.
+  void walk_through_door(const Eigen::Vector2d& from, const ScanInput& s);
   bool repeats_entry(const rgmap::Gateway& g, int64_t current, double direction) const;
   // A traversed line gateway's unit normal (map frame) pointing to region_b's side: the side its
   // first traversal headed to.

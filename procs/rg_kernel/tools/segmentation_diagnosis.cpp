@@ -40,7 +40,12 @@ SegmentationDiagnosis diagnose_segmentation(const LabelGrid& truth, const Region
     for (const auto& [room, n] : r.room_cells)
       if (n > r.best_cells) r.best_room = room, r.best_cells = n;   // ties: the lower label, as the metric
     if (auto p = positions.find(rid); p != positions.end())
-      for (const auto& x : p->second) ++r.room_positions[room_at(truth, x)];
+      for (const auto& x : p->second) {
+        const int32_t room = room_at(truth, x);
+        ++r.room_positions[room];
+        if (r.path.empty() || r.path.back().first != room) r.path.push_back({room, 0});
+        ++r.path.back().second;
+      }
     for (const auto& [room, n] : r.room_cells) {
       if (room == r.best_room) continue;
       (r.room_positions.count(room) ? r.driven_cells : r.seen_cells) += n;
@@ -76,6 +81,8 @@ std::string to_text(const SegmentationDiagnosis& d, const std::vector<std::strin
     }
     o << " | positions";
     for (const auto& [room, n] : r.room_positions) o << " " << name(room) << ":" << n;
+    o << " | path";
+    for (const auto& [room, n] : r.path) o << " " << name(room) << "x" << n;
     o << "\n";
   }
   o << "loss seen-through " << d.seen_loss << " driven-through " << d.driven_loss << "\n";

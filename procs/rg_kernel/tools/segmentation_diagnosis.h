@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rgmap_metrics.h"
@@ -27,6 +28,10 @@ struct RegionDiagnosis
   int64_t driven_cells = 0;                   // in other rooms the region's robot stood in
   std::map<int32_t, int64_t> room_cells;      // room -> cells
   std::map<int32_t, int> room_positions;      // room -> robot positions (0: outside every room)
+  // The rooms of the robot positions in the order given (time order), runs of one room as
+  // (room, positions): 3 in the hallway, 75 in a room, 119 in the hallway again is a room left
+  // without a gateway (office_g, before RG kernel door_exits).
+  std::vector<std::pair<int32_t, int>> path;
 };
 
 struct SegmentationDiagnosis
@@ -42,7 +47,7 @@ SegmentationDiagnosis diagnose_segmentation(const LabelGrid& truth, const Region
                                             const std::map<int64_t, std::vector<Eigen::Vector2d>>& positions);
 
 // One line per region: cells, best room and share, the other rooms' cells (marked * where the
-// robot stood), for the bench's --diagnose.
+// robot stood), the robot's positions per room and its path, for the bench's --diagnose.
 std::string to_text(const SegmentationDiagnosis& d, const std::vector<std::string>& room_names);
 
 }  // namespace rgnav::rgmap_pipeline

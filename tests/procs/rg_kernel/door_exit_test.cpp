@@ -55,13 +55,15 @@ TEST(RgKernel, KnownDoorGoneBackThroughUnreportedIsCrossedByTheKernel)
 
 TEST(RgKernel, StepsOnTheRegionsOwnSideOfItsDoorCrossNothing)
 {
-  // Into room B and up to the door from B's side, back into B: no traversal; nor a jump across
-  // the door (a gap in the scans, not a step through it).
+  // The door reported while the robot is still in front of it (room A's side): its next step
+  // through the door leads into room B, the region it is in already, and crosses nothing. Nor
+  // does a jump back across the door (a gap in the scans, not a step through it).
   Drive d;
   for (double x = 1.0; x < 3.9; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
-  d.traverse_door(4.3, 0);
-  for (double x = 4.5; x < 6.0; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
-  for (double x = 5.8; x > 4.1; x -= 0.2) d.scan_at(geometry::Pose2(x, 1.5, M_PI));
+  d.traverse_door(3.85, 0);
+  ASSERT_EQ(d.kernel.map().current_region, 2);
+  d.scan_at(geometry::Pose2(3.9, 1.5, 0));
+  d.scan_at(geometry::Pose2(4.1, 1.5, 0));   // through the door, into B
   for (double x = 4.3; x < 6.0; x += 0.2) d.scan_at(geometry::Pose2(x, 1.5, 0));
   EXPECT_EQ(d.kernel.map().current_region, 2);
   d.scan_at(geometry::Pose2(2.0, 1.5, M_PI));

@@ -30,14 +30,21 @@ void drive_into_the_bay_and_on(Drive& d)
   d.traverse(rgmap::GatewayClass::kDoor, 3, geometry::Pose2(13.2, 1, 0), {Vector2d(13, 0), Vector2d(13, 2)});
 }
 
-// Free cells (0.1 m samples) of a region inside the junction's square.
+// Samples (0.1 m apart) inside the junction's square, and how many of them a region has free.
+std::vector<Vector2d> junction_samples()
+{
+  std::vector<Vector2d> out;
+  for (double x = 5.25; x < 7.8; x += 0.1)
+    for (double y = 0.25; y < 1.8; y += 0.1) out.emplace_back(x, y);
+  return out;
+}
+
 int junction_cells(const RgKernel& kernel, int64_t region)
 {
   const rgmap::Region r = kernel.describe_region(region);
   const geometry::Pose2 region_from_map = r.map_from_region.inverse();
   int n = 0;
-  for (double x = 5.25; x < 7.8; x += 0.1)
-    for (double y = 0.25; y < 1.8; y += 0.1) n += r.freespace.is_free(region_from_map * Vector2d(x, y)) ? 1 : 0;
+  for (const Vector2d& p : junction_samples()) n += r.freespace.is_free(region_from_map * p) ? 1 : 0;
   return n;
 }
 
@@ -50,8 +57,9 @@ TEST(GatewayGeometry, StemOfATIsTheSideOppositeAWallWithTheHallwayOpenPastIt)
   // A position in the bay lies beyond the south side (y = 0): that side is the stem.
   const auto stems = stems_entered(kJunction, {Vector2d(6.5, -1)}, 2.0, walls, test);
   ASSERT_EQ(stems.size(), 1u);
-  EXPECT_NEAR(stems[0].mid.y(), 0.0, 1e-9);
-  EXPECT_LT(stems[0].normal.y(), -0.99);   // outward
+  EXPECT_NEAR(stems[0].side.mid.y(), 0.0, 1e-9);
+  EXPECT_LT(stems[0].side.normal.y(), -0.99);   // outward
+  EXPECT_NEAR(stems[0].depth, 2.0, 1e-9);       // the hallway's width behind it
   // A position in the hallway west of it lies beyond the west side, which has more hallway
   // (open) opposite: no stem.
   EXPECT_TRUE(stems_entered(kJunction, {Vector2d(4, 1)}, 2.0, walls, test).empty());
@@ -69,7 +77,7 @@ TEST(RgKernel, BayEnteredThroughATJunctionsStemEndsAtItsSide)
   const auto& m = d.kernel.map();
   ASSERT_GE(m.regions().size(), 3u);
   EXPECT_TRUE(m.consistency_problems().empty());
-  const int junction = 25 * 16;   // samples in the square
+  const int junction = static_cast<int>(junction_samples().size());
   // The bay ends at the hallway's wall line; the hallway regions keep the junction.
   EXPECT_LT(junction_cells(d.kernel, 2), junction / 20);
   EXPECT_GT(junction_cells(d.kernel, 1) + junction_cells(d.kernel, 3), junction / 2);

@@ -44,7 +44,12 @@ TEST(SegmentationDiagnosis, SplitsThePrecisionLossBySeenAndDrivenThrough)
   const double precision = score_segmentation(g, found).precision;
   EXPECT_NEAR(d.seen_loss + d.driven_loss, 1.0 - precision, 1e-12);
   EXPECT_NEAR(d.seen_loss, (50.0 / 150.0) / 3.0, 1e-12);
-  EXPECT_NE(to_text(d, {"a", "b", "c"}).find("R3"), std::string::npos);
+  // Region 2's robot went from room 1 (twice: the wall position counts for room 1) to room 2.
+  const std::vector<std::pair<int32_t, int>> path{{1, 2}, {2, 1}};
+  EXPECT_EQ(d.regions[1].path, path);
+  const std::string text = to_text(d, {"a", "b", "c"});
+  EXPECT_NE(text.find("R3"), std::string::npos);
+  EXPECT_NE(text.find("path ax2 bx1"), std::string::npos);
 }
 
 }  // namespace
