@@ -128,6 +128,16 @@ void ScanMapper::learn_odometry_noise(const Pose2& increment, const Eigen::Vecto
   stats_.odometry_trans_scale = std::sqrt(std::clamp(innovation_ratio_, 1.0, n.adapt_max_scale * n.adapt_max_scale));
 }
 
+IcpOptions ScanMapper::fit_options() const
+{
+  IcpOptions o = options_.icp;
+  if (options_.odometry_noise.adapt_degeneracy) {
+    const double s = stats_.odometry_trans_scale;
+    o.degenerate_min_points /= s * s;
+  }
+  return o;
+}
+
 MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
 {
   MapperUpdate up;
@@ -161,12 +171,13 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
   const Eigen::Matrix3d Q = relocalize ? Eigen::Matrix3d(Eigen::Vector3d(1.0, 1.0, 0.5).asDiagonal())
                                        : odometry_covariance(u, stats_.odometry_trans_scale);
   const Pose2 guess = prev.map_from_base * u;
+  const IcpOptions fit = fit_options();
 
   Pose2 fused = u;
   Eigen::Matrix3d P = Q;
   // The candidates best fit first; the first one odometry does not contradict is fused.
   bool rejected = false;
-  for (const IcpResult& icp : register_locally(node, guess, relocalize, std::sqrt(Q(2, 2)))) {
+  for (const IcpResult& icp : register_locally(node, guess, relocalize, std::sqrt(Q(2, 2)), fit)) {
     // Both increments in the previous node's frame.
     const Pose2 z = between(prev.map_from_base, icp.map_from_scan);
     const Eigen::Matrix3d R = rot3(-prev.map_from_base.theta()) * icp.covariance * rot3(-prev.map_from_base.theta()).transpose();
@@ -183,6 +194,10 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
     P = 0.5 * (P + P.transpose());
     // Where the fit holds both translation directions, its difference from odometry measures
     // odometry's translation error.
+    if (icp.weakest_translation_points < fit.degenerate_min_points) ++stats_.axes_held;
+    // Learned from fits that hold both directions by the configured count, whatever the
+    // odometry: fits held by fewer points that the fusion trusts against a poor odometry are
+    // still too weak to say by how much it errs.
     const double weak_limit = options_.icp.degenerate_min_points;
     if (!relocalize && (weak_limit <= 0.0 || icp.weakest_translation_points >= weak_limit)) {
       learn_odometry_noise(u, innov, R);
@@ -231,16 +246,13 @@ void ScanMapper::prepare_points(ScanNode* node) const
 
 void ScanMapper::compute_normals(ScanNode* node) const
 {
-  const PointMap own(node->points);
-  node->normals = own.normals();
-  node->has_normal = own.has_normals();
-  // Toward the laser: a normal then says from which side its surface was seen.
-  orient_normals_toward(node->points, Eigen::Vector2d(options_.base_from_laser.x(), options_.base_from_laser.y()),
-                        &node->normals, node->has_normal);
+  auto normals = scan_normals(node->points, options_.base_from_laser.translation(), options_.normals);
+  node->normals = std::move(normals.normals);
+  node->has_normal = std::move(normals.has_normal);
 }
 
 std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const Pose2& guess, bool wide,
-                                                    double odometry_sigma_rot)
+                                                    double odometry_sigma_rot, const IcpOptions& icp)
 {
   const Points& points = scan.points;
   const int n = static_cast<int>(nodes_.size());
@@ -256,7 +268,7 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
   }
   if (model.size() < 10 || points.size() < 10) return {};
   const PointMap map(std::move(model), std::move(normals), std::move(has_normal));
-  std::vector<IcpResult> found{icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, options_.icp)};
+  std::vector<IcpResult> found{icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, icp)};
   if (wide || !found[0].ok || found[0].inlier_ratio < options_.min_inlier_ratio) {
     ++stats_.correlative_retries;
     const LikelihoodGrid grid(map.points(), options_.correlative);
@@ -266,7 +278,7 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
                                        options_.correlative);
     // A wide search can fit a turned copy of symmetric surroundings (a round bay seen from its
     // centre) better than the fit from odometry: both go to the caller, better first.
-    IcpResult again = icp_point_to_line(points, scan.normals, scan.has_normal, map, cor.map_from_scan, options_.icp);
+    IcpResult again = icp_point_to_line(points, scan.normals, scan.has_normal, map, cor.map_from_scan, icp);
     if (again.ok && (!found[0].ok || again.inlier_ratio > found[0].inlier_ratio)) found.insert(found.begin(), again);
     else found.push_back(again);
   }
@@ -276,7 +288,7 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
   for (IcpResult& r : found) {
     if (!r.ok) continue;
     if (options_.moving_points.margin_m > 0.0)
-      if (auto refit = register_without_moving(scan, map, r.map_from_scan)) r = *refit;
+      if (auto refit = register_without_moving(scan, map, r.map_from_scan, icp)) r = *refit;
     if (!r.ok || r.inlier_ratio < options_.min_accept_inlier_ratio) continue;
     // After a restart (wide) the guess's heading is no odometry's: nothing to check against.
     const double turn = normalize_angle(r.map_from_scan.theta() - guess.theta());
@@ -284,7 +296,7 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
     if (!wide && options_.turn_check_sigmas > 0.0 && std::fabs(turn) > max_turn) {
       // The fit at odometry's heading, once per scan however many candidates turned.
       if (!held) {
-        IcpOptions translation_only = options_.icp;
+        IcpOptions translation_only = icp;
         translation_only.estimate_rotation = false;
         held = icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, translation_only);
         // Its heading is odometry's, unmeasured by the fit.
@@ -310,7 +322,7 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
 }
 
 std::optional<IcpResult> ScanMapper::register_without_moving(const ScanNode& scan, const PointMap& map,
-                                                             const Pose2& map_from_scan)
+                                                             const Pose2& map_from_scan, const IcpOptions& icp)
 {
   const auto& o = options_.moving_points;
   const int n = static_cast<int>(nodes_.size());
@@ -359,7 +371,7 @@ std::optional<IcpResult> ScanMapper::register_without_moving(const ScanNode& sca
   if (model.points.size() < 10 || still_scan.points.size() < 10) return std::nullopt;
   const PointMap still(std::move(model.points), std::move(model.normals), std::move(model.has_normal));
   IcpResult refit =
-      icp_point_to_line(still_scan.points, still_scan.normals, still_scan.has_normal, still, map_from_scan, options_.icp);
+      icp_point_to_line(still_scan.points, still_scan.normals, still_scan.has_normal, still, map_from_scan, icp);
   if (!refit.ok) return std::nullopt;
   return refit;
 }
@@ -450,7 +462,7 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
     ++stats_.loop_ambiguous;
     return std::nullopt;
   }
-  IcpOptions loop_icp = options_.icp;
+  IcpOptions loop_icp = fit_options();
   loop_icp.degenerate_variance_m2 = l.degenerate_variance_m2;
   IcpResult icp = icp_point_to_line(cur.points, cur.normals, cur.has_normal, *sm.points, cor.map_from_scan, loop_icp);
   // The correlative optimum is only as good as its grid; where the graph already knows the
@@ -468,7 +480,7 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
   h.anchor = anchor;
   h.anchor_from_node = icp.map_from_scan;
   h.covariance = l.covariance_scale * rot3(-h.anchor_from_node.theta()) * icp.covariance * rot3(-h.anchor_from_node.theta()).transpose();
-  if (icp.weakest_translation_points < options_.icp.degenerate_min_points) {
+  if (icp.weakest_translation_points < loop_icp.degenerate_min_points) {
     // The fit does not hold its weakest direction (a hallway's axis; scan_mapper_options.h).
     if (l.degenerate_keeps_graph_axis) {
       const Eigen::Vector2d& v = icp.weakest_direction;

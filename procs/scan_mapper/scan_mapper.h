@@ -92,6 +92,7 @@ struct MapperStats
   int64_t loop_pruned = 0;           // closures taken out later, when the graph disagreed (OptimizationJob)
   int64_t moving_points = 0;  // points left out of local registration as seen through
   int64_t turns_held = 0;     // fits whose turn the scan did not hold: odometry's heading kept
+  int64_t axes_held = 0;      // fused fits whose weakest direction too few surface points held: odometry's there
   double odometry_trans_scale = 1.0;  // learned scale on the translation sigmas (OdometryNoise::adapt_*)
   double odometry_scale = 1.0;        // learned odometry translation scale (true / odometry; odometry_scale.h)
 };
@@ -153,16 +154,20 @@ class ScanMapper
   // Updates the learned translation noise scale from a fused match's innovation (the
   // increments' difference, in the previous node's frame) and its covariance R.
   void learn_odometry_noise(const Pose2& increment, const Eigen::Vector3d& innovation, const Eigen::Matrix3d& R);
+  // The ICP options with icp.degenerate_min_points for the odometry as learned so far
+  // (OdometryNoise::adapt_degeneracy).
+  IcpOptions fit_options() const;
   // Registers the scan's points (base frame) against the local map from guess: the acceptable
   // fits, best first (the fit from guess and, when it was poor, a correlative search's); none if
   // registration fails. A fit turned from guess by more than turn_check_sigmas x
   // odometry_sigma_rot [rad] that fits little better than guess's heading does is replaced by
   // the translation-only fit at guess's heading (ScanMapperOptions::turn_check_sigmas).
   std::vector<IcpResult> register_locally(const ScanNode& scan, const Pose2& guess, bool wide,
-                                          double odometry_sigma_rot);
+                                          double odometry_sigma_rot, const IcpOptions& icp);
   // Registers again from map_from_scan without the points on something that moved (seen through,
   // moving_points.h); nullopt when there were none (or too few points were left).
-  std::optional<IcpResult> register_without_moving(const ScanNode& scan, const PointMap& map, const Pose2& map_from_scan);
+  std::optional<IcpResult> register_without_moving(const ScanNode& scan, const PointMap& map, const Pose2& map_from_scan,
+                                                   const IcpOptions& icp);
   // Searches one closure for `node`; nullopt when none is found.
   std::optional<ClosureHypothesis> find_closure(int node);
   bool try_loop_closure(int node, MapperUpdate* update);

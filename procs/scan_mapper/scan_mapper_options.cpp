@@ -23,6 +23,9 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   o.points.min_range_m = pts.number("min_range_m", o.points.min_range_m, 0.0, 10.0);
   o.points.max_range_m = pts.number("max_range_m", o.points.max_range_m, 0.5, 100.0);
   o.points.min_spacing_m = pts.number("min_spacing_m", o.points.min_spacing_m, 0.0, 1.0);
+  const auto beam = pts.section("beam_normals");
+  o.normals.beam_max_gap_m = beam.number("max_gap_m", o.normals.beam_max_gap_m, 0.0, 10.0);
+  o.normals.beam_max_bend_rad = beam.number("max_bend_deg", o.normals.beam_max_bend_rad / kDeg, 0.0, 45.0) * kDeg;
 
   const auto reg = c.section("registration");
   o.local_map_scans = static_cast<int>(reg.integer("local_map_scans", o.local_map_scans, 1, 200));
@@ -66,6 +69,7 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c)
   o.odometry_noise.adapt_window_scans =
       static_cast<int>(adapt.integer("window_scans", o.odometry_noise.adapt_window_scans, 0, 100000));
   o.odometry_noise.adapt_max_scale = adapt.number("max_scale", o.odometry_noise.adapt_max_scale, 1.0, 100.0);
+  o.odometry_noise.adapt_degeneracy = adapt.boolean("degeneracy", o.odometry_noise.adapt_degeneracy);
   const auto scale = c.section("odometry_scale");
   o.odometry_scale.window_m = scale.number("window_m", o.odometry_scale.window_m, 0.0, 1e6);
   o.odometry_scale.min_step_m = scale.number("min_step_m", o.odometry_scale.min_step_m, 0.0, 10.0);

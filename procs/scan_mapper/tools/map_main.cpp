@@ -39,7 +39,8 @@ int main(int argc, char** argv)
     const auto& s = r.stats;
     std::cout << log_path << ": " << s.scans_in << " scans, " << s.accepted << " accepted, " << s.matched
               << " matched, " << s.correlative_retries << " correlative retries, " << s.match_rejected
-              << " matches rejected, " << s.turns_held << " turns held to odometry's heading, " << s.no_odometry
+              << " matches rejected, " << s.turns_held << " turns held to odometry's heading, " << s.axes_held
+              << " weakest directions left to odometry, " << s.no_odometry
               << " without odometry, " << s.moving_points << " points left out as moving\n"
               << "odometry translation noise: " << s.odometry_trans_scale << " x the configured (learned)\n"
               << "odometry translation scale: " << s.odometry_scale << " (learned: true / odometry)\n"

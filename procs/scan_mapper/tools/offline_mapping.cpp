@@ -60,14 +60,11 @@ Pose2 register_between(const std::vector<ScanNode>& nodes, size_t k, const ScanE
   const Points points = scan_to_points(scan, options.base_from_laser, options.points);
   if (model.size() < 10 || points.size() < 10) return by_odometry;
   const PointMap map(std::move(model), std::move(normals), std::move(has_normal));
-  // The scan's own normals, oriented toward its laser like the nodes' (ScanMapper).
-  const PointMap own(points);
-  Points own_normals = own.normals();
-  orient_normals_toward(points, Eigen::Vector2d(options.base_from_laser.x(), options.base_from_laser.y()), &own_normals,
-                        own.has_normals());
+  // The scan's own normals, as the nodes' (ScanMapper).
+  const ScanNormals own = scan_normals(points, options.base_from_laser.translation(), options.normals);
   IcpResult best;
   for (const Pose2& guess : {by_odometry, by_time}) {
-    const IcpResult r = icp_point_to_line(points, own_normals, own.has_normals(), map, guess, options.icp);
+    const IcpResult r = icp_point_to_line(points, own.normals, own.has_normal, map, guess, options.icp);
     if (r.ok && (!best.ok || r.inlier_ratio > best.inlier_ratio)) best = r;
   }
   if (!best.ok || best.inlier_ratio < options.min_inlier_ratio) {
@@ -75,7 +72,7 @@ Pose2 register_between(const std::vector<ScanNode>& nodes, size_t k, const ScanE
     const LikelihoodGrid grid(map.points(), options.correlative);
     const auto cor = correlative_match(thin_points(points, options.loop.point_spacing_m), grid, by_time,
                                        options.local_window, options.correlative);
-    const IcpResult r = icp_point_to_line(points, own_normals, own.has_normals(), map, cor.map_from_scan, options.icp);
+    const IcpResult r = icp_point_to_line(points, own.normals, own.has_normal, map, cor.map_from_scan, options.icp);
     if (r.ok && (!best.ok || r.inlier_ratio > best.inlier_ratio)) best = r;
   }
   return best.ok && best.inlier_ratio >= options.loop.min_inlier_ratio ? best.map_from_scan : by_odometry;

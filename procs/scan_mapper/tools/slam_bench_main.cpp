@@ -96,6 +96,7 @@ nlohmann::json evaluate_real(const RealLog& spec, sm::ScanMapperOptions options,
   j["correlative_retries"] = r.stats.correlative_retries;
   j["match_rejected"] = r.stats.match_rejected;
   j["turns_held"] = r.stats.turns_held;
+  j["axes_held"] = r.stats.axes_held;
   j["odometry_trans_scale"] = r.stats.odometry_trans_scale;
   j["odometry_scale"] = r.stats.odometry_scale;
   j["map_png"] = maps_dir + "/" + spec.name + "/map.png";
@@ -189,6 +190,7 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["loop_pruned"] = r.stats.loop_pruned;
   j["correlative_retries"] = r.stats.correlative_retries;
   j["turns_held"] = r.stats.turns_held;
+  j["axes_held"] = r.stats.axes_held;
   j["odometry_trans_scale"] = r.stats.odometry_trans_scale;
   j["odometry_scale"] = r.stats.odometry_scale;
   j["loop_attempts"] = r.stats.loop_attempts;

@@ -113,6 +113,82 @@ void feed(const SyntheticRun& run, sm::ScanMapper* mapper)
   }
 }
 
+// A furnished 7 x 6 m room (a cupboard and a table) and, through its east wall, a plain 2 m
+// hallway 40 m long.
+std::vector<sm::testing::Segment> furnished_room_and_hallway()
+{
+  std::vector<sm::testing::Segment> world = {{{-7, -3}, {0, -3}}, {{-7, 3}, {0, 3}}, {{-7, -3}, {-7, 3}},
+                                             {{0, -3}, {0, -1}},  {{0, 1}, {0, 3}},   {{0, -1}, {40, -1}},
+                                             {{0, 1}, {40, 1}},   {{40, -1}, {40, 1}}};
+  auto box = [&](double x0, double y0, double x1, double y1) {
+    world.push_back({{x0, y0}, {x1, y0}});
+    world.push_back({{x1, y0}, {x1, y1}});
+    world.push_back({{x1, y1}, {x0, y1}});
+    world.push_back({{x0, y1}, {x0, y0}});
+  };
+  box(-4.2, -0.6, -3.4, 0.4);
+  box(-6.5, 1.8, -5.9, 2.5);
+  return world;
+}
+
+// The same with door niches along the hallway (one every 5 m, 1 m wide and 0.4 m deep): their
+// jambs hold fits along the axis by a few dozen points.
+std::vector<sm::testing::Segment> room_and_hallway_with_niches()
+{
+  auto world = furnished_room_and_hallway();
+  for (const double x : {4.0, 9.0, 14.0, 19.0}) {
+    const double side = x < 10.0 ? 1.0 : -1.0;
+    world.push_back({{x, side}, {x, side * 1.4}});
+    world.push_back({{x + 1.0, side}, {x + 1.0, side * 1.4}});
+    world.push_back({{x, side * 1.4}, {x + 1.0, side * 1.4}});
+  }
+  return world;
+}
+
+// Round the room twice and 22 m down the hallway, with a 6 m laser, so that the hallway's axis
+// is left to odometry (make_run: 2 % long, and odom_step_sigma at random).
+SyntheticRun room_then_hallway(const std::vector<sm::testing::Segment>& world, double odom_step_sigma)
+{
+  sm::testing::LaserModel m;
+  m.noise_m = 0.01;
+  m.max_range = 6.0;
+  return make_run(world, {{-6, -2}, {-1, -2}, {-1, 2}, {-6, 2}, {-6, -2}, {-1, -2}, {-1, 0}, {22, 0}}, 1, m,
+                  odom_step_sigma);
+}
+
+// hallway_options with odometry's noise and scale learned as config/scan_mapper.yaml learns
+// them, and with adapt_degeneracy the count set for the learned noise.
+sm::ScanMapperOptions learning_options(bool adapt_degeneracy)
+{
+  auto o = hallway_options();
+  o.odometry_noise.trans_per_m = 0.05;
+  o.odometry_noise.min_trans_m = 0.002;
+  o.odometry_noise.adapt_window_scans = 100;
+  o.odometry_noise.adapt_degeneracy = adapt_degeneracy;
+  o.odometry_scale.window_m = 50.0;
+  return o;
+}
+
+struct HallwayOutcome
+{
+  double worst_along_m = 0.0;  // of the accepted scans' estimates in the hallway
+  sm::MapperStats stats;
+};
+
+HallwayOutcome drive(const SyntheticRun& run, const sm::ScanMapperOptions& options)
+{
+  sm::ScanMapper mapper(options);
+  HallwayOutcome out;
+  for (size_t i = 0; i < run.scans.size(); ++i) {
+    mapper.add_odometry({run.scans[i].utime, run.odom[i]});
+    if (mapper.add_scan(run.scans[i]).accepted && run.truth[i].x() > 0.0)
+      out.worst_along_m =
+          std::max(out.worst_along_m, std::fabs(mapper.nodes().back().map_from_base.x() - run.truth[i].x()));
+  }
+  out.stats = mapper.stats();
+  return out;
+}
+
 }  // namespace
 
 TEST(OdometryBuffer, InterpolatesAndHoldsBriefly)
@@ -156,6 +232,16 @@ TEST(ScanMapperOptions, LoadsAndRejectsBadValues)
   EXPECT_DOUBLE_EQ(sm::load_scan_mapper_options(scaled.section("scan_mapper")).odometry_scale.window_m, 20.0);
   const auto loose = rgnav::config::Config::parse("scan_mapper:\n  odometry_scale:\n    max_error: 0.6\n", "test");
   EXPECT_THROW(sm::load_scan_mapper_options(loose.section("scan_mapper")), rgnav::config::ConfigError);
+  const auto beam = rgnav::config::Config::parse(
+      "scan_mapper:\n  points:\n    beam_normals:\n      max_gap_m: 0.8\n      max_bend_deg: 10\n"
+      "  odometry_noise:\n    adapt:\n      degeneracy: true\n",
+      "test");
+  const auto bo = sm::load_scan_mapper_options(beam.section("scan_mapper"));
+  EXPECT_DOUBLE_EQ(bo.normals.beam_max_gap_m, 0.8);
+  EXPECT_NEAR(bo.normals.beam_max_bend_rad, 10.0 * M_PI / 180.0, 1e-12);
+  EXPECT_TRUE(bo.odometry_noise.adapt_degeneracy);
+  const auto bent = rgnav::config::Config::parse("scan_mapper:\n  points:\n    beam_normals:\n      max_bend_deg: 60\n", "test");
+  EXPECT_THROW(sm::load_scan_mapper_options(bent.section("scan_mapper")), rgnav::config::ConfigError);
   const auto typo = rgnav::config::Config::parse("scan_mapper:\n  gating:\n    min_travle_m: 0.3\n", "test");
   sm::load_scan_mapper_options(typo.section("scan_mapper"));
   EXPECT_THROW(typo.finish(), rgnav::config::ConfigError);
@@ -253,22 +339,7 @@ TEST(ScanMapper, LearnsOdometrysScaleWhereTheScansHoldItAndUsesItAlongAHallway)
   // hallway the scans leave the axis to odometry, which is 2 % long (make_run). Driven round
   // the room first, the mapper learns the scale there and drives the hallway on corrected
   // odometry.
-  std::vector<sm::testing::Segment> world = {{{-7, -3}, {0, -3}}, {{-7, 3}, {0, 3}}, {{-7, -3}, {-7, 3}},
-                                             {{0, -3}, {0, -1}},  {{0, 1}, {0, 3}},   {{0, -1}, {40, -1}},
-                                             {{0, 1}, {40, 1}},   {{40, -1}, {40, 1}}};
-  auto box = [&](double x0, double y0, double x1, double y1) {
-    world.push_back({{x0, y0}, {x1, y0}});
-    world.push_back({{x1, y0}, {x1, y1}});
-    world.push_back({{x1, y1}, {x0, y1}});
-    world.push_back({{x0, y1}, {x0, y0}});
-  };
-  box(-4.2, -0.6, -3.4, 0.4);  // a cupboard and a table in the room
-  box(-6.5, 1.8, -5.9, 2.5);
-  sm::testing::LaserModel m;
-  m.noise_m = 0.01;
-  m.max_range = 6.0;
-  const SyntheticRun run =
-      make_run(world, {{-6, -2}, {-1, -2}, {-1, 2}, {-6, 2}, {-6, -2}, {-1, -2}, {-1, 0}, {22, 0}}, 1, m);
+  const SyntheticRun run = room_then_hallway(furnished_room_and_hallway(), 0.0);
   auto run_with = [&](double window_m) {
     auto o = hallway_options();
     o.odometry_scale.window_m = window_m;
@@ -285,6 +356,52 @@ TEST(ScanMapper, LearnsOdometrysScaleWhereTheScansHoldItAndUsesItAlongAHallway)
   // 22 m of hallway at 2 %: odometry alone would be 0.44 m long.
   EXPECT_GT(raw_error, 0.25) << "the hallway no longer leaves its axis to odometry: the test shows nothing";
   EXPECT_LT(std::fabs(learned_error), 0.1);
+}
+
+TEST(ScanMapper, APoorerOdometryLeavesFewerWeakestDirectionsToItself)
+{
+  // Every 5 cm step of odometry 60 % off at random: about 3.5 times the configured sigmas,
+  // learned in the room. With adapt_degeneracy a fit needs that squared times fewer points to
+  // hold its weakest direction, and fewer directions are left to odometry: those near the
+  // jambs (between the niches the walls alone hold nothing along the axis, whatever the count).
+  const SyntheticRun noisy = room_then_hallway(room_and_hallway_with_niches(), 0.6);
+  auto o = learning_options(true);
+  o.normals.beam_max_gap_m = 1.0;
+  const HallwayOutcome adapted = drive(noisy, o);
+  o.odometry_noise.adapt_degeneracy = false;
+  const HallwayOutcome fixed = drive(noisy, o);
+  std::cout << "weakest directions left to odometry: " << adapted.stats.axes_held << " for the learned scale "
+            << adapted.stats.odometry_trans_scale << ", " << fixed.stats.axes_held << " for the fixed count\n";
+  EXPECT_GT(adapted.stats.odometry_trans_scale, 2.0);
+  EXPECT_GT(fixed.stats.axes_held, 50) << "the hallway holds its axis: the test shows nothing";
+  EXPECT_LT(adapted.stats.axes_held, fixed.stats.axes_held * 3 / 4);
+
+  // Odometry as good as configured learns no scale: the count and the estimates stay as they were.
+  const SyntheticRun good = room_then_hallway(room_and_hallway_with_niches(), 0.0);
+  const HallwayOutcome good_adapted = drive(good, learning_options(true));
+  const HallwayOutcome good_fixed = drive(good, learning_options(false));
+  EXPECT_EQ(good_adapted.stats.odometry_trans_scale, 1.0);
+  EXPECT_EQ(good_adapted.stats.axes_held, good_fixed.stats.axes_held);
+  EXPECT_EQ(good_adapted.worst_along_m, good_fixed.worst_along_m);
+}
+
+TEST(ScanMapper, SparseWallSamplesDoNotHoldTheFitAlongAHallway)
+{
+  // The fits trusted along the hallway, as in the test above. A 1 deg scanner samples the walls
+  // ahead every few decimetres; without a normal from their neighbours such samples pair
+  // point-to-point with the nearest sample of the same wall in the local map, hold the fit along
+  // the axis and make it short. With the chord through their beam neighbours as their normal
+  // they pair point-to-line.
+  const SyntheticRun noisy = room_then_hallway(room_and_hallway_with_niches(), 0.6);
+  auto o = learning_options(true);
+  o.normals.beam_max_gap_m = 1.0;
+  const HallwayOutcome beam = drive(noisy, o);
+  o.normals.beam_max_gap_m = 0.0;
+  const HallwayOutcome point = drive(noisy, o);
+  std::cout << "worst error along the hallway: " << beam.worst_along_m << " m with beam normals, "
+            << point.worst_along_m << " m without\n";
+  EXPECT_GT(point.worst_along_m, 1.5) << "the sparse samples no longer drag the fit: the test shows nothing";
+  EXPECT_LT(beam.worst_along_m, 0.5 * point.worst_along_m);
 }
 
 // A room with a door in its east wall (x = 0, 1 m wide) and, behind the door, a round bay: a
