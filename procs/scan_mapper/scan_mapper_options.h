@@ -40,9 +40,11 @@ struct OdometryNoise
   // registration and loop closures alike. The count stands for the fit's information along that
   // direction, and odometry's there is 1 / (s sigma)^2: against an odometry s times poorer, a
   // fit held by s^2 times fewer points is worth as much. The sims' odometry learns s = 1 and
-  // keeps the threshold; the raw Intel log's learns 2.3, where the fixed count of 60 left 42 %
-  // of its steps, ordinary rooms among them, to an odometry that poor (agreement with the
-  // reference 0.074 m; 0.051 m with the rule off altogether).
+  // keeps the threshold; the raw Intel log's learns 2.5, where the fixed count of 60 left 42 %
+  // of its steps, ordinary rooms among them, to an odometry that poor: agreement with the
+  // reference 0.074 -> 0.049 m. It needs ScanNormalOptions' beam normals: without them, sparse
+  // wall samples pairing point-to-point gave a hallway's fits a few dozen points of false hold
+  // along the axis, and trusted there they made the fits short (scan_normals.h).
   bool adapt_degeneracy = false;
 };
 
