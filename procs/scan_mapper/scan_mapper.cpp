@@ -192,12 +192,11 @@ MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
     fused = pose_from_vector(to_vector(u) + K * innov);
     P = (Eigen::Matrix3d::Identity() - K) * Q;
     P = 0.5 * (P + P.transpose());
-    // Where the fit holds both translation directions, its difference from odometry measures
-    // odometry's translation error.
     if (icp.weakest_translation_points < fit.degenerate_min_points) ++stats_.axes_held;
-    // Learned from fits that hold both directions by the configured count, whatever the
-    // odometry: fits held by fewer points that the fusion trusts against a poor odometry are
-    // still too weak to say by how much it errs.
+    // Where the fit holds both translation directions, its difference from odometry measures
+    // odometry's translation error. Held by the configured count, whatever the odometry: a fit
+    // that the fusion trusts against a poor odometry with fewer points is still too weak to say
+    // by how much that odometry errs.
     const double weak_limit = options_.icp.degenerate_min_points;
     if (!relocalize && (weak_limit <= 0.0 || icp.weakest_translation_points >= weak_limit)) {
       learn_odometry_noise(u, innov, R);

@@ -24,6 +24,8 @@ ScanNormals scan_normals(const Points& points, const Eigen::Vector2d& viewpoint,
     for (size_t i = 1; i + 1 < points.size(); ++i) {
       if (out.has_normal[i]) continue;
       const Eigen::Vector2d before = points[i] - points[i - 1], after = points[i + 1] - points[i];
+      // Repeated points (points.min_spacing_m 0) give no direction.
+      if (!(before.norm() > 0.0 && after.norm() > 0.0)) continue;
       if (before.norm() > o.beam_max_gap_m || after.norm() > o.beam_max_gap_m) continue;
       const Eigen::Vector2d chord = (points[i + 1] - points[i - 1]).normalized();
       if (bend(chord, before) > max_bend || bend(chord, after) > max_bend) continue;

@@ -371,7 +371,8 @@ TEST(ScanMapper, APoorerOdometryLeavesFewerWeakestDirectionsToItself)
   o.odometry_noise.adapt_degeneracy = false;
   const HallwayOutcome fixed = drive(noisy, o);
   std::cout << "weakest directions left to odometry: " << adapted.stats.axes_held << " for the learned scale "
-            << adapted.stats.odometry_trans_scale << ", " << fixed.stats.axes_held << " for the fixed count\n";
+            << adapted.stats.odometry_trans_scale << ", " << fixed.stats.axes_held << " for the fixed count; "
+            << "worst error along the hallway " << adapted.worst_along_m << " and " << fixed.worst_along_m << " m\n";
   EXPECT_GT(adapted.stats.odometry_trans_scale, 2.0);
   EXPECT_GT(fixed.stats.axes_held, 50) << "the hallway holds its axis: the test shows nothing";
   EXPECT_LT(adapted.stats.axes_held, fixed.stats.axes_held * 3 / 4);

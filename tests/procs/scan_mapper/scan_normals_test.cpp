@@ -66,6 +66,13 @@ TEST(ScanNormals, ACornerAnOcclusionEdgeAndAGapGetNone)
   EXPECT_EQ(e.has_normal[1], 0);
   EXPECT_EQ(e.has_normal[2], 0);
 
+  // A point repeated three times (no thinning): the middle one has no direction to either
+  // neighbour, nor a chord.
+  const sm::Points repeated = {{3.0, 1.0}, {3.5, 1.0}, {3.5, 1.0}, {3.5, 1.0}, {4.0, 1.0}};
+  const auto r = sm::scan_normals(repeated, kLaser, beam_normals_on());
+  EXPECT_EQ(r.has_normal[2], 0);
+  for (const auto& n : r.normals) EXPECT_TRUE(n.allFinite());
+
   // Collinear, but a neighbour beyond max_gap_m.
   const sm::Points gap = {{3.0, 1.0}, {3.5, 1.0}, {5.0, 1.0}};
   EXPECT_EQ(sm::scan_normals(gap, kLaser, beam_normals_on()).has_normal[1], 0);
