@@ -71,18 +71,20 @@ bool line_on_crossed_side(const std::vector<Vector2d>& outline, const Vector2d& 
   return false;
 }
 
+Line lengthened(const Line& l, double by)
+{
+  const double len = (l.second - l.first).norm();
+  if (len < 1e-6) return l;
+  const Vector2d d = (l.second - l.first) / len * by;
+  return {l.first - d, l.second + d};
+}
+
 std::vector<Line> clip_lines(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach,
                              double line_extension)
 {
   if (points.size() != 4) {
     std::vector<Line> lines = gateway_edges(points);
-    for (auto& [a, b] : lines) {
-      const double len = (b - a).norm();
-      if (len < 1e-6) continue;
-      const Vector2d d = (b - a) / len * line_extension;
-      a -= d;
-      b += d;
-    }
+    for (auto& l : lines) l = lengthened(l, line_extension);
     return lines;
   }
   std::vector<Line> out;

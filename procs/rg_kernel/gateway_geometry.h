@@ -51,6 +51,9 @@ bool line_on_crossed_side(const std::vector<Eigen::Vector2d>& outline, const Eig
 // door in it, at most over the door.
 double widest_opening(const Line& side, const std::vector<rgmap::LineSegment>& walls, double tolerance);
 
+// The line l lengthened by `by` at both ends (unchanged if it has no length).
+Line lengthened(const Line& l, double by);
+
 // The lines of one gateway (points in the region frame) that end the beams of a region whose
 // robot stood at `origins` (region frame): all its edges, except for an outline the sides with
 // one of the origins just outside them (less than `side_reach` beyond the side, not beside it):

@@ -60,7 +60,7 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
   const Region* r = map_.region(rid);
   const Vector2d to = (s.map_from_base * s.base_from_laser).translation();
   if ((to - from).norm() > options_.build.doorways.max_width) return;   // a jump (a gap in the scans), not a step
-  auto traversal = [&](rgmap::GatewayClass cls, const Vector2d& p, const Vector2d& q, const Vector2d& heading) {
+  auto traversal = [&](rgmap::GatewayClass cls, const std::vector<Vector2d>& points, const Vector2d& heading) {
     GatewayEventInput e;
     e.utime = s.utime;
     e.scan_id = s.scan_id;
@@ -68,7 +68,7 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
     e.track_id = -s.scan_id;   // no detector track: never matches an ENTERED time
     e.cls = cls;
     e.map_from_base = s.map_from_base;
-    e.gateway_points = {p, q};
+    e.gateway_points = points;
     e.direction = std::atan2(heading.y(), heading.x());
     return e;
   };
@@ -83,11 +83,43 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
     const Vector2d beyond = (rid == a ? 1.0 : -1.0) * line_normal_to_b(g);   // towards the other region
     if (beyond.dot(to - from) <= 0) continue;   // stepped back in from the far side
     spdlog::info("region {}: the robot went back through gateway {} (unreported)", rid, id);
-    add_gateway_event(traversal(g.cls, p, q, beyond));
+    add_gateway_event(traversal(g.cls, {p, q}, beyond));
     return;
   }
-  if (!options_.doorway_gateways) return;
   const geometry::Pose2 region_from_map = r->map_from_region.inverse();
+  if (options_.stem_exits && options_.stem_ends_branch && options_.min_branch_width > 0) {
+    // - The stem side of a T-junction the current region lies beyond, into the junction: the
+    //   region ends at that side (stem_ends_branch), so the robot has left it for the hallway's
+    //   square, though a robot leaving a shallow room or bay cuts the junction's corner and the
+    //   detector reports nothing (lab_a's cubicles: their regions ran on along the hallway up
+    //   to the next cubicle). Like a door, a stem has two sides and no choice of branch: the
+    //   crossing leads back into the region the gateway joins the current one to.
+    const RegionBuilder& builder = builders_.at(rid);
+    const std::vector<Vector2d> origins = builder.laser_origins();
+    const Vector2d f = region_from_map * from, t = region_from_map * to;
+    const OpeningTest opening{options_.min_branch_width, options_.branch_wall_tolerance};
+    for (const auto& [id, g] : map_.gateways()) {
+      if (g.neutralized || g.gateway_points.size() != 4 || g.region_b == 0 || g.traversal_directions.empty()) continue;
+      const int64_t a = map_.resolve(g.region_a), b = map_.resolve(g.region_b);
+      if (a == b || (a != rid && b != rid)) continue;
+      const geometry::Pose2& map_from_a = map_.region(g.region_a)->map_from_region;
+      std::vector<Vector2d> outline, in_map;
+      for (const auto& p : g.gateway_points) {
+        in_map.push_back(map_from_a * p);
+        outline.push_back(region_from_map * in_map.back());
+      }
+      for (const StemSide& stem : stems_entered(outline, origins, options_.junction_side_reach, builder.segments(), opening)) {
+        if (!segments_cross(f, t, stem.side.line.first, stem.side.line.second)) continue;
+        if (stem.side.normal.dot(t - f) >= 0) continue;   // out of the junction into the region
+        const double a_to_b = g.traversal_directions.front() + map_from_a.theta();
+        const double heading = rid == a ? a_to_b : a_to_b + M_PI;   // the way that leads to the other region
+        spdlog::info("region {}: the robot left it through the stem of junction gateway {} (unreported)", rid, id);
+        add_gateway_event(traversal(g.cls, in_map, Vector2d(std::cos(heading), std::sin(heading))));
+        return;
+      }
+    }
+  }
+  if (!options_.doorway_gateways) return;
   const auto door =
       doorway_stepped_through(builders_.at(rid).segments(), region_from_map * from, region_from_map * to, options_.build.doorways);
   if (!door) return;
@@ -96,7 +128,7 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
     if (!g.neutralized && (crossing_in_map(g) - 0.5 * (p + q)).norm() < options_.gateway_match_distance) return;
   spdlog::info("region {}: the robot went through a doorway of its line map at ({:.2f}, {:.2f})", rid, 0.5 * (p.x() + q.x()),
                0.5 * (p.y() + q.y()));
-  add_gateway_event(traversal(rgmap::GatewayClass::kNarrowPassage, p, q, to - from));
+  add_gateway_event(traversal(rgmap::GatewayClass::kNarrowPassage, {p, q}, to - from));
 }
 
 bool RgKernel::repeats_entry(const Gateway& g, int64_t current, double direction) const

@@ -120,10 +120,12 @@ BeamLimits RgKernel::beam_limits(int64_t region_id, const Vector2d* robot) const
     for (const auto& l : clip_lines(points, origins, options_.junction_side_reach, options_.gateway_line_extension))
       out.lines.push_back(l);
     if (!stems) continue;
-    // A stem side the region lies beyond (clip_lines opened it) ends its beams after all, and its
-    // scans inside the junction (as deep as the sides beside the stem are long) carve nothing.
+    // A stem side the region lies beyond (clip_lines opened it) ends its beams after all, lengthened
+    // as a door is (the outline's side ends at the opening's measured edges, and beams grazing
+    // past them carved wedges of hallway into lab_a's cubicles), and its scans inside the
+    // junction (as deep as the sides beside the stem are long) carve nothing.
     for (const StemSide& stem : stems_entered(points, origins, options_.junction_side_reach, *walls, opening)) {
-      out.lines.push_back(stem.side.line);
+      out.lines.push_back(lengthened(stem.side.line, options_.gateway_line_extension));
       EdgeFrame inward = stem.side;
       inward.normal = -inward.normal;
       out.foreign.push_back({inward, stem.depth});

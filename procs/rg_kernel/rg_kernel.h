@@ -4,7 +4,8 @@
 // of the region's line map its robot never went through, gateway_geometry.h, doorways.h) and
 // opens the region beyond, or re-enters a known one; a doorway of the line map the robot does go
 // through where no gateway is known is crossed like a reported gateway (one the detector missed),
-// and so is a known door of the current region gone back through unreported; a
+// and so are a known door of the current region gone back through unreported and the stem side
+// of a T-junction the region lies beyond, left into the junction unreported; a
 // region that turns out to be a known place (the robot's positions lie in a finalised
 // region's own space, seen by that region's robot: known_place.h) is merged into it and gateways with one region on both sides are
 // neutralized (diss. 6.1.1); republished scans (loop-closure corrections) update their region.
@@ -59,6 +60,7 @@ struct KernelOptions
   bool stem_ends_branch = true;
   bool doorway_gateways = true;          // a doorway of the line map (build.doorways) the robot goes through is a gateway
   bool door_exits = true;                // a known door of the current region the robot goes through unreported is crossed
+  bool stem_exits = true;                // so is the stem side of a T-junction the region lies beyond, into the junction
   // [m] a gateway line (not an outline) ends beams this far beyond its points too: the detector's
   // and the line map's door points lie on the jambs' visible edges, and beams grazing past them
   // into the room behind carved it into the region in front (issue 8: seen-through losses).
@@ -151,7 +153,8 @@ class RgKernel
   void describe(int64_t region_id, rgmap::Region* region, bool exact) const;
   void mark_regions_behind(const rgmap::Gateway& g);
   // The robot's last step (from, map frame, to the scan s) went through a door unreported: a known
-  // door of the current region to its far side (door_exits), or a doorway of its line map no
+  // door of the current region to its far side (door_exits), the stem side of a known T-junction
+  // the region lies beyond into the junction (stem_exits), or a doorway of its line map no
   // gateway stands in (doorway_gateways); crossed as the detector would have reported it.
   void walk_through_door(const Eigen::Vector2d& from, const ScanInput& s);
   bool repeats_entry(const rgmap::Gateway& g, int64_t current, double direction) const;

@@ -94,5 +94,78 @@ TEST(RgKernel, BayEnteredThroughATJunctionsStemEndsAtItsSide)
   EXPECT_GT(junction_cells(before.kernel, 2), junction / 2);
 }
 
+// Into the bay (reported) and to its back, then out into the junction and west along the
+// hallway, unreported: the robot cuts the junction's corner and the detector sees no traversal.
+void drive_into_the_bay_and_back_west(Drive& d)
+{
+  for (double x = 1.0; x < 6.4; x += 0.2) d.scan_at(geometry::Pose2(x, 1, 0));
+  for (double y = 0.8; y > 0.1; y -= 0.2) d.scan_at(geometry::Pose2(6.5, y, -M_PI / 2));
+  ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kRTCrossing, 1, geometry::Pose2(6.5, -0.1, -M_PI / 2), kJunction));
+  for (double y = -0.3; y > -3.3; y -= 0.2) d.scan_at(geometry::Pose2(6.5, y, -M_PI / 2));
+  for (double y = -3.2; y < 0.9; y += 0.2) d.scan_at(geometry::Pose2(6.5, y, M_PI / 2));
+  for (double x = 6.3; x > 1.0; x -= 0.2) d.scan_at(geometry::Pose2(x, 1, M_PI));
+}
+
+int positions_in_hallway(const RgKernel& kernel, int64_t region)
+{
+  int n = 0;
+  for (const Vector2d& p : kernel.robot_positions(region)) n += p.y() > 0.5 ? 1 : 0;
+  return n;
+}
+
+TEST(RgKernel, BayLeftThroughTheStemUnreportedIsLeftForTheHallwayItCameFrom)
+{
+  Drive d;
+  d.walls = testing::hallway_with_bay();
+  drive_into_the_bay_and_back_west(d);
+  const auto& m = d.kernel.map();
+  EXPECT_TRUE(m.consistency_problems().empty());
+  // The kernel crossed the stem back into the west hallway; the bay's region ends at its side.
+  EXPECT_EQ(m.current_region, 1);
+  EXPECT_EQ(positions_in_hallway(d.kernel, 2), 0);
+  EXPECT_EQ(m.gateways().size(), 1u);
+  EXPECT_EQ(m.gateways().begin()->second.traversals, 2);
+
+  // Without the rule the bay's region runs on along the hallway (lab_a's cubicles, up to the
+  // next cubicle's junction).
+  KernelOptions off;
+  off.stem_exits = false;
+  Drive before(off);
+  before.walls = testing::hallway_with_bay();
+  drive_into_the_bay_and_back_west(before);
+  EXPECT_EQ(before.kernel.map().current_region, 2);
+  EXPECT_GT(positions_in_hallway(before.kernel, 2), 20);
+}
+
+TEST(RgKernel, StemSideEndsBeamsPastTheOutlinesEnds)
+{
+  // The detector's outline is narrower than the bay's opening (its sides lie on measured edges):
+  // beams from the bay pass beside the stem side's ends into the hallway unless the side is
+  // lengthened as a door is.
+  const std::vector<Vector2d> narrow = {Vector2d(5.3, 2), Vector2d(5.3, 0), Vector2d(7.7, 0), Vector2d(7.7, 2)};
+  auto hallway_cells_of_bay = [&](const KernelOptions& options) {
+    Drive d(options);
+    d.walls = testing::hallway_with_bay();
+    for (double x = 1.0; x < 6.4; x += 0.2) d.scan_at(geometry::Pose2(x, 1, 0));
+    for (double y = 0.8; y > 0.1; y -= 0.2) d.scan_at(geometry::Pose2(6.5, y, -M_PI / 2));
+    d.traverse(rgmap::GatewayClass::kRTCrossing, 1, geometry::Pose2(6.5, -0.1, -M_PI / 2), narrow);
+    for (double y = -0.3; y > -3.3; y -= 0.2) d.scan_at(geometry::Pose2(6.5, y, -M_PI / 2));
+    // Back out facing the hallway, through the stem (the kernel's exit finalises the bay).
+    for (double y = -3.2; y < 0.9; y += 0.2) d.scan_at(geometry::Pose2(6.5, y, M_PI / 2));
+    EXPECT_EQ(d.kernel.map().region(2)->state, rgmap::Region::State::kFinalised);
+    const rgmap::Region bay = d.kernel.describe_region(2);
+    int n = 0;
+    for (double x = 0.25; x < 13.8; x += 0.1)
+      for (double y = 0.25; y < 1.8; y += 0.1)
+        if ((x < 5.2 || x > 7.8) && bay.freespace.is_free(bay.map_from_region.inverse() * Vector2d(x, y))) ++n;
+    return n;
+  };
+  KernelOptions lengthened;
+  EXPECT_LT(hallway_cells_of_bay(lengthened), 10);
+  KernelOptions exact;
+  exact.gateway_line_extension = 0.0;
+  EXPECT_GT(hallway_cells_of_bay(exact), 100);
+}
+
 }  // namespace
 }  // namespace rgnav::rg_kernel
