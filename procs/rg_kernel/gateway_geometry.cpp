@@ -128,7 +128,7 @@ bool OpeningTest::open(const EdgeFrame& side, const std::vector<rgmap::LineSegme
 }
 
 std::vector<StemSide> stems_entered(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach,
-                                    const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test)
+                                    const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test, StemKind kind)
 {
   std::vector<StemSide> out;
   if (points.size() != 4) return out;
@@ -137,7 +137,8 @@ std::vector<StemSide> stems_entered(const std::vector<Vector2d>& points, const s
   for (size_t k = 0; k < 4; ++k) {
     const EdgeFrame& s = sides[k];
     if (std::none_of(origins.begin(), origins.end(), [&](const Vector2d& o) { return s.just_beyond(o, side_reach); })) continue;
-    if (test.open(sides[(k + 2) % 4], walls)) continue;   // the side opposite: a wall, not more hallway or branch
+    // The side opposite: for a T, a wall (not more hallway or a branch).
+    if (kind == StemKind::kT && test.open(sides[(k + 2) % 4], walls)) continue;
     if (!test.open(sides[(k + 1) % 4], walls) || !test.open(sides[(k + 3) % 4], walls)) continue;   // a hallway past it
     out.push_back({s, std::max(sides[(k + 1) % 4].length, sides[(k + 3) % 4].length)});
   }

@@ -80,12 +80,18 @@ struct StemSide
   double depth = 0.0;
 };
 
+// Which sides of a crossing's outline are stems: both sides beside open in the line map (a
+// hallway runs past), and for a T the side opposite walled too; for an X the side opposite may be
+// open (another branch: lab_a's cubicles facing each other across a narrow hallway).
+enum class StemKind { kT, kTOrX };
+
 // The sides of a crossing's outline (four points) that a region whose robot stood at `origins`
-// lies beyond (as clip_lines opens them) and that are the stem of a T in `walls`: the side
-// opposite is walled and both sides beside it are open. A hallway runs past such a side and the
-// branch behind it (a room, a bay, a side hallway) ends there: the junction's square is the
-// hallway's (Bormann et al.'s ground truth ends rooms at the hallway wall's line).
+// lies beyond (as clip_lines opens them) and that are stems of `kind` in `walls`. A hallway runs
+// past such a side and the branch behind it (a room, a bay, a side hallway) ends there: the
+// junction's square is the hallway's (Bormann et al.'s ground truth ends rooms at the hallway
+// wall's line).
 std::vector<StemSide> stems_entered(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& origins,
-                                    double side_reach, const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test);
+                                    double side_reach, const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test,
+                                    StemKind kind = StemKind::kT);
 
 }  // namespace rgnav::rg_kernel

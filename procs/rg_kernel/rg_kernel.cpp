@@ -111,6 +111,7 @@ BeamLimits RgKernel::beam_limits(int64_t region_id, const Vector2d* robot) const
   if (robot) origins.push_back(region_from_map * *robot);
   const OpeningTest opening{options_.min_branch_width, options_.branch_wall_tolerance};
   const bool stems = options_.stem_ends_branch && options_.min_branch_width > 0 && walls;
+  const StemKind stem_kind = options_.x_branches_end ? StemKind::kTOrX : StemKind::kT;
   for (const auto& [id, g] : map_.gateways()) {
     if (g.neutralized || g.gateway_points.size() < 2) continue;
     // Gateway points are stored in region_a's frame: move them into this region's frame.
@@ -124,7 +125,7 @@ BeamLimits RgKernel::beam_limits(int64_t region_id, const Vector2d* robot) const
     // as a door is (the outline's side ends at the opening's measured edges, and beams grazing
     // past them carved wedges of hallway into lab_a's cubicles), and its scans inside the
     // junction (as deep as the sides beside the stem are long) carve nothing.
-    for (const StemSide& stem : stems_entered(points, origins, options_.junction_side_reach, *walls, opening)) {
+    for (const StemSide& stem : stems_entered(points, origins, options_.junction_side_reach, *walls, opening, stem_kind)) {
       out.lines.push_back(lengthened(stem.side.line, options_.gateway_line_extension));
       EdgeFrame inward = stem.side;
       inward.normal = -inward.normal;

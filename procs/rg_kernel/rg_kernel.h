@@ -58,9 +58,15 @@ struct KernelOptions
   // junction carve nothing: the junction's square is the hallway's (issue 8: rooms and bays with
   // wide openings onto a hallway took the hallway's junctions into their freespace).
   bool stem_ends_branch = true;
+  // So does a region beyond a side of an X-crossing with a hallway open past it (the side opposite
+  // open too: another branch). A room's square across a narrow hallway from another room's (lab_a:
+  // cubicles facing each other) is the hallway's too; an X of two hallways is then no region's.
+  bool x_branches_end = true;
   bool doorway_gateways = true;          // a doorway of the line map (build.doorways) the robot goes through is a gateway
   bool door_exits = true;                // a known door of the current region the robot goes through unreported is crossed
-  bool stem_exits = true;                // so is the stem side of a T-junction the region lies beyond, into the junction
+  // So is the stem side of a T-junction the region lies beyond, into the junction (not an X's branch
+  // side: across an X the robot may go on into the branch opposite, the detector's report decides).
+  bool stem_exits = true;
   // [m] a gateway line (not an outline) ends beams this far beyond its points too: the detector's
   // and the line map's door points lie on the jambs' visible edges, and beams grazing past them
   // into the room behind carved it into the region in front (issue 8: seen-through losses).

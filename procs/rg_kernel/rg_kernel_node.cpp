@@ -58,6 +58,7 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   c.kernel.doorway_gateways = k.boolean("doorway_gateways", c.kernel.doorway_gateways);
   c.kernel.door_exits = k.boolean("door_exits", c.kernel.door_exits);
   c.kernel.stem_exits = k.boolean("stem_exits", c.kernel.stem_exits);
+  c.kernel.x_branches_end = k.boolean("x_branches_end", c.kernel.x_branches_end);
   const auto lines = cfg.section("line_map");
   c.kernel.build.merge.alpha_max = lines.number("merge_alpha_max_deg", 3.0, 0.1, 45.0) * M_PI / 180.0;
   c.kernel.build.merge.dl_max = lines.number("merge_dl_max_m", 0.020, 0.001, 1.0);

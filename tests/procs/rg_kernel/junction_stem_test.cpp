@@ -67,6 +67,55 @@ TEST(GatewayGeometry, StemOfATIsTheSideOppositeAWallWithTheHallwayOpenPastIt)
   const std::vector<rgmap::LineSegment> x_walls{walls[1], walls[2], {Vector2d(0, 2), Vector2d(5, 2), 0.01, 50},
                                                 {Vector2d(8, 2), Vector2d(14, 2), 0.01, 50}};
   EXPECT_TRUE(stems_entered(kJunction, {Vector2d(6.5, -1)}, 2.0, x_walls, test).empty());
+  // As a branch of an X, with the hallway open past it, it is.
+  EXPECT_EQ(stems_entered(kJunction, {Vector2d(6.5, -1)}, 2.0, x_walls, test, StemKind::kTOrX).size(), 1u);
+  // A T's side along its hallway is neither: the hallway's wall runs beside it.
+  EXPECT_TRUE(stems_entered(kJunction, {Vector2d(4, 1)}, 2.0, walls, test, StemKind::kTOrX).empty());
+}
+
+// East along testing::hallway_with_crossing(), north into the X's north branch (reported), to
+// its end and back south through the junction, east on (reported).
+void drive_into_the_north_branch_and_on(Drive& d)
+{
+  const std::vector<Vector2d> crossing = {Vector2d(4, 2), Vector2d(4, 0), Vector2d(6, 0), Vector2d(6, 2)};
+  for (double x = 1.0; x < 4.9; x += 0.2) d.scan_at(geometry::Pose2(x, 1, 0));
+  for (double y = 1.2; y < 1.9; y += 0.2) d.scan_at(geometry::Pose2(5, y, M_PI / 2));
+  ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kXCrossing, 1, geometry::Pose2(5, 2.2, M_PI / 2), crossing));
+  for (double y = 2.4; y < 5.5; y += 0.2) d.scan_at(geometry::Pose2(5, y, M_PI / 2));
+  for (double y = 5.4; y > 1.0; y -= 0.2) d.scan_at(geometry::Pose2(5, y, -M_PI / 2));
+  for (double x = 5.2; x < 6.1; x += 0.2) d.scan_at(geometry::Pose2(x, 1, 0));
+  ASSERT_TRUE(d.traverse(rgmap::GatewayClass::kXCrossing, 2, geometry::Pose2(6.2, 1, 0), crossing));
+  for (double x = 6.4; x < 11.0; x += 0.2) d.scan_at(geometry::Pose2(x, 1, 0));
+}
+
+int crossing_cells(const RgKernel& kernel, int64_t region)
+{
+  const rgmap::Region r = kernel.describe_region(region);
+  int n = 0;
+  for (double x = 4.25; x < 5.8; x += 0.1)
+    for (double y = 0.25; y < 1.8; y += 0.1) n += r.freespace.is_free(r.map_from_region.inverse() * Vector2d(x, y)) ? 1 : 0;
+  return n;
+}
+
+TEST(RgKernel, BranchOfAnXWithTheHallwayOpenPastItEndsAtItsSide)
+{
+  Drive d;
+  d.walls = testing::hallway_with_crossing();
+  drive_into_the_north_branch_and_on(d);
+  ASSERT_EQ(d.kernel.map().region(2)->state, rgmap::Region::State::kFinalised);
+  EXPECT_TRUE(d.kernel.map().consistency_problems().empty());
+  const int square = 16 * 16;
+  EXPECT_LT(crossing_cells(d.kernel, 2), square / 20);
+  const rgmap::Region branch = d.kernel.describe_region(2);
+  EXPECT_TRUE(branch.freespace.is_free(branch.map_from_region.inverse() * Vector2d(5, 4)));
+
+  // Only a T's stem ends its branch: the north branch's beams fill the crossing.
+  KernelOptions off;
+  off.x_branches_end = false;
+  Drive before(off);
+  before.walls = testing::hallway_with_crossing();
+  drive_into_the_north_branch_and_on(before);
+  EXPECT_GT(crossing_cells(before.kernel, 2), square / 2);
 }
 
 TEST(RgKernel, BayEnteredThroughATJunctionsStemEndsAtItsSide)
