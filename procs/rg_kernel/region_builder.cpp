@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "procs/rg_kernel/freespace_trim.h"
+
 namespace rgnav::rg_kernel {
 
 using Eigen::Vector2d;
@@ -226,6 +228,16 @@ void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_
   }
   std::vector<std::pair<int32_t, int32_t>> cells;
   for (const uint64_t k : cells_set) cells.emplace_back(key_x(k), key_y(k));
+  if (options_.freespace_min_passage > 0) {
+    std::vector<Cell> origins;
+    for (const auto& [id, s] : scans_) {
+      if (filter && on_foreign_side(s)) continue;
+      const Vector2d o = s.region_from_laser.translation();
+      origins.emplace_back(static_cast<int32_t>(std::floor(o.x() / res)), static_cast<int32_t>(std::floor(o.y() / res)));
+    }
+    const int radius = static_cast<int>(std::floor(0.5 * options_.freespace_min_passage / res));
+    cells = trim_seen_through(cells, origins, radius);
+  }
   fill_region(region, lo, hi, cells);
   fill_objects(region);
 }

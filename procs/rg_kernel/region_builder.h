@@ -43,6 +43,9 @@ struct RegionBuildOptions
   LineAlignOptions align;              // scans aligned to the line map before merging (line map only)
   double freespace_resolution = 0.15;  // [m] (diss.: 15 cm)
   double freespace_max_range = 8.0;    // [m] beams are carved up to this length
+  // [m] the exact freespace leaves out what the robot only saw through a passage narrower than
+  // this (freespace_trim.h); 0: off
+  double freespace_min_passage = 1.0;
   ObjectOptions objects;               // 2D objects (rectangles, circles), diss. 3.1-3.2
   DoorwayOptions doorways;             // the exact freespace also ends at doorways of the line map never crossed
 };

@@ -111,9 +111,13 @@ BeamLimits RgKernel::beam_limits(int64_t region_id, const Vector2d* robot) const
   if (robot) origins.push_back(region_from_map * *robot);
   const OpeningTest opening{options_.min_branch_width, options_.branch_wall_tolerance};
   const bool stems = options_.stem_ends_branch && options_.min_branch_width > 0 && walls;
-  const StemKind stem_kind = options_.x_branches_end ? StemKind::kTOrX : StemKind::kT;
   for (const auto& [id, g] : map_.gateways()) {
     if (g.neutralized || g.gateway_points.size() < 2) continue;
+    // An X's branches end at their sides, but for the region the robot came from when it first
+    // crossed the junction (the region_a of its first gateway): it keeps the square, as a
+    // hallway keeps its crossing with another.
+    const StemKind stem_kind =
+        options_.x_branches_end && region_id != junction_owner(g) ? StemKind::kTOrX : StemKind::kT;
     // Gateway points are stored in region_a's frame: move them into this region's frame.
     const geometry::Pose2 r_from_a = region_from_map * map_.region(g.region_a)->map_from_region;
     std::vector<Vector2d> points;
@@ -148,6 +152,19 @@ BeamLimits RgKernel::beam_limits(int64_t region_id, const Vector2d* robot) const
     }
   }
   return out;
+}
+
+int64_t RgKernel::junction_owner(const Gateway& g) const
+{
+  // The gateways of one crossing share its outline (a crossing joins more than two regions, one
+  // gateway per pair); the map's ids are in creation order.
+  const Vector2d c = crossing_in_map(g);
+  for (const auto& [id, k] : map_.gateways()) {
+    if (id >= g.id) break;
+    if (!k.neutralized && k.gateway_points.size() == 4 && (crossing_in_map(k) - c).norm() < options_.gateway_match_distance)
+      return map_.resolve(k.region_a);
+  }
+  return map_.resolve(g.region_a);
 }
 
 void RgKernel::describe(int64_t region_id, Region* region, bool exact) const

@@ -59,8 +59,9 @@ struct KernelOptions
   // wide openings onto a hallway took the hallway's junctions into their freespace).
   bool stem_ends_branch = true;
   // So does a region beyond a side of an X-crossing with a hallway open past it (the side opposite
-  // open too: another branch). A room's square across a narrow hallway from another room's (lab_a:
-  // cubicles facing each other) is the hallway's too; an X of two hallways is then no region's.
+  // open too: another branch), but the region the robot first came into the junction from
+  // (junction_owner), which keeps the square: a room's square across a narrow hallway from
+  // another room's (lab_a: cubicles facing each other) is the hallway's.
   bool x_branches_end = true;
   bool doorway_gateways = true;          // a doorway of the line map (build.doorways) the robot goes through is a gateway
   bool door_exits = true;                // a known door of the current region the robot goes through unreported is crossed
@@ -155,6 +156,9 @@ class RgKernel
   // `robot` (map frame), if given, counts as one of its robot positions (the region just entered
   // has none yet).
   BeamLimits beam_limits(int64_t region_id, const Eigen::Vector2d* robot = nullptr) const;
+  // The region the robot came from when it first crossed the junction g belongs to: region_a of
+  // the first gateway with g's outline.
+  int64_t junction_owner(const rgmap::Gateway& g) const;
   // The region's description (RegionBuilder::describe) within its beam limits.
   void describe(int64_t region_id, rgmap::Region* region, bool exact) const;
   void mark_regions_behind(const rgmap::Gateway& g);

@@ -79,6 +79,7 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   const auto fs = cfg.section("freespace");
   c.kernel.build.freespace_resolution = fs.number("resolution_m", c.kernel.build.freespace_resolution, 0.02, 1.0);
   c.kernel.build.freespace_max_range = fs.number("max_range_m", c.kernel.build.freespace_max_range, 1.0, 80.0);
+  c.kernel.build.freespace_min_passage = fs.number("min_passage_m", c.kernel.build.freespace_min_passage, 0.0, 5.0);
   c.kernel.build.objects = load_object_options(cfg.section("objects"));
   const auto dw = cfg.section("doorways");
   auto& d = c.kernel.build.doorways;

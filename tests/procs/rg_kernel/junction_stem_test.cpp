@@ -210,8 +210,9 @@ TEST(RgKernel, StemSideEndsBeamsPastTheOutlinesEnds)
     return n;
   };
   KernelOptions lengthened;
+  lengthened.build.freespace_min_passage = 0.0;   // the cut at narrow passages would hide the leak
   EXPECT_LT(hallway_cells_of_bay(lengthened), 10);
-  KernelOptions exact;
+  KernelOptions exact = lengthened;
   exact.gateway_line_extension = 0.0;
   EXPECT_GT(hallway_cells_of_bay(exact), 100);
 }

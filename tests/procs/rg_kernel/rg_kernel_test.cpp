@@ -259,7 +259,8 @@ TEST(RgKernel, FreespaceEndsAtTheGatewaysOfOtherRegions)
   // Later (a loop through unmapped space) the robot is in E and goes through the door E -> B:
   // a gateway of two other regions, beyond which A's beams end too.
   KernelOptions o;
-  o.build.doorways.enabled = false;   // only gateways: the line map's doorways are another test
+  o.build.doorways.enabled = false;     // only gateways: the line map's doorways are another test,
+  o.build.freespace_min_passage = 0.0;  // and so is the cut at narrow passages (freespace_trim_test.cpp)
   Drive d(o);
   using V = Vector2d;
   d.walls = {{V(0, 0), V(11, 0)}, {V(0, 3), V(11, 3)}, {V(0, 0), V(0, 1)}, {V(0, 2), V(0, 3)},   {V(4, 0), V(4, 1)},
