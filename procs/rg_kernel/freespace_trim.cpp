@@ -15,7 +15,7 @@ std::vector<Cell> trim_seen_through(const std::vector<Cell>& cells, const std::v
   for (const auto& [x, y] : cells) {
     x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
   }
-  // A border of `radius` cells, so that the opening treats the grid's edge as occupied.
+  // A border of `radius` cells, so that the erosion treats the grid's edge as occupied.
   const int pad = radius + 1;
   cv::Mat free = cv::Mat::zeros(y1 - y0 + 1 + 2 * pad, x1 - x0 + 1 + 2 * pad, CV_8U);
   for (const auto& [x, y] : cells) free.at<uint8_t>(y - y0 + pad, x - x0 + pad) = 255;

@@ -17,8 +17,8 @@ using Cell = std::pair<int32_t, int32_t>;
 
 // `cells`: free cells; `origins`: cells the region's robot stood in; `radius`: the disk's radius
 // in cells (a passage narrower than 2 * radius + 1 cells is cut). Returns the cells kept, in
-// no particular order; all of `cells` if no robot position lies in or near what the opening
-// keeps (a region of narrow passages only).
+// the order given; all of `cells` if no robot position lies within twice the radius of a place
+// where the disk fits (a region of narrow passages only).
 std::vector<Cell> trim_seen_through(const std::vector<Cell>& cells, const std::vector<Cell>& origins, int radius);
 
 }  // namespace rgnav::rg_kernel

@@ -113,18 +113,18 @@ BeamLimits RgKernel::beam_limits(int64_t region_id, const Vector2d* robot) const
   const bool stems = options_.stem_ends_branch && options_.min_branch_width > 0 && walls;
   for (const auto& [id, g] : map_.gateways()) {
     if (g.neutralized || g.gateway_points.size() < 2) continue;
-    // An X's branches end at their sides, but for the region the robot came from when it first
-    // crossed the junction (the region_a of its first gateway): it keeps the square, as a
-    // hallway keeps its crossing with another.
-    const StemKind stem_kind =
-        options_.x_branches_end && region_id != junction_owner(g) ? StemKind::kTOrX : StemKind::kT;
     // Gateway points are stored in region_a's frame: move them into this region's frame.
     const geometry::Pose2 r_from_a = region_from_map * map_.region(g.region_a)->map_from_region;
     std::vector<Vector2d> points;
     for (const auto& p : g.gateway_points) points.push_back(r_from_a * p);
     for (const auto& l : clip_lines(points, origins, options_.junction_side_reach, options_.gateway_line_extension))
       out.lines.push_back(l);
-    if (!stems) continue;
+    if (!stems || points.size() != 4) continue;
+    // An X's branches end at their sides, but for the region the robot came from when it first
+    // crossed the junction (the region_a of its first gateway): it keeps the square, as a
+    // hallway keeps its crossing with another.
+    const StemKind stem_kind =
+        options_.x_branches_end && region_id != junction_owner(g) ? StemKind::kTOrX : StemKind::kT;
     // A stem side the region lies beyond (clip_lines opened it) ends its beams after all, lengthened
     // as a door is (the outline's side ends at the opening's measured edges, and beams grazing
     // past them carved wedges of hallway into lab_a's cubicles), and its scans inside the
