@@ -26,10 +26,10 @@ std::vector<Line> gateway_edges(const std::vector<Vector2d>& points)
   return edges;
 }
 
-bool EdgeFrame::just_beyond(const Vector2d& p, double reach) const
+bool EdgeFrame::just_beyond(const Vector2d& p, double reach, double min_depth) const
 {
   const double depth = normal.dot(p - mid);
-  return depth > 0 && depth < reach && std::fabs(along.dot(p - mid)) < 0.5 * length + kSideMargin;
+  return depth > 0 && depth >= min_depth && depth < reach && std::fabs(along.dot(p - mid)) < 0.5 * length + kSideMargin;
 }
 
 std::vector<EdgeFrame> edge_frames(const std::vector<Vector2d>& points)
@@ -79,7 +79,7 @@ Line lengthened(const Line& l, double by)
   return {l.first - d, l.second + d};
 }
 
-std::vector<Line> clip_lines(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach,
+std::vector<Line> clip_lines(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, const SideReach& side_reach,
                              double line_extension)
 {
   if (points.size() != 4) {
@@ -89,7 +89,8 @@ std::vector<Line> clip_lines(const std::vector<Vector2d>& points, const std::vec
   }
   std::vector<Line> out;
   for (const EdgeFrame& e : edge_frames(points)) {
-    const bool open = std::any_of(origins.begin(), origins.end(), [&](const Vector2d& o) { return e.just_beyond(o, side_reach); });
+    const bool open = std::any_of(origins.begin(), origins.end(),
+                                  [&](const Vector2d& o) { return e.just_beyond(o, side_reach.reach, side_reach.min_depth); });
     if (!open) out.push_back(e.line);
   }
   return out;
@@ -127,7 +128,7 @@ bool OpeningTest::open(const EdgeFrame& side, const std::vector<rgmap::LineSegme
   return widest_opening(side.line, walls, tolerance) >= std::min(min_open, 0.8 * side.length);
 }
 
-std::vector<StemSide> stems_entered(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, double side_reach,
+std::vector<StemSide> stems_entered(const std::vector<Vector2d>& points, const std::vector<Vector2d>& origins, const SideReach& side_reach,
                                     const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test, StemKind kind)
 {
   std::vector<StemSide> out;
@@ -136,7 +137,9 @@ std::vector<StemSide> stems_entered(const std::vector<Vector2d>& points, const s
   if (sides.size() != 4) return out;
   for (size_t k = 0; k < 4; ++k) {
     const EdgeFrame& s = sides[k];
-    if (std::none_of(origins.begin(), origins.end(), [&](const Vector2d& o) { return s.just_beyond(o, side_reach); })) continue;
+    if (std::none_of(origins.begin(), origins.end(),
+                     [&](const Vector2d& o) { return s.just_beyond(o, side_reach.reach, side_reach.min_depth); }))
+      continue;
     // The side opposite: for a T, a wall (not more hallway or a branch).
     if (kind == StemKind::kT && test.open(sides[(k + 2) % 4], walls)) continue;
     if (!test.open(sides[(k + 1) % 4], walls) || !test.open(sides[(k + 3) % 4], walls)) continue;   // a hallway past it

@@ -29,9 +29,20 @@ struct EdgeFrame
   Eigen::Vector2d mid, along, normal;
   double length = 0.0;
 
-  // Whether p lies beyond the line along its normal, less than `reach` from it and not beside
-  // its ends (a robot leaving diagonally, pose noise: up to 0.5 m beside them still counts).
-  bool just_beyond(const Eigen::Vector2d& p, double reach) const;
+  // Whether p lies beyond the line along its normal, at least `min_depth` and less than `reach`
+  // from it, and not beside its ends (a robot leaving diagonally, pose noise: up to 0.5 m beside
+  // them still counts).
+  bool just_beyond(const Eigen::Vector2d& p, double reach, double min_depth = 0.0) const;
+};
+
+// When a region lies beyond a side of a crossing's outline: one of its robot positions is
+// just_beyond the side with these. A position a few cm past the line is on it (pose noise, the
+// scan before the detector's late report, a turn on the line; lab_a: a hallway region opened
+// every cubicle's stem side to its beams by one such position).
+struct SideReach
+{
+  double reach = 2.0;       // [m]
+  double min_depth = 0.0;   // [m]
 };
 
 // gateway_edges with their frames; zero-length lines are left out.
@@ -56,12 +67,12 @@ Line lengthened(const Line& l, double by);
 
 // The lines of one gateway (points in the region frame) that end the beams of a region whose
 // robot stood at `origins` (region frame): all its edges, except for an outline the sides with
-// one of the origins just outside them (less than `side_reach` beyond the side, not beside it):
+// one of the origins just outside them (just_beyond with `side_reach`):
 // the region lies beyond those.
 // A line (not an outline) is lengthened by `line_extension` at both ends: the detector's door
 // points lie on the jambs' visible edges, and beams grazing past them still went through the door.
 std::vector<Line> clip_lines(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& origins,
-                             double side_reach, double line_extension = 0.0);
+                             const SideReach& side_reach, double line_extension = 0.0);
 
 // What makes a side of a crossing's outline walled or open in a line map (widest_opening): open
 // over at least `min_open` (or 80 % of the side, if shorter), walls within `tolerance` of it.
@@ -91,7 +102,7 @@ enum class StemKind { kT, kTOrX };
 // junction's square is the hallway's (Bormann et al.'s ground truth ends rooms at the hallway
 // wall's line).
 std::vector<StemSide> stems_entered(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& origins,
-                                    double side_reach, const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test,
+                                    const SideReach& side_reach, const std::vector<rgmap::LineSegment>& walls, const OpeningTest& test,
                                     StemKind kind = StemKind::kT);
 
 }  // namespace rgnav::rg_kernel

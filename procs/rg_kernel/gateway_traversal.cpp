@@ -108,7 +108,7 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
         in_map.push_back(map_from_a * p);
         outline.push_back(region_from_map * in_map.back());
       }
-      for (const StemSide& stem : stems_entered(outline, origins, options_.junction_side_reach, builder.segments(), opening)) {
+      for (const StemSide& stem : stems_entered(outline, origins, side_reach(), builder.segments(), opening)) {
         if (!segments_cross(f, t, stem.side.line.first, stem.side.line.second)) continue;
         if (stem.side.normal.dot(t - f) >= 0) continue;   // out of the junction into the region
         const double a_to_b = g.traversal_directions.front() + map_from_a.theta();

@@ -117,7 +117,7 @@ BeamLimits RgKernel::beam_limits(int64_t region_id, const Vector2d* robot) const
     const geometry::Pose2 r_from_a = region_from_map * map_.region(g.region_a)->map_from_region;
     std::vector<Vector2d> points;
     for (const auto& p : g.gateway_points) points.push_back(r_from_a * p);
-    for (const auto& l : clip_lines(points, origins, options_.junction_side_reach, options_.gateway_line_extension))
+    for (const auto& l : clip_lines(points, origins, side_reach(), options_.gateway_line_extension))
       out.lines.push_back(l);
     if (!stems || points.size() != 4) continue;
     // An X's branches end at their sides, but for the region the robot came from when it first
@@ -129,7 +129,7 @@ BeamLimits RgKernel::beam_limits(int64_t region_id, const Vector2d* robot) const
     // as a door is (the outline's side ends at the opening's measured edges, and beams grazing
     // past them carved wedges of hallway into lab_a's cubicles), and its scans inside the
     // junction (as deep as the sides beside the stem are long) carve nothing.
-    for (const StemSide& stem : stems_entered(points, origins, options_.junction_side_reach, *walls, opening, stem_kind)) {
+    for (const StemSide& stem : stems_entered(points, origins, side_reach(), *walls, opening, stem_kind)) {
       out.lines.push_back(lengthened(stem.side.line, options_.gateway_line_extension));
       EdgeFrame inward = stem.side;
       inward.normal = -inward.normal;

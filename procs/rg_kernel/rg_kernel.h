@@ -47,6 +47,7 @@ struct KernelOptions
   KnownPlaceOptions known_place;         // what makes a position part of a known region (known_place.h)
   double late_scan_reach = 3.0;          // [m] scans this far past a crossed gateway belong beyond it
   double junction_side_reach = 2.0;      // [m] robot this near outside a crossing's side: its region lies beyond
+  double junction_side_min_depth = 0.15; // [m] ... and at least this far past it (gateway_geometry.h, SideReach)
   // [m] A crossing gone straight through whose sides along the way (in the current region's line
   // map) are open over less than this (or 80 % of the side, if shorter) has no branch: the
   // detector took doors in the hallway walls, or a room's wall seen through one for the far
@@ -159,6 +160,7 @@ class RgKernel
   // The region the robot came from when it first crossed the junction g belongs to: region_a of
   // the first gateway with g's outline.
   int64_t junction_owner(const rgmap::Gateway& g) const;
+  SideReach side_reach() const { return {options_.junction_side_reach, options_.junction_side_min_depth}; }
   // The region's description (RegionBuilder::describe) within its beam limits.
   void describe(int64_t region_id, rgmap::Region* region, bool exact) const;
   void mark_regions_behind(const rgmap::Gateway& g);

@@ -51,6 +51,8 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
       k.number("merge_max_origin_distance_m", c.kernel.known_place.max_origin_distance, 0.1, 20.0);
   c.kernel.late_scan_reach = k.number("late_scan_reach_m", c.kernel.late_scan_reach, 0.0, 10.0);
   c.kernel.junction_side_reach = k.number("junction_side_reach_m", c.kernel.junction_side_reach, 0.1, 10.0);
+  c.kernel.junction_side_min_depth =
+      k.number("junction_side_min_depth_m", c.kernel.junction_side_min_depth, 0.0, c.kernel.junction_side_reach);
   c.kernel.min_branch_width = k.number("min_branch_width_m", c.kernel.min_branch_width, 0.0, 10.0);
   c.kernel.branch_wall_tolerance = k.number("branch_wall_tolerance_m", c.kernel.branch_wall_tolerance, 0.01, 1.0);
   c.kernel.stem_ends_branch = k.boolean("stem_ends_branch", c.kernel.stem_ends_branch);

@@ -67,17 +67,21 @@ TEST(GatewayGeometry, OutlineHasFourSidesOpenWhereTheRegionLies)
   const std::vector<Vector2d> box = {Vector2d(4, 2), Vector2d(6, 2), Vector2d(6, 0), Vector2d(4, 0)};
   EXPECT_EQ(gateway_edges(box).size(), 4u);
   // Nobody's robot near it: all four sides end beams.
-  EXPECT_EQ(clip_lines(box, {Vector2d(20, 20)}, 2.0).size(), 4u);
+  EXPECT_EQ(clip_lines(box, {Vector2d(20, 20)}, {2.0}).size(), 4u);
   // The region west of it: its beams may enter through the entry side (x = 4), not leave elsewhere.
-  const auto west = clip_lines(box, {Vector2d(2, 1), Vector2d(3.5, 1)}, 2.0);
+  const auto west = clip_lines(box, {Vector2d(2, 1), Vector2d(3.5, 1)}, {2.0});
   ASSERT_EQ(west.size(), 3u);
   for (const auto& [a, b] : west) EXPECT_FALSE(a.x() == 4 && b.x() == 4);
   // A robot inside the box is beyond no side.
-  EXPECT_EQ(clip_lines(box, {Vector2d(5, 1)}, 2.0).size(), 4u);
+  EXPECT_EQ(clip_lines(box, {Vector2d(5, 1)}, {2.0}).size(), 4u);
+  // Nor is one 5 cm past a side once a minimum depth is asked for: it stood on the line.
+  EXPECT_EQ(clip_lines(box, {Vector2d(3.95, 1)}, {2.0}).size(), 3u);
+  EXPECT_EQ(clip_lines(box, {Vector2d(3.95, 1)}, {2.0, 0.15}).size(), 4u);
+  EXPECT_EQ(clip_lines(box, {Vector2d(3.8, 1)}, {2.0, 0.15}).size(), 3u);
   // A line gateway ends beams whichever side the robot is on.
-  EXPECT_EQ(clip_lines({Vector2d(4, 1), Vector2d(4, 2)}, {Vector2d(3, 1.5)}, 2.0).size(), 1u);
+  EXPECT_EQ(clip_lines({Vector2d(4, 1), Vector2d(4, 2)}, {Vector2d(3, 1.5)}, {2.0}).size(), 1u);
   // A door line lengthened at both ends: beams grazing past the jambs' visible edges end too.
-  const auto longer = clip_lines({Vector2d(4, 1), Vector2d(4, 2)}, {Vector2d(3, 1.5)}, 2.0, 0.5);
+  const auto longer = clip_lines({Vector2d(4, 1), Vector2d(4, 2)}, {Vector2d(3, 1.5)}, {2.0}, 0.5);
   ASSERT_EQ(longer.size(), 1u);
   EXPECT_NEAR(longer[0].first.y(), 0.5, 1e-12);
   EXPECT_NEAR(longer[0].second.y(), 2.5, 1e-12);

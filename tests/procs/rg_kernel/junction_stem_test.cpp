@@ -62,22 +62,22 @@ TEST(GatewayGeometry, StemOfATIsTheSideOppositeAWallWithTheHallwayOpenPastIt)
                                               {Vector2d(8, 0), Vector2d(14, 0), 0.01, 50}};
   const OpeningTest test{1.4, 0.25};
   // A position in the bay lies beyond the south side (y = 0): that side is the stem.
-  const auto stems = stems_entered(kJunction, {Vector2d(6.5, -1)}, 2.0, walls, test);
+  const auto stems = stems_entered(kJunction, {Vector2d(6.5, -1)}, {2.0}, walls, test);
   ASSERT_EQ(stems.size(), 1u);
   EXPECT_NEAR(stems[0].side.mid.y(), 0.0, 1e-9);
   EXPECT_LT(stems[0].side.normal.y(), -0.99);   // outward
   EXPECT_NEAR(stems[0].depth, 2.0, 1e-9);       // the hallway's width behind it
   // A position in the hallway west of it lies beyond the west side, which has more hallway
   // (open) opposite: no stem.
-  EXPECT_TRUE(stems_entered(kJunction, {Vector2d(4, 1)}, 2.0, walls, test).empty());
+  EXPECT_TRUE(stems_entered(kJunction, {Vector2d(4, 1)}, {2.0}, walls, test).empty());
   // With a hallway going on behind the north side too (an X-crossing), the south side is no stem.
   const std::vector<rgmap::LineSegment> x_walls{walls[1], walls[2], {Vector2d(0, 2), Vector2d(5, 2), 0.01, 50},
                                                 {Vector2d(8, 2), Vector2d(14, 2), 0.01, 50}};
-  EXPECT_TRUE(stems_entered(kJunction, {Vector2d(6.5, -1)}, 2.0, x_walls, test).empty());
+  EXPECT_TRUE(stems_entered(kJunction, {Vector2d(6.5, -1)}, {2.0}, x_walls, test).empty());
   // As a branch of an X, with the hallway open past it, it is.
-  EXPECT_EQ(stems_entered(kJunction, {Vector2d(6.5, -1)}, 2.0, x_walls, test, StemKind::kTOrX).size(), 1u);
+  EXPECT_EQ(stems_entered(kJunction, {Vector2d(6.5, -1)}, {2.0}, x_walls, test, StemKind::kTOrX).size(), 1u);
   // A T's side along its hallway is neither: the hallway's wall runs beside it.
-  EXPECT_TRUE(stems_entered(kJunction, {Vector2d(4, 1)}, 2.0, walls, test, StemKind::kTOrX).empty());
+  EXPECT_TRUE(stems_entered(kJunction, {Vector2d(4, 1)}, {2.0}, walls, test, StemKind::kTOrX).empty());
 }
 
 // East along testing::hallway_with_crossing(), north into the X's north branch (reported), to
