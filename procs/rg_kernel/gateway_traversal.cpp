@@ -94,8 +94,10 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
     //   detector reports nothing (lab_a's cubicles: their regions ran on along the hallway up
     //   to the next cubicle). Like a door, a stem has two sides and no choice of branch: the
     //   crossing leads back into the region the gateway joins the current one to.
+    // Per scan: the stems (line map, every robot position) are worked out only for a junction
+    // of this region whose outline the step crosses.
     const RegionBuilder& builder = builders_.at(rid);
-    const std::vector<Vector2d> origins = builder.laser_origins();
+    std::vector<Vector2d> origins;
     const Vector2d f = region_from_map * from, t = region_from_map * to;
     const OpeningTest opening{options_.min_branch_width, options_.branch_wall_tolerance};
     for (const auto& [id, g] : map_.gateways()) {
@@ -108,6 +110,9 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
         in_map.push_back(map_from_a * p);
         outline.push_back(region_from_map * in_map.back());
       }
+      const auto sides = gateway_edges(outline);
+      if (std::none_of(sides.begin(), sides.end(), [&](const Line& l) { return segments_cross(f, t, l.first, l.second); })) continue;
+      if (origins.empty()) origins = builder.laser_origins();
       for (const StemSide& stem : stems_entered(outline, origins, side_reach(), builder.segments(), opening)) {
         if (!segments_cross(f, t, stem.side.line.first, stem.side.line.second)) continue;
         if (stem.side.normal.dot(t - f) >= 0) continue;   // out of the junction into the region

@@ -20,6 +20,8 @@ constexpr double kRobotRadius = 0.26;
 uint64_t cell_key(int32_t x, int32_t y) { return (static_cast<uint64_t>(static_cast<uint32_t>(x)) << 32) | static_cast<uint32_t>(y); }
 int32_t key_x(uint64_t k) { return static_cast<int32_t>(static_cast<uint32_t>(k >> 32)); }
 int32_t key_y(uint64_t k) { return static_cast<int32_t>(static_cast<uint32_t>(k & 0xffffffffu)); }
+// The index of the cell (side res) that coordinate v lies in.
+int32_t cell_index(double v, double res) { return static_cast<int32_t>(std::floor(v / res)); }
 
 // A beam that leaves the region through a gateway ends, for this region, at the gateway line:
 // what lies beyond belongs to the next region (diss. 5.2 filters such beams; clipping keeps
@@ -48,8 +50,8 @@ void for_cells_in_triangle(const Vector2d& o, const Vector2d& a, const Vector2d&
   };
   const double area = side(o, a, b);
   if (std::fabs(area) < 1e-12) return;
-  for (int32_t y = static_cast<int32_t>(std::floor(lo.y() / res)); y <= static_cast<int32_t>(std::floor(hi.y() / res)); ++y) {
-    for (int32_t x = static_cast<int32_t>(std::floor(lo.x() / res)); x <= static_cast<int32_t>(std::floor(hi.x() / res)); ++x) {
+  for (int32_t y = cell_index(lo.y(), res); y <= cell_index(hi.y(), res); ++y) {
+    for (int32_t x = cell_index(lo.x(), res); x <= cell_index(hi.x(), res); ++x) {
       const Vector2d c((x + 0.5) * res, (y + 0.5) * res);
       const double s1 = side(o, a, c), s2 = side(a, b, c), s3 = side(b, o, c);
       if (area > 0 ? (s1 >= 0 && s2 >= 0 && s3 >= 0) : (s1 <= 0 && s2 <= 0 && s3 <= 0)) f(x, y);
@@ -66,7 +68,7 @@ void carve_scan(const Vector2d& o, const std::vector<Vector2d>& pts, const std::
 {
   // Where the robot stood is free too (a forward-looking laser never sees its own position).
   const int32_t r = static_cast<int32_t>(std::ceil(kRobotRadius / res));
-  const int32_t ox = static_cast<int32_t>(std::floor(o.x() / res)), oy = static_cast<int32_t>(std::floor(o.y() / res));
+  const int32_t ox = cell_index(o.x(), res), oy = cell_index(o.y(), res);
   for (int32_t y = oy - r; y <= oy + r; ++y)
     for (int32_t x = ox - r; x <= ox + r; ++x)
       if ((Vector2d((x + 0.5) * res, (y + 0.5) * res) - o).norm() <= kRobotRadius) f(x, y);
@@ -209,9 +211,11 @@ void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_
   };
   // A region has its own space: if every scan stood beyond its gateways, the sides are wrong.
   const bool filter = std::any_of(scans_.begin(), scans_.end(), [&](const auto& kv) { return !on_foreign_side(kv.second); });
+  std::vector<Cell> origins;   // of the scans carved: where the region's own space is (freespace_trim.h)
   for (const auto& [id, s] : scans_) {
     if (filter && on_foreign_side(s)) continue;
     const Vector2d o = s.region_from_laser.translation();
+    origins.emplace_back(cell_index(o.x(), res), cell_index(o.y(), res));
     lo = lo.cwiseMin(o);
     hi = hi.cwiseMax(o);
     std::vector<Vector2d> pts;
@@ -226,18 +230,10 @@ void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_
     }
     carve_scan(o, pts, usable, res, kMaxWedgeGap, [&](int32_t x, int32_t y) { cells_set.insert(cell_key(x, y)); });
   }
-  std::vector<std::pair<int32_t, int32_t>> cells;
+  std::vector<Cell> cells;
   for (const uint64_t k : cells_set) cells.emplace_back(key_x(k), key_y(k));
-  if (options_.freespace_min_passage > 0) {
-    std::vector<Cell> origins;
-    for (const auto& [id, s] : scans_) {
-      if (filter && on_foreign_side(s)) continue;
-      const Vector2d o = s.region_from_laser.translation();
-      origins.emplace_back(static_cast<int32_t>(std::floor(o.x() / res)), static_cast<int32_t>(std::floor(o.y() / res)));
-    }
-    const int radius = static_cast<int>(std::floor(0.5 * options_.freespace_min_passage / res));
-    cells = trim_seen_through(cells, origins, radius);
-  }
+  if (options_.freespace_min_passage > 0)
+    cells = trim_seen_through(cells, origins, cell_index(0.5 * options_.freespace_min_passage, res));
   fill_region(region, lo, hi, cells);
   fill_objects(region);
 }
@@ -257,8 +253,8 @@ void RegionBuilder::fill_region(rgmap::Region* region, const Vector2d& lo, const
   region->bbox_max = hi;
   const double res = options_.freespace_resolution;
   // The bitmap is aligned with the region frame's cell grid, so cell (x, y) maps exactly.
-  const int32_t x0 = static_cast<int32_t>(std::floor(lo.x() / res)), y0 = static_cast<int32_t>(std::floor(lo.y() / res));
-  const int32_t x1 = static_cast<int32_t>(std::floor(hi.x() / res)), y1 = static_cast<int32_t>(std::floor(hi.y() / res));
+  const int32_t x0 = cell_index(lo.x(), res), y0 = cell_index(lo.y(), res);
+  const int32_t x1 = cell_index(hi.x(), res), y1 = cell_index(hi.y(), res);
   // Bounded: at most 2000 x 2000 cells (300 m at 15 cm); a larger box means bad input.
   if (static_cast<int64_t>(x1) - x0 >= 2000 || static_cast<int64_t>(y1) - y0 >= 2000) return;
   rgmap::FreespaceBitmap fs(res, geometry::Pose2(x0 * res, y0 * res, 0.0), x1 - x0 + 1, y1 - y0 + 1);

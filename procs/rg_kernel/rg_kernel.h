@@ -1,7 +1,8 @@
 // The RG kernel's algorithm (diss. 5.0, 5.2, 6.1), no LCM: aligned scans are stacked into the
 // current region; a traversed gateway finalises the region (line map, bounding rectangle,
 // freespace from in-region beams: each beam ends at every gateway of the map and at the doorways
-// of the region's line map its robot never went through, gateway_geometry.h, doorways.h) and
+// of the region's line map its robot never went through, gateway_geometry.h, doorways.h, and what
+// it saw only through a passage narrower than a door is cut off, freespace_trim.h) and
 // opens the region beyond, or re-enters a known one; a doorway of the line map the robot does go
 // through where no gateway is known is crossed like a reported gateway (one the detector missed),
 // and so are a known door of the current region gone back through unreported and the stem side
