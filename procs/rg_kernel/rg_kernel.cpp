@@ -199,12 +199,20 @@ void RgKernel::maybe_merge_current(int64_t utime)
   const auto origins = builders_.at(cur).laser_origins();
   const Region* r = map_.region(cur);
   const KnownPlaces known(map_, builders_, cur, options_.known_place);
-  std::map<int64_t, int> inside;
-  for (const auto& o : origins) {
-    if (const int64_t q = known.region_holding(r->map_from_region * o)) ++inside[q];
+  // Per known region: how many of all the positions, and of the recent ones, it holds.
+  const size_t recent = std::min(origins.size(), static_cast<size_t>(options_.merge_recent_scans));
+  std::map<int64_t, std::pair<int, int>> inside;
+  for (size_t i = 0; i < origins.size(); ++i) {
+    const int64_t q = known.region_holding(r->map_from_region * origins[i]);
+    if (q == 0) continue;
+    ++inside[q].first;
+    if (i >= origins.size() - recent) ++inside[q].second;
   }
-  for (const auto& [q, n] : inside) {
-    if (n < options_.merge_inside_ratio * static_cast<double>(origins.size())) continue;
+  for (const auto& [q, counts] : inside) {
+    const auto [n, n_recent] = counts;
+    if (n < options_.merge_inside_ratio * static_cast<double>(origins.size()) ||
+        n_recent < options_.merge_recent_ratio * static_cast<double>(recent))
+      continue;
     // The current region is a place we know: merge it into q (diss. 6.1.1, Fig. 6.4).
     const geometry::Pose2 q_from_cur = map_.region(q)->map_from_region.inverse() * r->map_from_region;
     const int neutralized = map_.merge(cur, q, q_from_cur, utime);
@@ -218,8 +226,8 @@ void RgKernel::maybe_merge_current(int64_t utime)
     builders_.erase(cur);
     dirty_.erase(cur);
     dirty_.insert(q);
-    spdlog::info("region {} is region {} seen again ({} of its {} robot positions seen from region {}'s): merged, {} "
-                 "gateway(s) neutralized", cur, q, n, origins.size(), q, neutralized);
+    spdlog::info("region {} is region {} seen again ({} of its {} robot positions, {} of the last {}, seen from region "
+                 "{}'s): merged, {} gateway(s) neutralized", cur, q, n, origins.size(), n_recent, recent, q, neutralized);
     enter(q, utime, r->map_from_region * origins.back());
     return;
   }

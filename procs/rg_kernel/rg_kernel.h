@@ -45,6 +45,10 @@ struct KernelOptions
   double gateway_match_distance = 0.8;   // [m] crossing points closer than this: same gateway
   int merge_min_scans = 8;               // scans in a region before a merge is considered
   double merge_inside_ratio = 0.7;       // share of its robot positions seen by a known region's robot
+  int merge_recent_scans = 20;           // ... and of its last this many positions (all, if fewer) ...
+  double merge_recent_ratio = 0.9;       // ... at least this share: the robot is in that place now. A branch or
+                                         // room entered at a junction has its first positions in the junction,
+                                         // which the region before saw (lab_c: 7 of 8, merged into the hallway)
   KnownPlaceOptions known_place;         // what makes a position part of a known region (known_place.h)
   double late_scan_reach = 3.0;          // [m] scans this far past a crossed gateway belong beyond it
   double junction_side_reach = 2.0;      // [m] robot this near outside a crossing's side: its region lies beyond

@@ -47,6 +47,9 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   c.kernel.gateway_match_distance = k.number("gateway_match_distance_m", c.kernel.gateway_match_distance, 0.1, 5.0);
   c.kernel.merge_min_scans = static_cast<int>(k.integer("merge_min_scans", c.kernel.merge_min_scans, 1, 1000));
   c.kernel.merge_inside_ratio = k.number("merge_inside_ratio", c.kernel.merge_inside_ratio, 0.1, 1.0);
+  c.kernel.merge_recent_scans =
+      static_cast<int>(k.integer("merge_recent_scans", c.kernel.merge_recent_scans, c.kernel.merge_min_scans, 100000));
+  c.kernel.merge_recent_ratio = k.number("merge_recent_ratio", c.kernel.merge_recent_ratio, 0.1, 1.0);
   c.kernel.known_place.max_origin_distance =
       k.number("merge_max_origin_distance_m", c.kernel.known_place.max_origin_distance, 0.1, 20.0);
   c.kernel.late_scan_reach = k.number("late_scan_reach_m", c.kernel.late_scan_reach, 0.0, 10.0);

@@ -97,6 +97,41 @@ TEST(RgKernel, KnownPlaceWithoutGatewayIsMergedAndGatewayNeutralized)
   EXPECT_EQ(d.kernel.stats().regions, 1);
 }
 
+// Drives the hallway of hallway_with_crossing() to the crossing, turns north in it, and the
+// detector reports the crossing with the robot still in the junction: the branch region's
+// first 7 positions lie in the square, which the hallway's robot saw from 1 m away; the 8th is
+// in the branch. Then on up the branch. Returns the number of regions merged away.
+int turn_into_the_branch(Drive& d)
+{
+  d.walls = testing::hallway_with_crossing();
+  for (double x = 0.5; x < 4.6; x += 0.2) d.scan_at(geometry::Pose2(x, 1.0, 0));
+  EXPECT_TRUE(d.traverse(rgmap::GatewayClass::kXCrossing, 7, geometry::Pose2(5.0, 1.3, M_PI_2),
+                         {Vector2d(4, 2), Vector2d(6, 2), Vector2d(6, 0), Vector2d(4, 0)}));
+  for (double y = 1.4; y < 2.05; y += 0.1) d.scan_at(geometry::Pose2(5.0, y, M_PI_2));
+  for (double y = 2.2; y < 5.0; y += 0.2) d.scan_at(geometry::Pose2(5.0, y, M_PI_2));
+  int merged = 0;
+  for (const auto& [id, r] : d.kernel.map().regions()) merged += r.state == rgmap::Region::State::kMerged;
+  return merged;
+}
+
+TEST(RgKernel, BranchEnteredInTheJunctionIsNotTheHallwaySeenAgain)
+{
+  // lab_c_furnished: a room entered at an RT-junction was "region 6 seen again (7 of its 8 robot
+  // positions seen from region 6's)" and merged into the hallway, with all it held after.
+  Drive d;
+  EXPECT_EQ(turn_into_the_branch(d), 0);
+  const auto& m = d.kernel.map();
+  EXPECT_EQ(m.current_region, 2);
+  EXPECT_EQ(m.region(2)->state, rgmap::Region::State::kOpen);
+  EXPECT_FALSE(m.gateways().begin()->second.neutralized);
+
+  KernelOptions lenient;   // before 2026-12-05: 70 % of all positions sufficed
+  lenient.merge_recent_ratio = 0.7;
+  Drive before(lenient);
+  EXPECT_EQ(turn_into_the_branch(before), 1);
+  EXPECT_EQ(before.kernel.map().current_region, 1);
+}
+
 TEST(RgKernel, LateTraversalEventNeitherCarvesTheNextRoomNorMergesIt)
 {
   // The detector reports a traversal once the robot is through the door: the scans taken
