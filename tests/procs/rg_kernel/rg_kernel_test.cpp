@@ -99,8 +99,9 @@ TEST(RgKernel, KnownPlaceWithoutGatewayIsMergedAndGatewayNeutralized)
 
 // Drives the hallway of hallway_with_crossing() to the crossing, turns north in it, and the
 // detector reports the crossing with the robot still in the junction: the branch region's
-// first 7 positions lie in the square, which the hallway's robot saw from 1 m away; the 8th is
-// in the branch. Then on up the branch. Returns the number of regions merged away.
+// first positions lie in the square, which the hallway's robot saw from 1 m away (6 of the first
+// 8 count as seen; the one on the square's far side and the next, in the branch, do not). Then
+// on up the branch. Returns the number of regions merged away.
 int turn_into_the_branch(Drive& d)
 {
   d.walls = testing::hallway_with_crossing();
