@@ -34,14 +34,16 @@
 #     the room graph of the tour's rooms; graph_*: node/edge counts and differences, edges
 #     matched / missing / extra / internal under the region -> best room mapping.
 #   regions, merged_regions, gateways, doors, neutralized, segments, compression (scan points /
-#     segment end points), mean_region_bytes (freespace bitmap + segments), consistency_problems.
+#     segment end points), mean_region_bytes (freespace bitmap + segments), consistency_problems,
+#     overlapping_regions (pairs of regions, the smaller with half its freespace in the other's:
+#     one place mapped twice, or a small room seen whole through a wide opening).
 # summary.<worlds|worlds_true_poses>.<ipa_plain|ipa_furnished> — means of seg_precision /
 #   seg_recall over the IPA maps (Bormann et al. report means over their maps), gateway sums,
 #   isomorphic count, failed runs (left out of the means), and the Voronoi method's figures.
 # logs.<name> — corrected real logs of ../shared/data/laser/corrected (poses taken as given, as
 #   the dissertation did); no ground truth: counts only (false_positives is null).
 #   gateways, doors, neutralized, not_traversed (Table 6.1 columns), regions, merged_regions,
-#   segments, scan_points, compression, mean_region_bytes, consistency_problems.
+#   segments, scan_points, compression, mean_region_bytes, consistency_problems, overlapping_regions.
 # worlds_true_poses.<name> — the same keys, the same tour mapped on the simulator's true poses
 #   instead of the scan mapper's (poses: "true"): segmentation errors apart from SLAM errors.
 #   Diagnostic only; the headline (worlds.<name>) is on the scan mapper's poses. Pictures under

@@ -76,7 +76,8 @@ nlohmann::json counts_json(const MapCounts& c)
           {"compression", c.compression},
           {"mean_region_bytes", c.mean_region_bytes},
           {"mean_region_area_m2", c.mean_region_area_m2},
-          {"consistency_problems", c.consistency_problems}};
+          {"consistency_problems", c.consistency_problems},
+          {"overlapping_regions", c.overlapping_regions}};
 }
 
 void add_fidelity_json(const rg_kernel::LineMapFidelity& f, nlohmann::json* j)

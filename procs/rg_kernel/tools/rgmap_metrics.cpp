@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
+#include <unordered_map>
+#include <utility>
 
 namespace rgnav::rgmap_pipeline {
 
@@ -241,7 +244,41 @@ MapCounts count_map(const rgmap::RgMap& map, int64_t scan_points)
   c.mean_region_bytes = c.regions > 0 ? bytes / c.regions : 0.0;
   c.mean_region_area_m2 = c.regions > 0 ? area / c.regions : 0.0;
   c.consistency_problems = static_cast<int>(map.consistency_problems().size());
+  c.overlapping_regions = overlapping_region_pairs(map);
   return c;
+}
+
+int overlapping_region_pairs(const rgmap::RgMap& map, double share, double resolution)
+{
+  // A grid over every live region's freespace extent, in the map frame.
+  Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const auto& [id, r] : map.regions()) {
+    const auto& fs = r.freespace;
+    if (r.state == rgmap::Region::State::kMerged || fs.width() == 0 || fs.height() == 0) continue;
+    const geometry::Pose2 map_from_grid = r.map_from_region * fs.region_from_grid();
+    for (const Vector2d& k : {Vector2d(0, 0), Vector2d(fs.width(), 0), Vector2d(0, fs.height()), Vector2d(fs.width(), fs.height())}) {
+      const Vector2d p = map_from_grid * (k * fs.resolution());
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  if (lo.x() > hi.x()) return 0;
+  const LabelGrid grid(static_cast<int>(std::ceil((hi.x() - lo.x()) / resolution)) + 1,
+                       static_cast<int>(std::ceil((hi.y() - lo.y()) / resolution)) + 1, resolution, lo);
+  const RegionCells cells = region_cells(map, geometry::Pose2(), grid);
+  std::unordered_map<int64_t, std::vector<int64_t>> regions_of_cell;
+  for (const auto& [id, cs] : cells)
+    for (const int64_t c : cs) regions_of_cell[c].push_back(id);
+  std::map<std::pair<int64_t, int64_t>, int> shared;
+  for (const auto& [c, ids] : regions_of_cell)
+    for (size_t i = 0; i < ids.size(); ++i)
+      for (size_t j = i + 1; j < ids.size(); ++j) ++shared[{ids[i], ids[j]}];
+  int pairs = 0;
+  for (const auto& [ab, n] : shared) {
+    const size_t smaller = std::min(cells.at(ab.first).size(), cells.at(ab.second).size());
+    if (static_cast<double>(n) >= share * static_cast<double>(smaller)) ++pairs;
+  }
+  return pairs;
 }
 
 RegionCells region_cells(const rgmap::RgMap& map, const geometry::Pose2& world_from_map, const LabelGrid& grid)

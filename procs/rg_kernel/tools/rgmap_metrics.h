@@ -138,8 +138,15 @@ struct MapCounts
   double mean_region_bytes = 0;  // freespace bitmap + segments (4 float coordinates) per region
   double mean_region_area_m2 = 0;
   int consistency_problems = 0;
+  int overlapping_regions = 0;  // overlapping_region_pairs: one place mapped twice
 };
 MapCounts count_map(const rgmap::RgMap& map, int64_t scan_points);
+
+// Pairs of live regions of which the smaller one has at least `share` of its freespace (cells of
+// a map-frame grid) inside the other's: one place mapped as two regions (a false gateway whose
+// region was not merged back, a loop not closed). consistency_problems cannot see these. A
+// region's view through an opening into its neighbour overlaps that neighbour, but not by half.
+int overlapping_region_pairs(const rgmap::RgMap& map, double share = 0.5, double resolution = 0.15);
 
 // Cells of a LabelGrid inside each live region's freespace, the region placed by
 // world_from_map * map_from_region.

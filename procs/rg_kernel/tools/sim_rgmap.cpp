@@ -217,6 +217,7 @@ nlohmann::json to_json(const SimRgMapRun& r, const WorldScore& s)
   add_fidelity_json(r.run.fidelity, &j);
   j["mean_region_bytes"] = c.mean_region_bytes;
   j["consistency_problems"] = c.consistency_problems;
+  j["overlapping_regions"] = c.overlapping_regions;
   j["alignment_rmse_m"] = s.alignment_rmse_m;
   j["tour_length_m"] = r.tour_length_m;
   j["driven_m"] = r.driven_m;

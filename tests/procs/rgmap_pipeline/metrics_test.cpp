@@ -280,6 +280,38 @@ TEST(RegionCells, FreespacePlacedThroughTheAlignment)
   }
 }
 
+// A region of w x h free cells of 0.5 m at `map_from_region`.
+rgmap::Region& free_block(rgmap::RgMap& m, const geometry::Pose2& map_from_region, int w, int h)
+{
+  auto& r = m.add_region(map_from_region, 1);
+  r.freespace = rgmap::FreespaceBitmap(0.5, geometry::Pose2(), w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) r.freespace.set_free(x, y, true);
+  return r;
+}
+
+TEST(OverlappingRegions, OnePlaceMappedTwiceIsAPairNeighboursAreNot)
+{
+  rgmap::RgMap m;
+  free_block(m, geometry::Pose2(), 8, 8);                 // a 4 x 4 m room at map (0..4, 0..4)
+  free_block(m, geometry::Pose2(4, 0, 0), 8, 8);          // the room east of it
+  EXPECT_EQ(overlapping_region_pairs(m), 0);
+  // A region that saw 1 m into its neighbour (a quarter of it): still none.
+  free_block(m, geometry::Pose2(8, 0, 0), 8, 8).freespace = [] {
+    rgmap::FreespaceBitmap f(0.5, geometry::Pose2(-1, 0, 0), 10, 8);   // region x -1..4
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 10; ++x) f.set_free(x, y, true);
+    return f;
+  }();
+  EXPECT_EQ(overlapping_region_pairs(m), 0);
+  // The first room again as a region of its own, in another frame (rotated by 90 degrees).
+  auto& again = free_block(m, geometry::Pose2(4, 0, M_PI / 2), 8, 7);
+  EXPECT_EQ(overlapping_region_pairs(m), 1);
+  EXPECT_EQ(count_map(m, 100).overlapping_regions, 1);
+  again.state = rgmap::Region::State::kMerged;   // merged away: no region of the map
+  EXPECT_EQ(overlapping_region_pairs(m), 0);
+}
+
 TEST(FitRigid, RecoversAKnownTransform)
 {
   const geometry::Pose2 t(3, -2, 0.7);
