@@ -157,6 +157,18 @@ GatewayMatch match_gateways(const std::vector<Vector2d>& truth, const std::vecto
 
 namespace {
 
+// Widens [lo, hi] to the corners of a region's freespace bitmap placed by world_from_region.
+void add_freespace_extent(const rgmap::FreespaceBitmap& fs, const geometry::Pose2& world_from_region, Vector2d* lo,
+                          Vector2d* hi)
+{
+  const geometry::Pose2 world_from_grid = world_from_region * fs.region_from_grid();
+  for (const Vector2d& k : {Vector2d(0, 0), Vector2d(fs.width(), 0), Vector2d(0, fs.height()), Vector2d(fs.width(), fs.height())}) {
+    const Vector2d p = world_from_grid * (k * fs.resolution());
+    *lo = lo->cwiseMin(p);
+    *hi = hi->cwiseMax(p);
+  }
+}
+
 // Gateways of the map grouped by crossing: those with the same 4-point outline (within 1 cm in
 // the map frame) in one group, lowest id first; every other gateway alone.
 std::vector<std::vector<int64_t>> crossing_groups(const rgmap::RgMap& map)
@@ -254,13 +266,8 @@ int overlapping_region_pairs(const rgmap::RgMap& map, double share, double resol
   Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
   for (const auto& [id, r] : map.regions()) {
     const auto& fs = r.freespace;
-    if (r.state == rgmap::Region::State::kMerged || fs.width() == 0 || fs.height() == 0) continue;
-    const geometry::Pose2 map_from_grid = r.map_from_region * fs.region_from_grid();
-    for (const Vector2d& k : {Vector2d(0, 0), Vector2d(fs.width(), 0), Vector2d(0, fs.height()), Vector2d(fs.width(), fs.height())}) {
-      const Vector2d p = map_from_grid * (k * fs.resolution());
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
+    if (r.state != rgmap::Region::State::kMerged && fs.width() > 0 && fs.height() > 0)
+      add_freespace_extent(fs, r.map_from_region, &lo, &hi);
   }
   if (lo.x() > hi.x()) return 0;
   const LabelGrid grid(static_cast<int>(std::ceil((hi.x() - lo.x()) / resolution)) + 1,
@@ -290,13 +297,8 @@ RegionCells region_cells(const rgmap::RgMap& map, const geometry::Pose2& world_f
     const auto& fs = r.freespace;
     if (fs.width() == 0 || fs.height() == 0) continue;
     const geometry::Pose2 world_from_region = world_from_map * r.map_from_region;
-    const geometry::Pose2 world_from_grid = world_from_region * fs.region_from_grid();
     Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-    for (const Vector2d& k : {Vector2d(0, 0), Vector2d(fs.width(), 0), Vector2d(0, fs.height()), Vector2d(fs.width(), fs.height())}) {
-      const Vector2d p = world_from_grid * (k * fs.resolution());
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
+    add_freespace_extent(fs, world_from_region, &lo, &hi);
     const geometry::Pose2 region_from_world = world_from_region.inverse();
     const int x0 = std::max(0, static_cast<int>(std::floor((lo.x() - grid.origin.x()) / grid.resolution)));
     const int y0 = std::max(0, static_cast<int>(std::floor((lo.y() - grid.origin.y()) / grid.resolution)));
