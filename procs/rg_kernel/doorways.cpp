@@ -27,6 +27,71 @@ double line_angle(const Vector2d& u, const Vector2d& v)
   return std::acos(std::min(1.0, c));
 }
 
+double length(const rgmap::LineSegment& s) { return (s.b - s.a).norm(); }
+
+// Distance of p from the segment.
+double segment_distance(const Vector2d& p, const rgmap::LineSegment& s)
+{
+  const Vector2d d = s.b - s.a;
+  const double t = d.squaredNorm() > 0 ? std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (s.a + t * d - p).norm();
+}
+
+// The wall-end gaps of the line map (DoorwayOptions::wall_end_max_width), not repeating `found`.
+void add_wall_end_gaps(const std::vector<rgmap::LineSegment>& segments, const DoorwayOptions& o, std::vector<Line>* found)
+{
+  // [m] hits nearer the end than this are the wall's own end face (a thick wall seen end-on).
+  constexpr double kOwnEnd = 0.1;
+  // [m] gaps whose middles are this near are one gap (the two faces of a thick wall).
+  constexpr double kSameGap = 0.5;
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const auto& w = segments[i];
+    if (length(w) < o.wall_end_min_wall_length) continue;
+    for (const auto& [end, other] : {std::pair{w.a, w.b}, std::pair{w.b, w.a}}) {
+      const Vector2d u = (end - other).normalized();
+      // A free end: no crossing wall (longer than a wall is thick) touches it.
+      bool free = true;
+      for (size_t j = 0; j < segments.size() && free; ++j)
+        free = j == i || length(segments[j]) <= 2 * o.wall_end_free_radius ||
+               line_angle(u, segments[j].b - segments[j].a) < o.wall_end_min_angle ||
+               segment_distance(end, segments[j]) > o.wall_end_free_radius;
+      if (!free) continue;
+      // Not a jamb of an opening in another wall's line (that line through the end, across the wall,
+      // the other wall apart from it).
+      bool in_line = false;
+      for (size_t j = 0; j < segments.size() && !in_line; ++j) {
+        const auto& t = segments[j];
+        in_line = j != i && length(t) >= o.min_wall_length && line_angle(u, t.b - t.a) >= o.wall_end_min_angle &&
+                  segment_distance(end, t) > o.wall_end_free_radius &&   // not the wall's own end face
+                  line_distance(end, t.a, t.b) <= o.wall_end_in_line_offset &&
+                  std::min((t.a - end).norm(), (t.b - end).norm()) <= o.max_width;
+      }
+      if (in_line) continue;
+      // The first line the wall's line runs into past its end: a crossing wall (through or a
+      // corner of it) makes a gap; anything else in the way (furniture, a wall along it) does not.
+      double nearest = std::numeric_limits<double>::max();
+      bool crossing_wall = false;
+      for (size_t j = 0; j < segments.size(); ++j) {
+        if (j == i) continue;
+        const auto& t = segments[j];
+        const auto hit = ray_meets_line(end, u, t.a, t.b);
+        if (!hit || hit->along_ray < kOwnEnd || hit->along_ray >= nearest) continue;
+        const bool wall = length(t) >= o.wall_end_min_wall_length && line_angle(u, t.b - t.a) >= o.wall_end_min_angle;
+        const double tolerance = wall ? o.wall_end_corner_tolerance / length(t) : 0.0;
+        if (hit->along_line < -tolerance || hit->along_line > 1 + tolerance) continue;
+        nearest = hit->along_ray;
+        crossing_wall = wall;
+      }
+      if (!crossing_wall || nearest < o.min_width || nearest > o.wall_end_max_width) continue;
+      const Line gap{end, end + nearest * u};
+      const Vector2d mid = 0.5 * (gap.first + gap.second);
+      if (std::any_of(found->begin(), found->end(), [&](const Line& l) { return (0.5 * (l.first + l.second) - mid).norm() < kSameGap; }))
+        continue;
+      found->push_back(gap);
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<Line> find_doorways(const std::vector<rgmap::LineSegment>& segments, const DoorwayOptions& o)
@@ -59,6 +124,7 @@ std::vector<Line> find_doorways(const std::vector<rgmap::LineSegment>& segments,
       out.push_back({p, q});
     }
   }
+  if (o.wall_end_max_width > 0) add_wall_end_gaps(segments, o, &out);
   return out;
 }
 
@@ -67,7 +133,7 @@ std::optional<Line> doorway_stepped_through(const std::vector<rgmap::LineSegment
 {
   if (!o.enabled || (to - from).norm() > o.max_width) return std::nullopt;
   // Only wall pieces near the step can frame a doorway it goes through.
-  const double reach = o.max_width + 0.5 * (to - from).norm() + 0.5;
+  const double reach = std::max(o.max_width, o.wall_end_max_width + o.wall_end_min_wall_length) + 0.5 * (to - from).norm() + 0.5;
   const Vector2d mid = 0.5 * (from + to);
   std::vector<rgmap::LineSegment> near;
   for (const auto& seg : segments) {

@@ -1,5 +1,7 @@
 // Doorways of a region's own line map: gaps of door width in a straight wall (two collinear
-// wall segments whose facing ends are 0.6-1.5 m apart). Through such a gap the region's robot
+// wall segments whose facing ends are 0.6-1.5 m apart), and, if asked for, the gap between a
+// wall's free end and the wall its line runs into (a wall that stops short of a crossing wall
+// or a corner: a room divided by a partition, an opening beside a corner). Through such a gap the region's robot
 // sees the room behind it; until that door is crossed (and becomes a gateway) nothing but the
 // line map tells the kernel that the space behind belongs to another room. A region whose robot
 // never went through a doorway ends there, like at a gateway (diss. 5.2 filters the beams that
@@ -25,9 +27,26 @@ struct DoorwayOptions
   double min_wall_length = 0.3;    // [m] each wall piece beside the gap at least this long
   double max_angle = 0.1745;       // [rad] wall pieces and gap line this parallel (10 deg) ...
   double max_offset = 0.10;        // [m] ... and the gap ends this near the other piece's line
+  // Wall-end gaps: from the free end of a wall at least wall_end_min_wall_length long, along its
+  // line, to the first wall it runs into at wall_end_min_angle or more, min_width to
+  // wall_end_max_width away. The ground truth of the IPA buildings divides rooms there (issue 8:
+  // Freiburg52's 2.65 m opening beside a partition's end, office_e's 1.3 m gaps between a wall's
+  // end and a corner); the collinear rule sees neither. The wall must be long: the short faces of
+  // door frames, extended across a hallway, would cut it at every door. 0: off.
+  double wall_end_max_width = 0.0;        // [m]
+  double wall_end_min_wall_length = 1.0;  // [m]
+  double wall_end_min_angle = 0.7854;     // [rad] (45 deg) not along the wall: across it
+  double wall_end_free_radius = 0.3;      // [m] an end with a crossing wall this near is a corner, not free
+  double wall_end_corner_tolerance = 0.3; // [m] the line may run into the wall this far past its end (a corner)
+  // An end in line with another wall across it (that wall's line this near the end, its nearer
+  // end at most max_width away) is a jamb of an opening in that wall's line: the opening lies
+  // along that line, not along the wall's (lab_intel: partitions between rooms open onto a
+  // hallway end flush with the rooms' front walls, and their lines run on across the hallway).
+  double wall_end_in_line_offset = 0.3;   // [m]
 };
 
-// The gap lines (facing ends of two collinear wall segments), in the segments' frame.
+// The gap lines (facing ends of two collinear wall segments, then wall-end gaps), in the
+// segments' frame.
 std::vector<Line> find_doorways(const std::vector<rgmap::LineSegment>& segments, const DoorwayOptions& options);
 
 // The doorway of the line map (segments near the step suffice) that the robot's step from `from`

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -16,6 +17,17 @@
 namespace rgnav::rg_kernel {
 
 using Line = std::pair<Eigen::Vector2d, Eigen::Vector2d>;
+
+// Where the ray from `origin` along `dir` (unit) meets the line through a and b: the distance
+// along the ray (negative: behind it) and the position along a -> b (0 at a, 1 at b); nullopt
+// if they are parallel.
+struct RayHit
+{
+  double along_ray = 0.0;
+  double along_line = 0.0;
+};
+std::optional<RayHit> ray_meets_line(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir, const Eigen::Vector2d& a,
+                                     const Eigen::Vector2d& b);
 
 // The boundary lines of one gateway: four points are a closed outline (its four sides),
 // otherwise consecutive point pairs are lines.

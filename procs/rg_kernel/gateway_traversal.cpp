@@ -131,8 +131,8 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
   const Vector2d p = r->map_from_region * door->first, q = r->map_from_region * door->second;
   for (const auto& [id, g] : map_.gateways())
     if (!g.neutralized && (crossing_in_map(g) - 0.5 * (p + q)).norm() < options_.gateway_match_distance) return;
-  spdlog::info("region {}: the robot went through a doorway of its line map at ({:.2f}, {:.2f})", rid, 0.5 * (p.x() + q.x()),
-               0.5 * (p.y() + q.y()));
+  spdlog::info("region {}: the robot went through a doorway of its line map from ({:.2f}, {:.2f}) to ({:.2f}, {:.2f})", rid,
+               p.x(), p.y(), q.x(), q.y());
   add_gateway_event(traversal(rgmap::GatewayClass::kNarrowPassage, {p, q}, to - from));
 }
 
@@ -233,6 +233,11 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
     entered_utime_[e.track_id] = e.utime;
     return false;
   }
+  return traverse(e, {}, 0);
+}
+
+bool RgKernel::traverse(const GatewayEventInput& e, const std::vector<int64_t>& handed_on, int64_t into)
+{
   if (e.kind != GatewayEventInput::Kind::kTraversed || map_.current_region == 0 || e.gateway_points.empty()) return false;
 
   const int64_t from = map_.current_region;
@@ -314,7 +319,10 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
                    geometry::normalize_angle(first) * 180 / M_PI, from, e.direction * 180 / M_PI);
     }
   }
-  const std::vector<int64_t> late = scans_past_gateway(from, e);
+  std::vector<int64_t> late = scans_past_gateway(from, e);   // newest first
+  for (auto id = handed_on.rbegin(); id != handed_on.rend(); ++id)
+    if (std::find(late.begin(), late.end(), *id) == late.end()) late.push_back(*id);
+  std::sort(late.begin(), late.end(), [&](int64_t x, int64_t y) { return scan_inputs_.at(x).utime > scan_inputs_.at(y).utime; });
   for (const int64_t id : late) builders_.at(from).remove_scan(id);
   // Finalise the region we leave, now that its gateways (the new one too) filter its beams.
   if (progress_) progress_();
@@ -324,6 +332,7 @@ bool RgKernel::add_gateway_event(const GatewayEventInput& e)
   cur->state = Region::State::kFinalised;
   cur->utime = e.utime;
 
+  if (next == 0 && into != 0) next = into;
   if (next == 0) {
     // Past the gateway as the detector saw it just now, not only as it is known (another visit's
     // measurement, known_place.h).

@@ -202,8 +202,9 @@ void RgKernel::maybe_merge_current(int64_t utime)
   // Per known region: how many of all the positions, and of the recent ones, it holds.
   const size_t recent = std::min(origins.size(), static_cast<size_t>(options_.merge_recent_scans));
   std::map<int64_t, std::pair<int, int>> inside;
+  std::vector<int64_t> holding(origins.size(), 0);
   for (size_t i = 0; i < origins.size(); ++i) {
-    const int64_t q = known.region_holding(r->map_from_region * origins[i]);
+    const int64_t q = holding[i] = known.region_holding(r->map_from_region * origins[i]);
     if (q == 0) continue;
     ++inside[q].first;
     if (i >= origins.size() - recent) ++inside[q].second;
@@ -231,6 +232,68 @@ void RgKernel::maybe_merge_current(int64_t utime)
     enter(q, utime, r->map_from_region * origins.back());
     return;
   }
+  maybe_cross_into_known_place(holding);
+}
+
+void RgKernel::maybe_cross_into_known_place(const std::vector<int64_t>& holding)
+{
+  if (options_.entry_min_scans <= 0 || holding.empty() || holding.back() == 0) return;
+  const int64_t q = holding.back();
+  size_t first = holding.size();   // of the newest run of positions in q
+  while (first > 0 && holding[first - 1] == q) --first;
+  const size_t run = holding.size() - first;
+  if (run < static_cast<size_t>(options_.entry_min_scans) || first < static_cast<size_t>(options_.merge_min_scans)) return;
+  // Before the run, a new place: mostly not q's (a region that is q seen again is merged instead).
+  const auto in_q_before = std::count(holding.begin(), holding.begin() + static_cast<std::ptrdiff_t>(first), q);
+  if (static_cast<double>(in_q_before) > (1.0 - options_.merge_inside_ratio) * static_cast<double>(first)) return;
+  // Scans in time order, as the positions are (RegionBuilder::laser_origins).
+  const int64_t cur = map_.current_region;
+  const RegionBuilder& b = builders_.at(cur);
+  std::vector<std::pair<int64_t, int64_t>> by_time;   // (utime, scan id)
+  for (const auto& [id, sc] : b.scans()) by_time.push_back({sc.utime, id});
+  std::sort(by_time.begin(), by_time.end());
+  if (by_time.size() != holding.size()) return;
+  const ScanInput& out = scan_inputs_.at(by_time[first - 1].second);
+  const ScanInput& in = scan_inputs_.at(by_time[first].second);
+  const ScanInput& now = scan_inputs_.at(by_time.back().second);
+  const Vector2d p0 = (out.map_from_base * out.base_from_laser).translation();
+  const Vector2d p1 = (in.map_from_base * in.base_from_laser).translation();
+  if ((p1 - p0).norm() < 1e-6) return;
+  double depth = 0;
+  for (size_t i = first; i < by_time.size(); ++i) {
+    const ScanInput& sc = scan_inputs_.at(by_time[i].second);
+    depth = std::max(depth, ((sc.map_from_base * sc.base_from_laser).translation() - 0.5 * (p0 + p1)).norm());
+  }
+  if (depth < options_.entry_min_depth) return;
+  // A line across the step, reaching to the walls of the region's line map on either side.
+  const Vector2d mid = 0.5 * (p0 + p1), along = (p1 - p0).normalized(), across(-along.y(), along.x());
+  const geometry::Pose2& map_from_cur = map_.region(cur)->map_from_region;
+  auto reach = [&](const Vector2d& dir) {
+    double best = options_.entry_max_half_width;
+    for (const auto& seg : b.segments()) {
+      const auto hit = ray_meets_line(mid, dir, map_from_cur * seg.a, map_from_cur * seg.b);
+      if (hit && hit->along_ray > 0 && hit->along_ray < best && hit->along_line >= 0 && hit->along_line <= 1) best = hit->along_ray;
+    }
+    return best;
+  };
+  GatewayEventInput e;
+  e.utime = now.utime;
+  e.scan_id = in.scan_id;
+  e.kind = GatewayEventInput::Kind::kTraversed;
+  e.track_id = -in.scan_id;   // no detector track
+  e.cls = rgmap::GatewayClass::kUnknown;
+  e.map_from_base = now.map_from_base;
+  e.gateway_points = {mid + reach(across) * across, mid - reach(-across) * across};
+  e.direction = std::atan2(along.y(), along.x());
+  std::vector<int64_t> handed_on;
+  for (size_t i = first; i < by_time.size(); ++i) handed_on.push_back(by_time[i].second);
+  // Logged after the traversal's own messages; a known gateway there the traversal repeats changes
+  // nothing, and the next scan tries again (quietly).
+  const bool crossed = traverse(e, handed_on, q);
+  spdlog::log(crossed ? spdlog::level::info : spdlog::level::debug,
+              "region {}: the robot had walked into known region {}'s place at ({:.2f}, {:.2f}) with no gateway between "
+              "({} of its {} robot positions since){}", cur, q, mid.x(), mid.y(), run, holding.size(),
+              crossed ? ": crossed there" : "; a known gateway there, nothing crossed");
 }
 
 rgmap::Region RgKernel::describe_region(int64_t id) const

@@ -9,7 +9,9 @@
 // of a T-junction the region lies beyond, left into the junction unreported; a
 // region that turns out to be a known place (the robot's positions lie in a finalised
 // region's own space, seen by that region's robot: known_place.h) is merged into it and gateways with one region on both sides are
-// neutralized (diss. 6.1.1); republished scans (loop-closure corrections) update their region.
+// neutralized (diss. 6.1.1); a region whose robot, from a new place, walks on into a known
+// region's place with no gateway between crosses one there (the missed gateway of diss. 6.1.1,
+// Fig. 6.4, split rather than merged); republished scans (loop-closure corrections) update their region.
 // Traversals (gateway_traversal.cpp): a crossing (junction outline) joins one pair of regions
 // per gateway, the branches its first traversal took; left into another branch it gets a
 // gateway of its own with the same outline. A junction entered or left through a door just
@@ -49,6 +51,19 @@ struct KernelOptions
   double merge_recent_ratio = 0.9;       // ... at least this share: the robot is in that place now. A branch or
                                          // room entered at a junction has its first positions in the junction,
                                          // which the region before saw (lab_c: 7 of 8, merged into the hallway)
+  // A region whose robot, after merge_min_scans positions in a new place, has this many positions
+  // in a row (the newest) in one known region's place, with no gateway between, walked into it
+  // through a gateway nobody saw: the kernel crosses one there, a line across the step into the
+  // known place reaching to the line map's walls (at most entry_max_half_width each side), and the
+  // positions from the step on are the known region's (lab_ipa: a corridor's region ran on across
+  // the octagon hall it opens into, the hall's region known). Not merged: the new place stays a
+  // region of its own. 0: off.
+  int entry_min_scans = 8;
+  // [m] ... and the farthest of them at least this far from the step in: a junction's square is
+  // every region's place whose robot went through it (a robot going straight through a 2 m
+  // junction another region's robot crossed has not walked into that region).
+  double entry_min_depth = 3.0;
+  double entry_max_half_width = 1.5;     // [m]
   KnownPlaceOptions known_place;         // what makes a position part of a known region (known_place.h)
   double late_scan_reach = 3.0;          // [m] scans this far past a crossed gateway belong beyond it
   double junction_side_reach = 2.0;      // [m] robot this near outside a crossing's side: its region lies beyond
@@ -156,6 +171,12 @@ class RgKernel
   int64_t open_region(const geometry::Pose2& map_from_region, int64_t utime);
   void enter(int64_t region_id, int64_t utime, const Eigen::Vector2d& robot);
   void maybe_merge_current(int64_t utime);
+  // The entry_min_scans rule (KernelOptions): `holding` is the known region holding each of the
+  // current region's robot positions (oldest first, 0: none).
+  void maybe_cross_into_known_place(const std::vector<int64_t>& holding);
+  // A traversal (add_gateway_event) handing on the current region's scans `handed_on` as well as
+  // those past the gateway, into region `into` if not 0.
+  bool traverse(const GatewayEventInput& e, const std::vector<int64_t>& handed_on, int64_t into);
   // What bounds region_id's beams (its frame): the lines of every non-neutralized gateway of the
   // map (gateway_geometry.h) that end them, and the places where its scans carve nothing (the far
   // sides of its own traversed doors, the insides of the junctions whose stem it lies beyond).

@@ -50,6 +50,9 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   c.kernel.merge_recent_scans =
       static_cast<int>(k.integer("merge_recent_scans", c.kernel.merge_recent_scans, c.kernel.merge_min_scans, 100000));
   c.kernel.merge_recent_ratio = k.number("merge_recent_ratio", c.kernel.merge_recent_ratio, 0.1, 1.0);
+  c.kernel.entry_min_scans = static_cast<int>(k.integer("entry_min_scans", c.kernel.entry_min_scans, 0, 100000));
+  c.kernel.entry_min_depth = k.number("entry_min_depth_m", c.kernel.entry_min_depth, 0.0, 100.0);
+  c.kernel.entry_max_half_width = k.number("entry_max_half_width_m", c.kernel.entry_max_half_width, 0.1, 10.0);
   c.kernel.known_place.max_origin_distance =
       k.number("merge_max_origin_distance_m", c.kernel.known_place.max_origin_distance, 0.1, 20.0);
   c.kernel.late_scan_reach = k.number("late_scan_reach_m", c.kernel.late_scan_reach, 0.0, 10.0);
@@ -94,6 +97,12 @@ NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_r
   d.min_wall_length = dw.number("min_wall_length_m", d.min_wall_length, 0.0, 10.0);
   d.max_angle = dw.number("max_angle_deg", d.max_angle * 180.0 / M_PI, 0.0, 45.0) * M_PI / 180.0;
   d.max_offset = dw.number("max_offset_m", d.max_offset, 0.0, 1.0);
+  d.wall_end_max_width = dw.number("wall_end_max_width_m", d.wall_end_max_width, 0.0, 10.0);
+  d.wall_end_min_wall_length = dw.number("wall_end_min_wall_length_m", d.wall_end_min_wall_length, 0.0, 20.0);
+  d.wall_end_min_angle = dw.number("wall_end_min_angle_deg", d.wall_end_min_angle * 180.0 / M_PI, 10.0, 90.0) * M_PI / 180.0;
+  d.wall_end_free_radius = dw.number("wall_end_free_radius_m", d.wall_end_free_radius, 0.0, 2.0);
+  d.wall_end_corner_tolerance = dw.number("wall_end_corner_tolerance_m", d.wall_end_corner_tolerance, 0.0, 2.0);
+  d.wall_end_in_line_offset = dw.number("wall_end_in_line_offset_m", d.wall_end_in_line_offset, 0.0, 2.0);
   const auto g = cfg.section("graph");
   c.graph.nominal_speed = g.number("nominal_speed_mps", c.graph.nominal_speed, 0.05, 3.0);
   c.graph.gateway_crossing_time = g.number("gateway_crossing_time_s", c.graph.gateway_crossing_time, 0.0, 600.0);

@@ -38,6 +38,60 @@ TEST(Doorways, GapOfDoorWidthInAStraightWall)
   EXPECT_TRUE(find_doorways({seg(0, 3, 1, 3), seg(2, 3, 4, 3)}, off).empty());
 }
 
+TEST(Doorways, WallEndGapFromAPartitionsEndToTheWallItRunsInto)
+{
+  // A room [0,8]x[0,6] with a partition along x = 4 from the floor wall up to y = 3.5: its line
+  // runs on into the top wall 2.5 m further.
+  DoorwayOptions o;
+  o.wall_end_max_width = 3.0;
+  const std::vector<rgmap::LineSegment> room = {seg(0, 6, 8, 6), seg(0, 0, 8, 0), seg(4, 0, 4, 3.5)};
+  const auto d = find_doorways(room, o);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NEAR((d[0].first - Vector2d(4, 3.5)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((d[0].second - Vector2d(4, 6)).norm(), 0.0, 1e-9);
+
+  EXPECT_TRUE(find_doorways(room, DoorwayOptions{}).empty());   // off unless asked for
+  DoorwayOptions narrow = o;
+  narrow.wall_end_max_width = 2.0;
+  EXPECT_TRUE(find_doorways(room, narrow).empty());              // wider than asked for
+
+  // The partition's own end face (a thick wall seen end-on) neither makes its end a corner nor
+  // puts it in line with another wall.
+  auto thick = room;
+  thick.push_back(seg(3.85, 3.5, 4.15, 3.5));
+  EXPECT_EQ(find_doorways(thick, o).size(), 1u);
+  // The corner of a wall across it touching the end: no free end.
+  auto corner = room;
+  corner.push_back(seg(4, 3.6, 6, 3.6));
+  EXPECT_TRUE(find_doorways(corner, o).empty());
+  // A door frame's face is not a wall: 0.3 m of wall extended across a hallway cut it at every door.
+  EXPECT_TRUE(find_doorways({seg(0, 6, 8, 6), seg(4, 3.2, 4, 3.5)}, o).empty());
+  // Something else in the way (a box in the gap) is not the wall the line runs into.
+  auto blocked = room;
+  blocked.push_back(seg(3.8, 4.5, 4.2, 4.5));
+  EXPECT_TRUE(find_doorways(blocked, o).empty());
+  // A line running along a wall (not across it) makes no gap.
+  EXPECT_TRUE(find_doorways({seg(4, 6, 4, 9), seg(4, 0, 4, 3.5)}, o).empty());
+}
+
+TEST(Doorways, WallEndGapIntoACornerButNotAJambOfAnotherWallsOpening)
+{
+  DoorwayOptions o;
+  o.wall_end_max_width = 3.0;
+  // The line runs 0.2 m past the end of the wall across it: into the corner it makes.
+  EXPECT_EQ(find_doorways({seg(0, 6, 3.8, 6), seg(4, 0, 4, 4.7)}, o).size(), 1u);
+  // ... 0.5 m past it: beside it, into nothing.
+  EXPECT_TRUE(find_doorways({seg(0, 6, 3.5, 6), seg(4, 0, 4, 4.7)}, o).empty());
+  // lab_intel: a partition between two rooms open onto a hallway ends flush with the rooms' front
+  // walls (along y = 3.5, 1 m away); its line runs on across the hallway into the hallway's
+  // far wall (y = 6). The opening lies along the front walls' line, not across the hallway: the
+  // one gap is the front wall's, from its end to the partition.
+  const auto d = find_doorways({seg(0, 6, 8, 6), seg(4, 0, 4, 3.5), seg(5, 3.5, 7, 3.5)}, o);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NEAR(d[0].first.y(), 3.5, 1e-9);
+  EXPECT_NEAR(d[0].second.y(), 3.5, 1e-9);
+}
+
 TEST(Doorways, OnlyTheOnesThePathDidNotGoThrough)
 {
   const std::vector<Line> doors = {{Vector2d(1, 3), Vector2d(2, 3)}, {Vector2d(3, 3), Vector2d(4, 3)}};

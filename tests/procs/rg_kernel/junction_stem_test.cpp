@@ -182,14 +182,40 @@ TEST(RgKernel, BayLeftThroughTheStemUnreportedIsLeftForTheHallwayItCameFrom)
   EXPECT_EQ(m.gateways().begin()->second.traversals, 2);
 
   // Without the rule the bay's region runs on along the hallway (lab_a's cubicles, up to the
-  // next cubicle's junction).
+  // next cubicle's junction), unless it runs 3 m into a known place (next test).
   KernelOptions off;
   off.stem_exits = false;
+  off.entry_min_scans = 0;
   Drive before(off);
   before.walls = testing::hallway_with_bay();
   drive_into_the_bay_and_back_west(before);
   EXPECT_EQ(before.kernel.map().current_region, 2);
   EXPECT_GT(positions_in_hallway(before.kernel, 2), 20);
+}
+
+TEST(RgKernel, KnownPlaceWalkedIntoUnseenIsCrossedInto)
+{
+  // The bay left unreported as above, with the stem rule off: the bay's region runs on into the
+  // west hallway, region 1's place. Once its robot is 3 m in, the kernel crosses a gateway at the
+  // step in and hands the positions from there on to region 1; the bay stays a region of its own.
+  KernelOptions o;
+  o.stem_exits = false;
+  Drive d(o);
+  d.walls = testing::hallway_with_bay();
+  drive_into_the_bay_and_back_west(d);
+  const auto& m = d.kernel.map();
+  EXPECT_EQ(m.current_region, 1);
+  EXPECT_EQ(d.kernel.stats().regions, 2);
+  EXPECT_LT(positions_in_hallway(d.kernel, 2), 5);
+  ASSERT_EQ(m.gateways().size(), 2u);
+  const rgmap::Gateway& g = m.gateways().rbegin()->second;
+  EXPECT_EQ(g.cls, rgmap::GatewayClass::kUnknown);
+  EXPECT_EQ(g.region_a, 2);
+  EXPECT_EQ(g.region_b, 1);
+  EXPECT_TRUE(m.consistency_problems().empty());
+  const rgmap::Region bay = d.kernel.describe_region(2);
+  EXPECT_TRUE(bay.freespace.is_free(bay.map_from_region.inverse() * Vector2d(6.5, -2.0)));
+  EXPECT_FALSE(bay.freespace.is_free(bay.map_from_region.inverse() * Vector2d(2.0, 1.0)));   // the west hallway
 }
 
 TEST(RgKernel, StemSideEndsBeamsPastTheOutlinesEnds)

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "kernel_drive.h"
 #include "synthetic_world.h"
 
@@ -286,6 +288,42 @@ TEST(RgKernel, DoorwayTheDetectorMissedIsCrossedAsAGateway)
   d.traverse_door(3.6, M_PI);
   EXPECT_EQ(m.current_region, 1);
   EXPECT_TRUE(m.consistency_problems().empty());
+}
+
+TEST(RgKernel, RoomDividedByAPartitionStoppingShortIsTwoRegions)
+{
+  // A room [0,8]x[0,6] divided by a partition along x = 4 from the floor up to y = 3.5: a 2.5 m
+  // opening beside its end (Freiburg52's rooms, whose ground truth cuts them there). No gateway
+  // event: the robot goes up the west half, through the opening and down the east half.
+  using V = Vector2d;
+  auto drive = [](double wall_end_max_width) {
+    KernelOptions o;
+    o.build.doorways.wall_end_max_width = wall_end_max_width;
+    auto d = std::make_unique<Drive>(o);
+    d->walls = {{V(0, 0), V(8, 0)}, {V(0, 6), V(8, 6)}, {V(0, 0), V(0, 6)}, {V(8, 0), V(8, 6)}, {V(4, 0), V(4, 3.5)}};
+    for (double y = 1.0; y < 4.7; y += 0.2) d->scan_at(geometry::Pose2(2, y, M_PI / 2));
+    for (double x = 2.2; x < 6.0; x += 0.2) d->scan_at(geometry::Pose2(x, 4.75, 0));
+    for (double y = 4.55; y > 1.0; y -= 0.2) d->scan_at(geometry::Pose2(6, y, -M_PI / 2));
+    return d;
+  };
+  const auto d = drive(3.0);
+  const auto& m = d->kernel.map();
+  ASSERT_EQ(d->kernel.stats().regions, 2);
+  ASSERT_EQ(m.gateways().size(), 1u);
+  const auto& g = m.gateways().begin()->second;
+  EXPECT_EQ(g.cls, rgmap::GatewayClass::kNarrowPassage);
+  EXPECT_EQ(m.current_region, g.region_b);
+  const Vector2d mid = m.region(g.region_a)->map_from_region * (0.5 * (g.gateway_points[0] + g.gateway_points[1]));
+  EXPECT_NEAR(mid.x(), 4.0, 0.1);
+  EXPECT_NEAR(mid.y(), 4.75, 0.15);
+  const auto west = d->kernel.describe_region(g.region_a);
+  const geometry::Pose2 west_from_map = m.region(g.region_a)->map_from_region.inverse();
+  EXPECT_TRUE(west.freespace.is_free(west_from_map * V(2, 2)));
+  EXPECT_FALSE(west.freespace.is_free(west_from_map * V(6, 2)));   // the east half, seen through the opening
+  EXPECT_TRUE(m.consistency_problems().empty());
+
+  // The same drive without wall-end gaps: one region.
+  EXPECT_EQ(drive(0.0)->kernel.stats().regions, 1);
 }
 
 TEST(RgKernel, FreespaceEndsAtTheGatewaysOfOtherRegions)
