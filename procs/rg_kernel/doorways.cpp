@@ -85,9 +85,8 @@ void add_wall_end_gaps(const std::vector<rgmap::LineSegment>& segments, const Do
       if (!crossing_wall || nearest < o.min_width || nearest > o.wall_end_max_width) continue;
       const Line gap{end, end + nearest * u};
       const Vector2d mid = 0.5 * (gap.first + gap.second);
-      if (std::any_of(found->begin(), found->end(), [&](const Line& l) { return (0.5 * (l.first + l.second) - mid).norm() < kSameGap; }))
-        continue;
-      found->push_back(gap);
+      const auto same = [&](const Line& l) { return (0.5 * (l.first + l.second) - mid).norm() < kSameGap; };
+      if (std::none_of(found->begin(), found->end(), same)) found->push_back(gap);
     }
   }
 }
@@ -133,7 +132,9 @@ std::optional<Line> doorway_stepped_through(const std::vector<rgmap::LineSegment
 {
   if (!o.enabled || (to - from).norm() > o.max_width) return std::nullopt;
   // Only wall pieces near the step can frame a doorway it goes through.
-  const double reach = std::max(o.max_width, o.wall_end_max_width + o.wall_end_min_wall_length) + 0.5 * (to - from).norm() + 0.5;
+  // (A wall-end gap's wall lies beside it: as far as the gap is wide plus the wall's length.)
+  const double frame = std::max(o.max_width, o.wall_end_max_width + o.wall_end_min_wall_length);
+  const double reach = frame + 0.5 * (to - from).norm() + 0.5;
   const Vector2d mid = 0.5 * (from + to);
   std::vector<rgmap::LineSegment> near;
   for (const auto& seg : segments) {

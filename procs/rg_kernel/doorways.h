@@ -1,12 +1,12 @@
 // Doorways of a region's own line map: gaps of door width in a straight wall (two collinear
 // wall segments whose facing ends are 0.6-1.5 m apart), and, if asked for, the gap between a
 // wall's free end and the wall its line runs into (a wall that stops short of a crossing wall
-// or a corner: a room divided by a partition, an opening beside a corner). Through such a gap the region's robot
-// sees the room behind it; until that door is crossed (and becomes a gateway) nothing but the
-// line map tells the kernel that the space behind belongs to another room. A region whose robot
-// never went through a doorway ends there, like at a gateway (diss. 5.2 filters the beams that
-// cross a gateway); a doorway the robot did go through is a gateway the detector missed, and
-// the region keeps both sides.
+// or a corner: a room divided by a partition, an opening beside a corner). Through such a gap
+// the region's robot sees the room behind it; until that door is crossed (and becomes a
+// gateway) nothing but the line map tells the kernel that the space behind belongs to another
+// room. A region whose robot never went through a doorway ends there, like at a gateway (diss.
+// 5.2 filters the beams that cross a gateway); a doorway the robot did go through is a gateway
+// the detector missed, and the region keeps both sides.
 #pragma once
 
 #include <Eigen/Core>
@@ -30,9 +30,9 @@ struct DoorwayOptions
   // Wall-end gaps: from the free end of a wall at least wall_end_min_wall_length long, along its
   // line, to the first wall it runs into at wall_end_min_angle or more, min_width to
   // wall_end_max_width away. The ground truth of the IPA buildings divides rooms there (issue 8:
-  // Freiburg52's 2.65 m opening beside a partition's end, office_e's 1.3 m gaps between a wall's
-  // end and a corner); the collinear rule sees neither. The wall must be long: the short faces of
-  // door frames, extended across a hallway, would cut it at every door. 0: off.
+  // Freiburg52's 2.65 m opening beside a partition's end, lab_c's rooms open onto the hallway
+  // between their partitions); the collinear rule sees neither. The wall must be long: the short
+  // faces of door frames, extended across a hallway, would cut it at every door. 0: off.
   double wall_end_max_width = 0.0;        // [m]
   double wall_end_min_wall_length = 1.0;  // [m]
   double wall_end_min_angle = 0.7854;     // [rad] (45 deg) not along the wall: across it

@@ -272,7 +272,8 @@ void RgKernel::maybe_cross_into_known_place(const std::vector<int64_t>& holding)
     double best = options_.entry_max_half_width;
     for (const auto& seg : b.segments()) {
       const auto hit = ray_meets_line(mid, dir, map_from_cur * seg.a, map_from_cur * seg.b);
-      if (hit && hit->along_ray > 0 && hit->along_ray < best && hit->along_line >= 0 && hit->along_line <= 1) best = hit->along_ray;
+      if (hit && hit->along_ray > 0 && hit->along_ray < best && hit->along_line >= 0 && hit->along_line <= 1)
+        best = hit->along_ray;
     }
     return best;
   };

@@ -64,7 +64,7 @@ TEST(Doorways, WallEndGapFromAPartitionsEndToTheWallItRunsInto)
   auto corner = room;
   corner.push_back(seg(4, 3.6, 6, 3.6));
   EXPECT_TRUE(find_doorways(corner, o).empty());
-  // A door frame's face is not a wall: 0.3 m of wall extended across a hallway cut it at every door.
+  // A door frame's face is not a wall: 0.3 m of wall, extended across a hallway, would cut it at every door.
   EXPECT_TRUE(find_doorways({seg(0, 6, 8, 6), seg(4, 3.2, 4, 3.5)}, o).empty());
   // Something else in the way (a box in the gap) is not the wall the line runs into.
   auto blocked = room;
