@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "procs/rg_kernel/line_map_fidelity.h"
 #include "procs/rg_kernel/region_builder.h"
 
 namespace rgnav::rg_kernel {
@@ -29,13 +30,7 @@ double line_angle(const Vector2d& u, const Vector2d& v)
 
 double length(const rgmap::LineSegment& s) { return (s.b - s.a).norm(); }
 
-// Distance of p from the segment.
-double segment_distance(const Vector2d& p, const rgmap::LineSegment& s)
-{
-  const Vector2d d = s.b - s.a;
-  const double t = d.squaredNorm() > 0 ? std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (s.a + t * d - p).norm();
-}
+double segment_distance(const Vector2d& p, const rgmap::LineSegment& s) { return point_segment_distance(p, s.a, s.b); }
 
 // The wall-end gaps of the line map (DoorwayOptions::wall_end_max_width), not repeating `found`.
 void add_wall_end_gaps(const std::vector<rgmap::LineSegment>& segments, const DoorwayOptions& o, std::vector<Line>* found)
@@ -137,11 +132,8 @@ std::optional<Line> doorway_stepped_through(const std::vector<rgmap::LineSegment
   const double reach = frame + 0.5 * (to - from).norm() + 0.5;
   const Vector2d mid = 0.5 * (from + to);
   std::vector<rgmap::LineSegment> near;
-  for (const auto& seg : segments) {
-    const Vector2d d = seg.b - seg.a;
-    const double t = d.squaredNorm() > 0 ? std::clamp((mid - seg.a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-    if ((seg.a + t * d - mid).norm() <= reach) near.push_back(seg);
-  }
+  for (const auto& seg : segments)
+    if (segment_distance(mid, seg) <= reach) near.push_back(seg);
   for (const auto& [p, q] : find_doorways(near, o))
     if (segments_cross(from, to, p, q)) return Line{p, q};
   return std::nullopt;

@@ -213,15 +213,13 @@ std::vector<int64_t> RgKernel::scans_past_gateway(int64_t region_id, const Gatew
   // beams (not crossing the gateway line: they start beyond it) would carve the next room
   // into this region's freespace. The trailing run of such scans is handed on; the region
   // keeps at least its oldest scan.
-  std::vector<std::pair<int64_t, int64_t>> by_time;   // (utime, scan id), newest first
-  for (const auto& [id, s] : builders_.at(region_id).scans()) by_time.push_back({s.utime, id});
-  std::sort(by_time.rbegin(), by_time.rend());
-  std::vector<int64_t> late;
-  for (size_t i = 0; i + 1 < by_time.size(); ++i) {
-    const ScanInput& s = scan_inputs_.at(by_time[i].second);
+  const std::vector<int64_t> by_time = builders_.at(region_id).scan_ids_by_time();
+  std::vector<int64_t> late;   // newest first
+  for (size_t i = by_time.size(); i-- > 1;) {
+    const ScanInput& s = scan_inputs_.at(by_time[i]);
     const Vector2d p = (s.map_from_base * s.base_from_laser).translation();
     if (!past_gateway(p, e.gateway_points, e.direction, options_.late_scan_reach)) break;
-    late.push_back(by_time[i].second);
+    late.push_back(by_time[i]);
   }
   return late;
 }
@@ -319,10 +317,9 @@ bool RgKernel::traverse(const GatewayEventInput& e, const std::vector<int64_t>& 
                    geometry::normalize_angle(first) * 180 / M_PI, from, e.direction * 180 / M_PI);
     }
   }
+  // Both are trailing runs of the region's scans (RegionBuilder::scan_ids_by_time): the longer holds the other.
   std::vector<int64_t> late = scans_past_gateway(from, e);   // newest first
-  for (auto id = handed_on.rbegin(); id != handed_on.rend(); ++id)
-    if (std::find(late.begin(), late.end(), *id) == late.end()) late.push_back(*id);
-  std::sort(late.begin(), late.end(), [&](int64_t x, int64_t y) { return scan_inputs_.at(x).utime > scan_inputs_.at(y).utime; });
+  if (handed_on.size() > late.size()) late.assign(handed_on.rbegin(), handed_on.rend());
   for (const int64_t id : late) builders_.at(from).remove_scan(id);
   // Finalise the region we leave, now that its gateways (the new one too) filter its beams.
   if (progress_) progress_();

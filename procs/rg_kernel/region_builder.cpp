@@ -174,13 +174,20 @@ LineMapFidelity RegionBuilder::fidelity(double tolerance, double cap) const
   return measure_fidelity(pts, segments_, tolerance, cap);
 }
 
+std::vector<int64_t> RegionBuilder::scan_ids_by_time() const
+{
+  std::vector<std::pair<int64_t, int64_t>> by_time;   // (utime, id)
+  for (const auto& [id, s] : scans_) by_time.push_back({s.utime, id});
+  std::sort(by_time.begin(), by_time.end());
+  std::vector<int64_t> out;
+  for (const auto& e : by_time) out.push_back(e.second);
+  return out;
+}
+
 std::vector<Vector2d> RegionBuilder::laser_origins() const
 {
-  std::vector<std::pair<int64_t, Vector2d>> by_time;
-  for (const auto& kv : scans_) by_time.push_back({kv.second.utime, kv.second.region_from_laser.translation()});
-  std::sort(by_time.begin(), by_time.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<Vector2d> out;
-  for (const auto& e : by_time) out.push_back(e.second);
+  for (const int64_t id : scan_ids_by_time()) out.push_back(scans_.at(id).region_from_laser.translation());
   return out;
 }
 

@@ -93,7 +93,9 @@ class RegionBuilder
   // Gateways of the region known when later scans are carved (beams crossing them are skipped).
   void set_gateway_lines(GatewayLines lines) { gateway_lines_ = std::move(lines); }
 
-  // Robot positions (laser origins) in the region frame, oldest first.
+  // The region's scan ids, oldest first (by time, then id).
+  std::vector<int64_t> scan_ids_by_time() const;
+  // Robot positions (laser origins) in the region frame, oldest first: those of scan_ids_by_time().
   std::vector<Eigen::Vector2d> laser_origins() const;
 
   // Snapshot of everything, caches included (so a restored builder merges the next scan into

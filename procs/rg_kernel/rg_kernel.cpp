@@ -203,8 +203,10 @@ void RgKernel::maybe_merge_current(int64_t utime)
   const size_t recent = std::min(origins.size(), static_cast<size_t>(options_.merge_recent_scans));
   std::map<int64_t, std::pair<int, int>> inside;
   std::vector<int64_t> holding(origins.size(), 0);
+  std::vector<Vector2d> positions;   // map frame
   for (size_t i = 0; i < origins.size(); ++i) {
-    const int64_t q = holding[i] = known.region_holding(r->map_from_region * origins[i]);
+    positions.push_back(r->map_from_region * origins[i]);
+    const int64_t q = holding[i] = known.region_holding(positions.back());
     if (q == 0) continue;
     ++inside[q].first;
     if (i >= origins.size() - recent) ++inside[q].second;
@@ -232,10 +234,10 @@ void RgKernel::maybe_merge_current(int64_t utime)
     enter(q, utime, r->map_from_region * origins.back());
     return;
   }
-  maybe_cross_into_known_place(holding);
+  maybe_cross_into_known_place(positions, holding);
 }
 
-void RgKernel::maybe_cross_into_known_place(const std::vector<int64_t>& holding)
+void RgKernel::maybe_cross_into_known_place(const std::vector<Vector2d>& positions, const std::vector<int64_t>& holding)
 {
   if (options_.entry_min_scans <= 0 || holding.empty() || holding.back() == 0) return;
   const int64_t q = holding.back();
@@ -246,27 +248,16 @@ void RgKernel::maybe_cross_into_known_place(const std::vector<int64_t>& holding)
   // Before the run, a new place: mostly not q's (a region that is q seen again is merged instead).
   const auto in_q_before = std::count(holding.begin(), holding.begin() + static_cast<std::ptrdiff_t>(first), q);
   if (static_cast<double>(in_q_before) > (1.0 - options_.merge_inside_ratio) * static_cast<double>(first)) return;
-  // Scans in time order, as the positions are (RegionBuilder::laser_origins).
-  const int64_t cur = map_.current_region;
-  const RegionBuilder& b = builders_.at(cur);
-  std::vector<std::pair<int64_t, int64_t>> by_time;   // (utime, scan id)
-  for (const auto& [id, sc] : b.scans()) by_time.push_back({sc.utime, id});
-  std::sort(by_time.begin(), by_time.end());
-  if (by_time.size() != holding.size()) return;
-  const ScanInput& out = scan_inputs_.at(by_time[first - 1].second);
-  const ScanInput& in = scan_inputs_.at(by_time[first].second);
-  const ScanInput& now = scan_inputs_.at(by_time.back().second);
-  const Vector2d p0 = (out.map_from_base * out.base_from_laser).translation();
-  const Vector2d p1 = (in.map_from_base * in.base_from_laser).translation();
+  const Vector2d p0 = positions[first - 1], p1 = positions[first];
   if ((p1 - p0).norm() < 1e-6) return;
+  const Vector2d mid = 0.5 * (p0 + p1);
   double depth = 0;
-  for (size_t i = first; i < by_time.size(); ++i) {
-    const ScanInput& sc = scan_inputs_.at(by_time[i].second);
-    depth = std::max(depth, ((sc.map_from_base * sc.base_from_laser).translation() - 0.5 * (p0 + p1)).norm());
-  }
+  for (size_t i = first; i < positions.size(); ++i) depth = std::max(depth, (positions[i] - mid).norm());
   if (depth < options_.entry_min_depth) return;
   // A line across the step, reaching to the walls of the region's line map on either side.
-  const Vector2d mid = 0.5 * (p0 + p1), along = (p1 - p0).normalized(), across(-along.y(), along.x());
+  const int64_t cur = map_.current_region;
+  const RegionBuilder& b = builders_.at(cur);
+  const Vector2d along = (p1 - p0).normalized(), across(-along.y(), along.x());
   const geometry::Pose2& map_from_cur = map_.region(cur)->map_from_region;
   auto reach = [&](const Vector2d& dir) {
     double best = options_.entry_max_half_width;
@@ -277,6 +268,9 @@ void RgKernel::maybe_cross_into_known_place(const std::vector<int64_t>& holding)
     }
     return best;
   };
+  const std::vector<int64_t> scan_ids = b.scan_ids_by_time();   // as the positions are
+  const ScanInput& in = scan_inputs_.at(scan_ids[first]);
+  const ScanInput& now = scan_inputs_.at(scan_ids.back());
   GatewayEventInput e;
   e.utime = now.utime;
   e.scan_id = in.scan_id;
@@ -286,8 +280,7 @@ void RgKernel::maybe_cross_into_known_place(const std::vector<int64_t>& holding)
   e.map_from_base = now.map_from_base;
   e.gateway_points = {mid + reach(across) * across, mid - reach(-across) * across};
   e.direction = std::atan2(along.y(), along.x());
-  std::vector<int64_t> handed_on;
-  for (size_t i = first; i < by_time.size(); ++i) handed_on.push_back(by_time[i].second);
+  const std::vector<int64_t> handed_on(scan_ids.begin() + static_cast<std::ptrdiff_t>(first), scan_ids.end());
   // Logged after the traversal's own messages; a known gateway there the traversal repeats changes
   // nothing, and the next scan tries again (quietly).
   const bool crossed = traverse(e, handed_on, q);

@@ -171,11 +171,12 @@ class RgKernel
   int64_t open_region(const geometry::Pose2& map_from_region, int64_t utime);
   void enter(int64_t region_id, int64_t utime, const Eigen::Vector2d& robot);
   void maybe_merge_current(int64_t utime);
-  // The entry_min_scans rule (KernelOptions): `holding` is the known region holding each of the
-  // current region's robot positions (oldest first, 0: none).
-  void maybe_cross_into_known_place(const std::vector<int64_t>& holding);
-  // A traversal (add_gateway_event) handing on the current region's scans `handed_on` as well as
-  // those past the gateway, into region `into` if not 0.
+  // The entry_min_scans rule (KernelOptions): `positions` are the current region's robot
+  // positions (map frame, oldest first), `holding` the known region holding each (0: none).
+  void maybe_cross_into_known_place(const std::vector<Eigen::Vector2d>& positions, const std::vector<int64_t>& holding);
+  // A traversal (add_gateway_event) handing on the current region's newest scans `handed_on`
+  // (oldest first, a trailing run of scan_ids_by_time) as well as those past the gateway, into
+  // region `into` if not 0.
   bool traverse(const GatewayEventInput& e, const std::vector<int64_t>& handed_on, int64_t into);
   // What bounds region_id's beams (its frame): the lines of every non-neutralized gateway of the
   // map (gateway_geometry.h) that end them, and the places where its scans carve nothing (the far

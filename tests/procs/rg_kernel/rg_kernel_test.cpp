@@ -415,6 +415,30 @@ TEST(RgKernel, RefreshDescribesEveryStaleRegionOnceAndReportsEach)
   EXPECT_EQ(calls, 2);  // nothing stale: nothing described
 }
 
+TEST(RegionBuilder, ScansOfOneTimestampKeepTheirOrder)
+{
+  // A corrected log without time stamps (belgioioso: all 387 scans at one utime): the robot's
+  // positions are the scans' in id order, not shuffled by a sort on time alone (which made the
+  // kernel's "last step" a jump between arbitrary scans).
+  RegionBuilder b{RegionBuildOptions{}};
+  for (int64_t id = 1; id <= 60; ++id) {
+    StoredScan s;
+    s.scan_id = id;
+    s.utime = 1'000'000;
+    s.region_from_laser = geometry::Pose2(0.1 * static_cast<double>(id), 1.5, 0);
+    s.laser_points = testing::cast(testing::two_rooms(), geometry::Pose2(1.0, 1.5, 0));
+    b.add_scan(s);
+  }
+  const auto ids = b.scan_ids_by_time();
+  const auto origins = b.laser_origins();
+  ASSERT_EQ(ids.size(), 60u);
+  ASSERT_EQ(origins.size(), 60u);
+  for (size_t i = 0; i < ids.size(); ++i) {
+    EXPECT_EQ(ids[i], static_cast<int64_t>(i) + 1);
+    EXPECT_NEAR(origins[i].x(), 0.1 * static_cast<double>(i + 1), 1e-9);
+  }
+}
+
 TEST(RgKernel, AbsurdPoseRefused)
 {
   Drive d;
