@@ -5,7 +5,7 @@
 
 #include "gateway_detector/gateway_models.h"
 #include "gateway_detector/options.h"
-#include "procs/rg_kernel/rg_kernel_node.h"
+#include "procs/rg_kernel/rg_kernel_options.h"
 
 namespace rgnav::rgmap_pipeline {
 
@@ -33,10 +33,9 @@ LoadedPipeline load_pipeline(const PipelineConfigPaths& paths)
                           "): crossings classified by their observation weights";
   }
 
-  // The kernel's loader also reads persistence/publish/channels, which offline runs ignore.
-  const auto node = rg_kernel::load_node_config(config::Config::load(paths.rg_kernel), "");
-  o.kernel = node.kernel;
-  o.graph = node.graph;
+  const auto kernel_cfg = config::Config::load(paths.rg_kernel);
+  o.kernel = rg_kernel::load_kernel_options(kernel_cfg);
+  o.graph = rg_kernel::load_graph_options(kernel_cfg.section("graph"));
   return out;
 }
 
