@@ -8,11 +8,12 @@
 #include <map>
 #include <sstream>
 
+#include "config/finish_except.h"
 #include "gateway_detector/gateway_models.h"
 #include "gateway_detector/options.h"
-#include "gateway_detector/tools/training.h"
 #include "runtime/process_main.h"
 #include "sim/world_yaml.h"
+#include "training.h"
 
 using namespace rgnav;
 using namespace rgnav::gateway_detector;
@@ -33,6 +34,7 @@ int main(int argc, char** argv)
     if (repetitions > 0) training.record.repetitions = repetitions;
     const auto detector_cfg = config::Config::load(config_dir + "/gateway_detector.yaml");
     const DetectorOptions base = load_detector_options(detector_cfg);
+    config::finish_except(detector_cfg, {"node", "channels", "laser", "classifier"});
 
     std::map<double, std::vector<tools::LabelledSequence>> by_width;
     for (const auto& env : training.environments) {

@@ -1,4 +1,4 @@
-#include "gateway_detector/tools/training.h"
+#include "training.h"
 
 #include <stdexcept>
 

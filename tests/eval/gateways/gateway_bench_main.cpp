@@ -11,10 +11,11 @@
 #include <map>
 #include <tuple>
 
+#include "config/finish_except.h"
 #include "gateway_detector/options.h"
-#include "gateway_detector/tools/training.h"
 #include "runtime/process_main.h"
 #include "sim/world_yaml.h"
+#include "training.h"
 
 using namespace rgnav;
 using namespace rgnav::gateway_detector;
@@ -121,6 +122,7 @@ int main(int argc, char** argv)
     if (repetitions > 0) training.record.repetitions = repetitions;
     const auto detector_cfg = config::Config::load(config_dir + "/gateway_detector.yaml");
     const DetectorOptions base = load_detector_options(detector_cfg);
+    config::finish_except(detector_cfg, {"node", "channels", "laser", "classifier"});
     std::vector<double> scan_ms;
     std::vector<std::string> targets_missed;
     json rates = json::object();

@@ -8,7 +8,7 @@
 #include "config/config.h"
 #include "gateway_detector/classifiers.h"
 #include "gateway_detector/hmm.h"
-#include "gateway_detector/tools/sim_runs.h"
+#include "sim_runs.h"
 
 namespace rgnav::gateway_detector::tools {
 
