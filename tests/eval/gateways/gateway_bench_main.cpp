@@ -11,7 +11,6 @@
 #include <map>
 #include <tuple>
 
-#include "config/finish_except.h"
 #include "gateway_detector/options.h"
 #include "runtime/process_main.h"
 #include "sim/world_yaml.h"
@@ -120,9 +119,7 @@ int main(int argc, char** argv)
   try {
     auto training = tools::load_training_config(config_dir + "/gateway_models/training.yaml");
     if (repetitions > 0) training.record.repetitions = repetitions;
-    const auto detector_cfg = config::Config::load(config_dir + "/gateway_detector.yaml");
-    const DetectorOptions base = load_detector_options(detector_cfg);
-    config::finish_except(detector_cfg, {"node", "channels", "laser", "classifier"});
+    const DetectorOptions base = tools::load_detector_config(config_dir);
     std::vector<double> scan_ms;
     std::vector<std::string> targets_missed;
     json rates = json::object();
