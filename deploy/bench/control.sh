@@ -5,6 +5,7 @@
 # The office world's tour is driven --tours times as the demo drives it (tour runner cadence,
 # people shifted 7 s per run), measuring whether the robot gets through its doors and halls.
 #   control.sh [--courses N] [--chains N] [--tours N] [--jitter-seconds S] [--out FILE]
+# The benchmark itself: tests/eval/control (control_bench, loop_canary).
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"

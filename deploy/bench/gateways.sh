@@ -4,6 +4,7 @@
 # recognition rate of SOC-last, SOC-last-but-one, ASC and HMM (even runs train, odd runs
 # test) next to dissertation tables 4.2/4.3; door precision/recall on the office world with
 # the laser alone; time per scan. Writes logs/bench/gateways.json.
+# The benchmark itself: tests/eval/gateways (gateway_bench).
 set -euo pipefail
 root=${RGNAV_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}
 build=${RGNAV_BUILD:-$root/build}

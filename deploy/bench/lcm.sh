@@ -3,6 +3,7 @@
 # liblcm, for a 181-beam laser_scan_t and a ~1 MB stereo_images_t, inside a private network
 # namespace (tests/support/in_netns.sh). Writes logs/bench/lcm.json. Extra arguments go to
 # `rgnav_lcm_bench run` (e.g. --lasers 5000 --images 200).
+# The benchmark itself: tests/eval/lcm (rgnav_lcm_bench).
 set -euo pipefail
 root=${RGNAV_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}
 build=${RGNAV_BUILD:-$root/build}

@@ -21,7 +21,7 @@
 #   seg_loss_seen_through / seg_loss_driven_through: 1 - seg_precision split by cause (they add up to
 #     it): region cells outside the region's best room in rooms its robot never stood in (seen
 #     through an opening) / in rooms where it stood (a missed gateway or a merge joined the rooms).
-#     Per region with rgnav_rgmap_bench --diagnose (procs/rg_kernel/tools/segmentation_diagnosis.h).
+#     Per region with rgnav_rgmap_bench --diagnose (tests/eval/rgmap/segmentation_diagnosis.h).
 #   over_segmented_rooms / under_segmented_regions: rooms split by >= 2 regions each holding
 #     >= 20 % of the room / regions spanning >= 2 rooms each >= 20 % of the region.
 #   gateways_truth / _matched / _missed / _false: RG map gateways (not neutralized; a crossing that
@@ -54,6 +54,7 @@
 #   worlds and no real log unless named; RGMAP_TRUE_POSES=0 leaves out the true-pose runs;
 #   RGMAP_RG_CONFIG runs another RG kernel config (default config/rg_kernel.yaml), e.g. one with a
 #   rule switched off: build/bin/config_overlay config/rg_kernel.yaml OFF.yaml kernel.door_exits=false.
+# The benchmark itself: tests/eval/rgmap (rgnav_rgmap_bench).
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"

@@ -2,6 +2,7 @@
 # Simulator benchmark: ray casting (181-beam scans per second, office world, one core) and
 # the whole simulator in lock-step at 75 Hz (simulated seconds per wall second).
 # Writes logs/bench/sim.json.
+# The benchmark itself: tests/eval/sim (sim_bench).
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"

@@ -28,6 +28,7 @@
 # Every world is also driven with each simulator seed of SLAM_SIM_SEEDS (default 1,2,3; "" for
 # none): sim_seeds.<map> holds the figures per seed, their mean and the worst, since one seed's
 # odometry noise can hide or provoke an error (sim.<map> stays the config's seed).
+# The benchmark itself: tests/eval/slam (rgnav_slam_bench).
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"

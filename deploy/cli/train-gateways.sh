@@ -4,7 +4,7 @@
 # (config/worlds/hallways_*; labels from their ground-truth gateways) and trains the gateway
 # HMMs (diss. 4.1.3.3): writes config/gateway_models/hallways_<w>m.yaml per hallway width and
 # default.yaml for the width in config/gateway_detector.yaml, which gateway_detector loads.
-# Options: config/gateway_models/training.yaml.
+# Options: config/gateway_models/training.yaml. The trainer runs the simulator: tests/eval/gateways.
 set -euo pipefail
 root=${RGNAV_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}
 build=${RGNAV_BUILD:-$root/build}

@@ -41,8 +41,8 @@ struct NodeConfig
   std::string rg_graph = "RG_GRAPH";
 };
 
+// The kernel's options (rg_kernel_options.h) and the node's own: persistence, publish, channels.
 NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_root);
-ObjectOptions load_object_options(const config::Config& objects_section);
 
 class RgKernelNode
 {

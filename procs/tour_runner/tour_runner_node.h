@@ -5,29 +5,14 @@
 #include <optional>
 #include <string>
 
-#include "procs/tour_runner/pure_pursuit.h"
 #include "procs/tour_runner/tour.h"
-#include "procs/tour_runner/tour_sequencer.h"
+#include "procs/tour_runner/tour_runner_options.h"
 #include "rgnav/laser_scan_t.hpp"
 #include "rgnav/odometry_t.hpp"
 #include "rgnav/slam_pose_t.hpp"
 #include "runtime/node.h"
 
 namespace rgnav::tour_runner {
-
-struct TourRunnerOptions
-{
-  std::string tour_file;
-  double max_spacing = 1.5;        // [m] between consecutive targets
-  SequencerOptions sequencer;
-  enum class Output { kTargets, kBaseCmd } output = Output::kBaseCmd;
-  bool exit_when_done = true;
-  double max_speed = 0.5;          // [m/s] handed on with TARGETS
-  PursuitOptions follower;
-  geometry::Pose2 base_from_laser{0.12, 0.0, 0.0};
-  double scan_stale_s = 0.5;       // [s] message-time age of the newest scan that stops the follower
-  int32_t cmd_deadline_us = 200'000;
-};
 
 struct Channels
 {
@@ -38,8 +23,6 @@ struct Channels
   std::string base_cmd = "BASE_CMD";
 };
 
-TourRunnerOptions load_options(const config::Config& tour_section, const config::Config& follower_section,
-                               const std::string& config_dir);
 Channels load_channels(const config::Config& section);
 
 class TourRunnerNode

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <filesystem>
 
+#include "config/finish_except.h"
 #include "gateway_detector/gateway_models.h"
 #include "gateway_detector/options.h"
-#include "procs/rg_kernel/rg_kernel_node.h"
+#include "offline_options.h"
+#include "procs/rg_kernel/rg_kernel_options.h"
 
 namespace rgnav::rgmap_pipeline {
 
@@ -13,7 +15,7 @@ LoadedPipeline load_pipeline(const PipelineConfigPaths& paths)
 {
   LoadedPipeline out;
   auto& o = out.options;
-  o.mapper = scan_mapper::load_scan_mapper_options(config::Config::load(paths.scan_mapper).section("scan_mapper"));
+  o.mapper = scan_mapper::load_offline_options(paths.scan_mapper);
 
   const auto gw = config::Config::load(paths.gateway_detector);
   o.detector = gateway_detector::load_detector_options(gw);
@@ -32,11 +34,12 @@ LoadedPipeline load_pipeline(const PipelineConfigPaths& paths)
     out.classifier_note = "none (" + (cls.models_path.empty() ? std::string("not configured") : cls.models_path + " missing") +
                           "): crossings classified by their observation weights";
   }
+  config::finish_except(gw, {"node", "channels", "laser"});
 
-  // The kernel's loader also reads persistence/publish/channels, which offline runs ignore.
-  const auto node = rg_kernel::load_node_config(config::Config::load(paths.rg_kernel), "");
-  o.kernel = node.kernel;
-  o.graph = node.graph;
+  const auto kernel_cfg = config::Config::load(paths.rg_kernel);
+  o.kernel = rg_kernel::load_kernel_options(kernel_cfg);
+  o.graph = rg_kernel::load_graph_options(kernel_cfg.section("graph"));
+  config::finish_except(kernel_cfg, {"node", "channels", "persistence", "publish"});
   return out;
 }
 

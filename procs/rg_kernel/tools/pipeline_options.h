@@ -41,8 +41,9 @@ struct LoadedPipeline
   std::string classifier_note;                 // where the models came from, or why there are none
 };
 
-// Throws config::ConfigError naming the file and key of the first bad value (and when the
-// gateway models were trained with other measure weights than the detector config uses).
+// Throws config::ConfigError naming the file and key of the first bad value, or the keys nobody
+// reads outside the live processes' own sections (node, channels, ...), and when the gateway
+// models were trained with other measure weights than the detector config uses.
 LoadedPipeline load_pipeline(const PipelineConfigPaths& paths);
 
 }  // namespace rgnav::rgmap_pipeline

@@ -7,6 +7,7 @@
 
 #include "importers/lcm_log_io.h"
 #include "offline_mapping.h"
+#include "offline_options.h"
 #include "runtime/process_main.h"
 #include "scan_mapper/scan_mapper_options.h"
 
@@ -24,8 +25,7 @@ int main(int argc, char** argv)
   CLI11_PARSE(app, argc, argv);
   sm::ScanMapperOptions options;
   try {
-    const auto cfg = rgnav::config::Config::load(config_path);
-    options = sm::load_scan_mapper_options(cfg.section("scan_mapper"));
+    options = sm::load_offline_options(config_path);
   } catch (const std::exception& e) {
     std::cerr << "rgnav_map: " << e.what() << "\n";
     return 2;

@@ -1,4 +1,4 @@
-#include "gateway_detector/tools/sim_runs.h"
+#include "sim_runs.h"
 
 #include <chrono>
 

@@ -19,8 +19,10 @@
 #include <map>
 #include <sstream>
 
+#include "config/finish_except.h"
 #include "importers/lcm_log_io.h"
 #include "offline_mapping.h"
+#include "offline_options.h"
 #include "runtime/process_main.h"
 #include "scan_mapper/relations_metric.h"
 #include "scan_mapper/scan_mapper_options.h"
@@ -270,8 +272,7 @@ int main(int argc, char** argv)
 #endif
   CLI11_PARSE(app, argc, argv);
   try {
-    const auto cfg = rgnav::config::Config::load(config_path);
-    const auto options = sm::load_scan_mapper_options(cfg.section("scan_mapper"));
+    const auto options = sm::load_offline_options(config_path);
     nlohmann::json out;
     out["config"] = config_path;
     for (const auto& spec : reals) {
@@ -284,6 +285,7 @@ int main(int argc, char** argv)
     if (!sims.empty() || !sims_with_people.empty()) {
       const auto sim_cfg = rgnav::config::Config::load(sim_config);
       const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg);
+      rgnav::config::finish_except(sim_cfg, {"node", "channels", "protocol"});
       const auto& e = sim_options.odometry;
       out["sim_config"] = sim_config;
       out["sim_odometry_error"] = {{"scale_translation", e.scale_translation},

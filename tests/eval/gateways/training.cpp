@@ -1,7 +1,8 @@
-#include "gateway_detector/tools/training.h"
+#include "training.h"
 
 #include <stdexcept>
 
+#include "config/finish_except.h"
 #include "gateway_detector/options.h"
 
 namespace rgnav::gateway_detector::tools {
@@ -66,6 +67,14 @@ HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, c
     c.models()[static_cast<size_t>(cls)] = train_hmm(data, options);
   }
   return c;
+}
+
+DetectorOptions load_detector_config(const std::string& config_dir)
+{
+  const auto cfg = config::Config::load(config_dir + "/gateway_detector.yaml");
+  const DetectorOptions options = load_detector_options(cfg);
+  config::finish_except(cfg, {"node", "channels", "laser", "classifier"});
+  return options;
 }
 
 }  // namespace rgnav::gateway_detector::tools

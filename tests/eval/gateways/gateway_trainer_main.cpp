@@ -10,9 +10,9 @@
 
 #include "gateway_detector/gateway_models.h"
 #include "gateway_detector/options.h"
-#include "gateway_detector/tools/training.h"
 #include "runtime/process_main.h"
 #include "sim/world_yaml.h"
+#include "training.h"
 
 using namespace rgnav;
 using namespace rgnav::gateway_detector;
@@ -31,8 +31,7 @@ int main(int argc, char** argv)
     const std::string models_dir = config_dir + "/gateway_models";
     auto training = tools::load_training_config(models_dir + "/training.yaml");
     if (repetitions > 0) training.record.repetitions = repetitions;
-    const auto detector_cfg = config::Config::load(config_dir + "/gateway_detector.yaml");
-    const DetectorOptions base = load_detector_options(detector_cfg);
+    const DetectorOptions base = tools::load_detector_config(config_dir);
 
     std::map<double, std::vector<tools::LabelledSequence>> by_width;
     for (const auto& env : training.environments) {

@@ -12,9 +12,9 @@
 #include <tuple>
 
 #include "gateway_detector/options.h"
-#include "gateway_detector/tools/training.h"
 #include "runtime/process_main.h"
 #include "sim/world_yaml.h"
+#include "training.h"
 
 using namespace rgnav;
 using namespace rgnav::gateway_detector;
@@ -119,8 +119,7 @@ int main(int argc, char** argv)
   try {
     auto training = tools::load_training_config(config_dir + "/gateway_models/training.yaml");
     if (repetitions > 0) training.record.repetitions = repetitions;
-    const auto detector_cfg = config::Config::load(config_dir + "/gateway_detector.yaml");
-    const DetectorOptions base = load_detector_options(detector_cfg);
+    const DetectorOptions base = tools::load_detector_config(config_dir);
     std::vector<double> scan_ms;
     std::vector<std::string> targets_missed;
     json rates = json::object();

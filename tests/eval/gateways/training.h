@@ -7,8 +7,9 @@
 
 #include "config/config.h"
 #include "gateway_detector/classifiers.h"
+#include "gateway_detector/gateway_detector.h"
 #include "gateway_detector/hmm.h"
-#include "gateway_detector/tools/sim_runs.h"
+#include "sim_runs.h"
 
 namespace rgnav::gateway_detector::tools {
 
@@ -26,6 +27,11 @@ struct TrainingConfig
   HmmTrainingOptions hmm;
 };
 TrainingConfig load_training_config(const std::string& path);
+
+// The detector's options from CONFIG_DIR/gateway_detector.yaml, read by the gateway_detector
+// process's own loader with its unknown-key check (its node, channels, laser mount and
+// classifier sections aside: training and the benchmark make their own models).
+DetectorOptions load_detector_config(const std::string& config_dir);
 
 // Hallway width of a hallway world from its name (hallways_2.5m_... -> 2.5); throws otherwise.
 double width_of_environment(const std::string& name);

@@ -2,7 +2,7 @@
 # Seconds a real rg_kernel process takes to restore a state folder (until it logs the restored
 # map), e.g. on the folders rg_kernel_restart_bench leaves (DIR/snapshots_at_stop,
 # DIR/journal_only_at_stop). The folder is copied first, so it can be measured again.
-#   tests/procs/rg_kernel/restart_time.sh build-rgk/bin/rg_kernel config/rg_kernel.yaml /tmp/rgk_bench/snapshots_at_stop
+#   tests/eval/restart/restart_time.sh build-rgk/bin/rg_kernel config/rg_kernel.yaml /tmp/rgk_bench/snapshots_at_stop
 set -euo pipefail
 bin=$1; config=$2; src=$3
 dir=$(mktemp -d /tmp/rgk_restart.XXXXXX)

@@ -23,6 +23,7 @@
 #include "collision_avoidance/ca_options.h"
 #include "collision_avoidance/collision_avoidance.h"
 #include "config/config.h"
+#include "config/finish_except.h"
 #include "lld/follower.h"
 #include "lld/lld_options.h"
 #include "sim/simulator.h"
@@ -414,8 +415,10 @@ int main(int argc, char** argv)
 
   const auto lcfg = config::Config::load(config_dir + "/lld.yaml");
   const lld::LldOptions lo = lld::load_lld_options(lcfg);
+  config::finish_except(lcfg, {"node"});
   const auto ccfg = config::Config::load(config_dir + "/collision_avoidance.yaml");
   const auto co = collision_avoidance::load_ca_options(ccfg);
+  config::finish_except(ccfg, {"node"});
 
   nlohmann::json j;
   j["plant"] = "sim";

@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "bench_summary.h"
+#include "config/finish_except.h"
 #include "importers/lcm_log_io.h"
 #include "offline_mapping.h"
 #include "offline_run.h"
@@ -104,7 +105,9 @@ int main(int argc, char** argv)
     if (true_poses) j["worlds_true_poses"] = nlohmann::json::object();
     j["logs"] = nlohmann::json::object();
     if (!sims.empty()) {
-      const auto sim_options = rgnav::sim::load_simulator_options(rgnav::config::Config::load(sim_config));
+      const auto sim_cfg = rgnav::config::Config::load(sim_config);
+      const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg);
+      rgnav::config::finish_except(sim_cfg, {"node", "channels", "protocol"});
       for (const auto& spec : sims) {
         const auto [name, path] = split_spec(spec);
         // The headline on the scan mapper's poses; on request again on the true poses.

@@ -1,0 +1,15 @@
+#include "offline_options.h"
+
+#include "config/finish_except.h"
+
+namespace rgnav::scan_mapper {
+
+ScanMapperOptions load_offline_options(const std::string& config_path)
+{
+  const auto cfg = config::Config::load(config_path);
+  const ScanMapperOptions options = load_scan_mapper_options(cfg.section("scan_mapper"));
+  config::finish_except(cfg, {"node", "channels", "persistence"});
+  return options;
+}
+
+}  // namespace rgnav::scan_mapper
