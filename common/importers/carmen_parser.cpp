@@ -54,7 +54,7 @@ bool parse_old_laser(const std::vector<std::string_view>& f, bool front, const C
   if (!numbers(f, 2, static_cast<size_t>(n), &ranges, why) || !valid_ranges(ranges, why)) return false;
   if (!numbers(f, 2 + n, 6, &tail1, why) || !numbers(f, 2 + n + 6, 1, &tail2, why)) return false;
   const int64_t utime = seconds_to_utime(tail2[0]);
-  ScanRecord s;
+  sensors::LaserScan s;
   s.utime = utime;
   // 180 beams cover [-90, 89] deg at 1 deg; 181/361 beams cover [-90, 90] deg inclusive.
   const double fov = kPi;
@@ -120,7 +120,7 @@ bool parse_robotlaser1(const std::vector<std::string_view>& f, const CarmenOptio
     return false;
   }
   const int64_t utime = seconds_to_utime(t[0]);
-  ScanRecord s;
+  sensors::LaserScan s;
   s.utime = utime;
   s.angle_min = static_cast<float>(head[0]);
   s.angle_increment = static_cast<float>(head[2]);

@@ -6,41 +6,20 @@
 #include <stdexcept>
 
 #include "bus/typed.h"
+#include "msg/conversions.h"
 #include "rgnav/laser_scan_t.hpp"
 #include "rgnav/odometry_t.hpp"
 
 namespace rgnav::importers {
 namespace {
 
-laser_scan_t to_message(const ScanRecord& s, int64_t scan_id, const std::string& sensor)
+// A log scan as the laser would have sent it: numbered in log order, named by its channel.
+laser_scan_t to_message(const sensors::LaserScan& s, int64_t scan_id, const std::string& sensor)
 {
-  laser_scan_t m;
-  m.utime = s.utime;
+  laser_scan_t m = msg::to_msg(s);
   m.scan_id = scan_id;
   m.sensor = sensor;
-  m.angle_min = s.angle_min;
-  m.angle_increment = s.angle_increment;
-  m.range_min = s.range_min;
-  m.range_max = s.range_max;
-  m.scan_time = s.scan_time;
-  m.nranges = static_cast<int32_t>(s.ranges.size());
-  m.ranges = s.ranges;
-  m.nintensities = 0;
   return m;
-}
-
-ScanRecord from_message(const laser_scan_t& m)
-{
-  ScanRecord s;
-  s.utime = m.utime;
-  s.scan_id = m.scan_id;
-  s.angle_min = m.angle_min;
-  s.angle_increment = m.angle_increment;
-  s.range_min = m.range_min;
-  s.range_max = m.range_max;
-  s.scan_time = m.scan_time;
-  s.ranges = m.ranges;
-  return s;
 }
 
 class Writer
@@ -153,9 +132,9 @@ ImportedLog read_lcm_log(const std::string& path, const LogChannels& ch)
         continue;
       }
       if (ev->channel == ch.laser_front)
-        log.add_scan(from_message(m));
+        log.add_scan(msg::to_laser_scan(m));
       else
-        log.add_rear_scan(from_message(m));
+        log.add_rear_scan(msg::to_laser_scan(m));
     } else if (ev->channel == ch.odometry || ev->channel == ch.reference) {
       odometry_t m;
       if (!bus::decode(data, size, &m, &why)) {

@@ -1,25 +1,15 @@
 // Plain records of a recorded laser log, independent of its file format and of LCM: what the
-// importers parse (CARMEN, Mines) and what the LCM log writer/reader exchange.
+// importers parse (CARMEN, Mines) and what the LCM log writer/reader exchange. Scans are
+// sensors::LaserScan; their scan_id is 0 until written to / read from an LCM log.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-namespace rgnav::importers {
+#include "sensors/laser_scan.h"
 
-// One planar scan, beams counter-clockwise from angle_min (laser frame).
-struct ScanRecord
-{
-  int64_t utime = 0;          // [us] original timestamp of the scan
-  int64_t scan_id = 0;        // 0 until written to / read from an LCM log
-  float angle_min = 0.f;      // [rad]
-  float angle_increment = 0.f;  // [rad]
-  float range_min = 0.f;      // [m] readings below are invalid
-  float range_max = 0.f;      // [m] readings at or above mean "no return"
-  float scan_time = 0.f;      // [s] rotation period (0 if unknown)
-  std::vector<float> ranges;  // [m]
-};
+namespace rgnav::importers {
 
 // A planar pose sample (odometry or a reference pose) at a time.
 struct PoseRecord
@@ -49,8 +39,8 @@ struct LogEvent
 struct ImportedLog
 {
   std::string format;  // "carmen", "mines", "lcm"
-  std::vector<ScanRecord> scans;       // front laser
-  std::vector<ScanRecord> rear_scans;  // rear laser (CARMEN RLASER), if any
+  std::vector<sensors::LaserScan> scans;       // front laser
+  std::vector<sensors::LaserScan> rear_scans;  // rear laser (CARMEN RLASER), if any
   std::vector<PoseRecord> odometry;
   std::vector<PoseRecord> reference;  // published corrected poses, when the log has them
   std::vector<LogEvent> events;       // file order of all records
@@ -58,12 +48,12 @@ struct ImportedLog
   bool truncated = false;             // the input ended early (e.g. a cut gzip stream)
   int64_t lines = 0;                  // lines read
 
-  void add_scan(ScanRecord s)
+  void add_scan(sensors::LaserScan s)
   {
     events.push_back({LogEvent::Kind::kScan, scans.size()});
     scans.push_back(std::move(s));
   }
-  void add_rear_scan(ScanRecord s)
+  void add_rear_scan(sensors::LaserScan s)
   {
     events.push_back({LogEvent::Kind::kRearScan, rear_scans.size()});
     rear_scans.push_back(std::move(s));

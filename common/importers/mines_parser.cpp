@@ -52,7 +52,7 @@ ImportedLog read_mines(const std::string& path, const MinesOptions& o)
       bad("timestamp does not increase");
       continue;
     }
-    ScanRecord s;
+    sensors::LaserScan s;
     s.utime = utime;
     s.ranges.resize(n);
     bool ok = true;

@@ -7,7 +7,7 @@
 namespace rgnav::importers {
 namespace {
 
-bool same_scan(const ScanRecord& a, const ScanRecord& b, const ReferenceMatchOptions& o)
+bool same_scan(const sensors::LaserScan& a, const sensors::LaserScan& b, const ReferenceMatchOptions& o)
 {
   if (a.ranges.size() != b.ranges.size()) return false;
   const size_t allowed = static_cast<size_t>(o.max_mismatch_share * static_cast<double>(a.ranges.size()));
@@ -23,7 +23,7 @@ bool same_scan(const ScanRecord& a, const ScanRecord& b, const ReferenceMatchOpt
 
 // The corrected pose attached to corrected scan i: its reference record if it has one (same
 // utime), else the odometry record at its utime (corrected logs carry corrected odometry).
-const PoseRecord* pose_of(const ImportedLog& log, const ScanRecord& s)
+const PoseRecord* pose_of(const ImportedLog& log, const sensors::LaserScan& s)
 {
   for (const auto* list : {&log.reference, &log.odometry}) {
     auto it = std::lower_bound(list->begin(), list->end(), s.utime,

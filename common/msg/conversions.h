@@ -5,8 +5,10 @@
 #include <Eigen/Core>
 
 #include "geometry/pose2.h"
+#include "rgnav/laser_scan_t.hpp"
 #include "rgnav/point2d_t.hpp"
 #include "rgnav/pose2d_t.hpp"
+#include "sensors/laser_scan.h"
 
 namespace rgnav::msg {
 
@@ -30,5 +32,11 @@ inline point2d_t to_point_msg(const Eigen::Vector2d& v)
   m.y = v.y();
   return m;
 }
+
+// The one laser_scan_t <-> sensors::LaserScan pair. Floats widen exactly to the scan's double
+// fields; on the way out they are rounded to float. Intensities are not kept (no sensor of this
+// robot reports them): the message goes out with none.
+sensors::LaserScan to_laser_scan(const laser_scan_t& m);
+laser_scan_t to_msg(const sensors::LaserScan& s);
 
 }  // namespace rgnav::msg

@@ -21,7 +21,7 @@ LaserDriverNode::LaserDriverNode(runtime::Node& node, LaserDriverOptions options
 void LaserDriverNode::service()
 {
   for (const auto& scan : driver_.service()) {
-    const auto msg = to_laser_scan_msg(scan, options_.sensor, ids_.next(scan.first_beam_utime));
+    const auto msg = to_laser_scan_msg(scan, options_.sensor, ids_.next(scan.scan.utime));
     if (node_.publish(options_.channel, msg)) ++published_;
   }
 }

@@ -281,7 +281,7 @@ void Lms2xxDriver::on_step_reply(const Reply& r, Clock::time_point now)
                options_.variant.resolution_cdeg / 100.0, options_.units == Units::kMillimetres ? "mm" : "cm");
 }
 
-void Lms2xxDriver::on_telegram(const ReceivedTelegram& rt, Clock::time_point now, std::vector<LaserScan>* out)
+void Lms2xxDriver::on_telegram(const ReceivedTelegram& rt, Clock::time_point now, std::vector<Lms2xxScan>* out)
 {
   const auto reply = as_reply(rt.telegram);
   if (!reply) return;
@@ -319,7 +319,7 @@ void Lms2xxDriver::on_telegram(const ReceivedTelegram& rt, Clock::time_point now
   }
 }
 
-std::optional<LaserScan> Lms2xxDriver::to_scan(const Reply& r, int64_t rx_utime)
+std::optional<Lms2xxScan> Lms2xxDriver::to_scan(const Reply& r, int64_t rx_utime)
 {
   const auto m = decode_measured_values(r);
   if (!m || m->units != options_.units || m->partial_scan ||
@@ -328,32 +328,32 @@ std::optional<LaserScan> Lms2xxDriver::to_scan(const Reply& r, int64_t rx_utime)
   const double unit = units_in_metres(m->units);
   const int rotations = variant_rotations(options_.variant);
   const double rotation_s = 1.0 / options_.rotation_hz;
-  LaserScan s;
-  s.rx_utime = rx_utime;
+  Lms2xxScan out;
+  out.rx_utime = rx_utime;
+  out.status = m->status;
+  sensors::LaserScan& s = out.scan;
   const double wire_s = static_cast<double>(framed_size(r.data.size() + 2) * kBitsPerByte) / port_->baud();
   const double sweep_s = ((rotations - 1) + options_.variant.angle_deg / 360.0) * rotation_s;
-  s.first_beam_utime = rx_utime - static_cast<int64_t>(std::llround((wire_s + sweep_s) * 1e6)) -
-                       options_.transmit_delay.count();
-  s.angle_min_rad = -options_.variant.angle_deg * M_PI / 360.0;
-  s.angle_increment_rad = options_.variant.resolution_cdeg * M_PI / 18000.0;
-  s.range_min_m = unit;
-  s.range_max_m = kNoReturnCode * unit;
-  s.scan_time_s = rotations * rotation_s;
-  s.status = m->status;
-  s.ranges_m.resize(m->values.size());
+  s.utime = rx_utime - static_cast<int64_t>(std::llround((wire_s + sweep_s) * 1e6)) - options_.transmit_delay.count();
+  s.angle_min = -options_.variant.angle_deg * M_PI / 360.0;
+  s.angle_increment = options_.variant.resolution_cdeg * M_PI / 18000.0;
+  s.range_min = unit;
+  s.range_max = kNoReturnCode * unit;
+  s.scan_time = rotations * rotation_s;
+  s.ranges.resize(m->values.size());
   for (size_t i = 0; i < m->values.size(); ++i) {
     switch (classify_value(m->values[i])) {
-      case ValueKind::kRange: s.ranges_m[i] = static_cast<float>(m->values[i] * unit); break;
-      case ValueKind::kNoReturn: s.ranges_m[i] = static_cast<float>(s.range_max_m); break;
-      case ValueKind::kInvalid: s.ranges_m[i] = 0.f; break;
+      case ValueKind::kRange: s.ranges[i] = static_cast<float>(m->values[i] * unit); break;
+      case ValueKind::kNoReturn: s.ranges[i] = static_cast<float>(s.range_max); break;
+      case ValueKind::kInvalid: s.ranges[i] = 0.f; break;
     }
   }
-  return s;
+  return out;
 }
 
-std::vector<LaserScan> Lms2xxDriver::service()
+std::vector<Lms2xxScan> Lms2xxDriver::service()
 {
-  std::vector<LaserScan> out;
+  std::vector<Lms2xxScan> out;
   auto now = Clock::now();
   if (state_ == State::kDisconnected) {
     if (now >= next_attempt_) try_connect(now);
@@ -397,7 +397,7 @@ std::vector<LaserScan> Lms2xxDriver::service()
   return out;
 }
 
-std::vector<LaserScan> Lms2xxDriver::poll(std::chrono::milliseconds max_wait)
+std::vector<Lms2xxScan> Lms2xxDriver::poll(std::chrono::milliseconds max_wait)
 {
   const auto now = Clock::now();
   auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(next_deadline() - now) + std::chrono::milliseconds(1);

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "sensors/laser_scan.h"
 #include "serial_port.h"
 #include "telegram_parser.h"
 
@@ -59,18 +60,14 @@ struct DriverOptions
 // Throws std::invalid_argument naming the bad field.
 void validate(const DriverOptions& o);
 
-// One scan in plain units, laser frame (x forward, y left), beams counter-clockwise.
-struct LaserScan
+// One scan from the device: the common scan (utime: estimated acquisition time of beam 0, wall
+// time; range_min one unit, 0 meaning "invalid reading"; range_max 8183 units, "no return";
+// sensor and scan_id are the node's to set) and what only this driver knows.
+struct Lms2xxScan
 {
-  int64_t first_beam_utime = 0;  // [us] estimated acquisition time of beam 0 (wall time)
-  int64_t rx_utime = 0;          // [us] when its last byte was read
-  double angle_min_rad = 0.0;
-  double angle_increment_rad = 0.0;
-  double range_min_m = 0.0;      // one unit: 0 means "invalid reading"
-  double range_max_m = 0.0;      // 8183 units: means "no return"
-  double scan_time_s = 0.0;      // rotations per scan / 75 Hz
-  std::vector<float> ranges_m;   // range_max_m = no return, 0 = invalid reading
-  uint8_t status = 0;            // telegram status byte
+  sensors::LaserScan scan;
+  int64_t rx_utime = 0;  // [us] when its last byte was read
+  uint8_t status = 0;    // telegram status byte
 };
 
 struct DriverStats
@@ -100,10 +97,10 @@ class Lms2xxDriver
   // The open port's fd, or -1 (nothing to wait on; call service() at next_deadline()).
   int fd() const;
   // Reads whatever is available, runs due timeouts, returns completed scans.
-  std::vector<LaserScan> service();
+  std::vector<Lms2xxScan> service();
   // Convenience for loops that own no poller (tests, tools): waits up to max_wait for input
   // or the next deadline, then service().
-  std::vector<LaserScan> poll(std::chrono::milliseconds max_wait);
+  std::vector<Lms2xxScan> poll(std::chrono::milliseconds max_wait);
   Clock::time_point next_deadline() const;
 
   State state() const { return state_; }
@@ -133,9 +130,9 @@ class Lms2xxDriver
   void send_current(Clock::time_point now);
   void fail(const std::string& why, Clock::time_point now);
   void on_timeout(Clock::time_point now);
-  void on_telegram(const ReceivedTelegram& rt, Clock::time_point now, std::vector<LaserScan>* out);
+  void on_telegram(const ReceivedTelegram& rt, Clock::time_point now, std::vector<Lms2xxScan>* out);
   void on_step_reply(const Reply& r, Clock::time_point now);
-  std::optional<LaserScan> to_scan(const Reply& r, int64_t rx_utime);
+  std::optional<Lms2xxScan> to_scan(const Reply& r, int64_t rx_utime);
   void set_port_baud(int bps);
 
   const DriverOptions options_;

@@ -1,4 +1,4 @@
-// LaserScan (driver library) → laser_scan_t (LCM), and the scan id rule.
+// Lms2xxScan (driver library) → laser_scan_t (LCM), and the scan id rule.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +22,7 @@ class ScanIdSequence
   int64_t last_ = 0;
 };
 
-rgnav::laser_scan_t to_laser_scan_msg(const LaserScan& scan, const std::string& sensor, int64_t scan_id);
+// The device scan as sent: named and numbered by the node (common/msg/conversions.h does the rest).
+rgnav::laser_scan_t to_laser_scan_msg(const Lms2xxScan& scan, const std::string& sensor, int64_t scan_id);
 
 }  // namespace rgnav::drivers::sick

@@ -37,11 +37,11 @@ std::vector<double> Lms2xxModel::true_ranges(const Scene& scene, const std::vect
   return out;
 }
 
-LaserScan Lms2xxModel::measure(const Scene& scene, const std::vector<uint8_t>& door_open,
-                               const std::vector<Circle>& people, const Pose2& base_pose, int64_t utime,
-                               int64_t scan_id)
+sensors::LaserScan Lms2xxModel::measure(const Scene& scene, const std::vector<uint8_t>& door_open,
+                                        const std::vector<Circle>& people, const Pose2& base_pose, int64_t utime,
+                                        int64_t scan_id)
 {
-  LaserScan scan;
+  sensors::LaserScan scan;
   scan.utime = utime;
   scan.scan_id = scan_id;
   scan.sensor = options_.sensor;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "sensors/laser_scan.h"
 #include "sim/rng.h"
 #include "sim/scene.h"
 #include "sim/world.h"
@@ -34,20 +35,6 @@ struct Lms2xxOptions
   double scan_time() const { return 1.0 / rate_hz(); }
 };
 
-// A scan as plain data (sim_conversions.h turns it into laser_scan_t).
-struct LaserScan
-{
-  int64_t utime = 0;
-  int64_t scan_id = 0;
-  std::string sensor;
-  double angle_min = 0.0;
-  double angle_increment = 0.0;
-  double range_min = 0.0;
-  double range_max = 0.0;
-  double scan_time = 0.0;
-  std::vector<float> ranges;
-};
-
 struct Circle
 {
   Vec2 center;
@@ -63,8 +50,9 @@ class Lms2xxModel
   std::vector<double> true_ranges(const Scene& scene, const std::vector<uint8_t>& door_open,
                                   const std::vector<Circle>& people, const Pose2& laser_pose) const;
   // A full measurement: noise, quantisation, max-range for no return.
-  LaserScan measure(const Scene& scene, const std::vector<uint8_t>& door_open, const std::vector<Circle>& people,
-                    const Pose2& base_pose, int64_t utime, int64_t scan_id);
+  sensors::LaserScan measure(const Scene& scene, const std::vector<uint8_t>& door_open,
+                             const std::vector<Circle>& people, const Pose2& base_pose, int64_t utime,
+                             int64_t scan_id);
 
   Pose2 laser_pose(const Pose2& base_pose) const;
   const Lms2xxOptions& options() const { return options_; }

@@ -1,36 +1,16 @@
 #include "sim/sim_conversions.h"
 
+#include "msg/conversions.h"
+
 namespace rgnav::sim {
 
 namespace {
 
-pose2d_t to_pose_msg(const Pose2& p)
-{
-  pose2d_t m;
-  m.x = p.x;
-  m.y = p.y;
-  m.theta = p.theta;
-  return m;
-}
+// The simulator keeps theta in (-pi, pi] (apply_motion and the world loaders normalise it), so
+// geometry::Pose2's normalisation leaves it as it is.
+pose2d_t to_pose_msg(const Pose2& p) { return msg::to_msg(geometry::Pose2(p.x, p.y, p.theta)); }
 
 }  // namespace
-
-laser_scan_t to_laser_scan_msg(const LaserScan& scan)
-{
-  laser_scan_t m;
-  m.utime = scan.utime;
-  m.scan_id = scan.scan_id;
-  m.sensor = scan.sensor;
-  m.angle_min = static_cast<float>(scan.angle_min);
-  m.angle_increment = static_cast<float>(scan.angle_increment);
-  m.range_min = static_cast<float>(scan.range_min);
-  m.range_max = static_cast<float>(scan.range_max);
-  m.scan_time = static_cast<float>(scan.scan_time);
-  m.nranges = static_cast<int32_t>(scan.ranges.size());
-  m.ranges = scan.ranges;
-  m.nintensities = 0;
-  return m;
-}
 
 odometry_t to_odometry_msg(const OdometrySample& s)
 {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "msg/conversions.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "runtime/realtime.h"
 #include "sim/sim_conversions.h"
@@ -70,7 +71,7 @@ void SimNode::on_tick()
 void SimNode::advance(std::chrono::microseconds dt)
 {
   const StepOutput out = hardware_ ? hardware_->advance(dt) : sim_->step(dt);
-  for (const auto& scan : out.scans) node_.publish(channels_.laser, to_laser_scan_msg(scan));
+  for (const auto& scan : out.scans) node_.publish(channels_.laser, msg::to_msg(scan));
   for (const auto& s : out.odometry) {
     if (!hardware_) node_.publish(channels_.odometry, to_odometry_msg(s));
     node_.publish(channels_.truth, to_truth_msg(s));

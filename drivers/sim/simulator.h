@@ -111,7 +111,7 @@ struct CollisionEvent
 
 struct StepOutput
 {
-  std::vector<LaserScan> scans;
+  std::vector<sensors::LaserScan> scans;
   std::vector<OdometrySample> odometry;
   std::vector<CollisionEvent> collisions;
 };

@@ -9,13 +9,6 @@
 
 namespace rgnav::gateway_detector {
 
-size_t Scan::index_of(double b) const
-{
-  if (ranges.empty()) return 0;
-  const double i = std::round((b - angle_min) / angle_increment);
-  return static_cast<size_t>(std::clamp(i, 0.0, static_cast<double>(ranges.size() - 1)));
-}
-
 Line fit_line(const std::vector<Vec2>& points)
 {
   Vec2 mean = Vec2::Zero();
@@ -61,7 +54,7 @@ double angle_between(const Line& a, const Line& b)
 
 namespace {
 
-Segment make_segment(const Scan& scan, size_t first, size_t last, const std::vector<size_t>& idx)
+Segment make_segment(const sensors::LaserScan& scan, size_t first, size_t last, const std::vector<size_t>& idx)
 {
   std::vector<Vec2> pts;
   for (size_t k = first; k <= last; ++k) pts.push_back(scan.point(idx[k]));
@@ -77,7 +70,7 @@ Segment make_segment(const Scan& scan, size_t first, size_t last, const std::vec
 }
 
 // Recursive split of idx[first..last] at the point farthest from the chord.
-void split(const Scan& scan, const std::vector<size_t>& idx, size_t first, size_t last,
+void split(const sensors::LaserScan& scan, const std::vector<size_t>& idx, size_t first, size_t last,
            const FeatureOptions& o, std::vector<std::pair<size_t, size_t>>* pieces)
 {
   if (last - first + 1 < 3) {
@@ -107,7 +100,7 @@ void split(const Scan& scan, const std::vector<size_t>& idx, size_t first, size_
 
 }  // namespace
 
-std::vector<Segment> extract_segments(const Scan& scan, const FeatureOptions& o)
+std::vector<Segment> extract_segments(const sensors::LaserScan& scan, const FeatureOptions& o)
 {
   // Clusters of consecutive hits without a gap.
   std::vector<std::vector<size_t>> clusters;
@@ -189,7 +182,7 @@ std::vector<VirtualLine> group_virtual_lines(const std::vector<Segment>& segment
   return lines;
 }
 
-std::vector<DepthSingularity> depth_singularities(const Scan& scan, double jump)
+std::vector<DepthSingularity> depth_singularities(const sensors::LaserScan& scan, double jump)
 {
   std::vector<DepthSingularity> out;
   auto range = [&](size_t i) { return scan.no_return(i) ? scan.range_max : scan.ranges[i]; };
@@ -206,7 +199,7 @@ std::vector<DepthSingularity> depth_singularities(const Scan& scan, double jump)
   return out;
 }
 
-ScanFeatures extract_features(const Scan& scan, const FeatureOptions& o)
+ScanFeatures extract_features(const sensors::LaserScan& scan, const FeatureOptions& o)
 {
   ScanFeatures f;
   f.segments = extract_segments(scan, o);

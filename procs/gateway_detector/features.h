@@ -74,9 +74,9 @@ struct ScanFeatures
   std::vector<DepthSingularity> singularities;
 };
 
-std::vector<Segment> extract_segments(const Scan& scan, const FeatureOptions& options);
+std::vector<Segment> extract_segments(const sensors::LaserScan& scan, const FeatureOptions& options);
 std::vector<VirtualLine> group_virtual_lines(const std::vector<Segment>& segments, const FeatureOptions& options);
-std::vector<DepthSingularity> depth_singularities(const Scan& scan, double depth_jump);
-ScanFeatures extract_features(const Scan& scan, const FeatureOptions& options);
+std::vector<DepthSingularity> depth_singularities(const sensors::LaserScan& scan, double depth_jump);
+ScanFeatures extract_features(const sensors::LaserScan& scan, const FeatureOptions& options);
 
 }  // namespace rgnav::gateway_detector

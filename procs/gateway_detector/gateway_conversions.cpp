@@ -25,36 +25,6 @@ void fill_probabilities(const OutputProbabilities& p, float* out)
 }
 }  // namespace
 
-Scan to_scan(const laser_scan_t& m)
-{
-  Scan s;
-  s.utime = m.utime;
-  s.scan_id = m.scan_id;
-  s.angle_min = m.angle_min;
-  s.angle_increment = m.angle_increment;
-  s.range_min = m.range_min;
-  s.range_max = m.range_max;
-  s.ranges.assign(m.ranges.begin(), m.ranges.end());
-  return s;
-}
-
-laser_scan_t to_laser_scan_msg(const Scan& s, const std::string& sensor)
-{
-  laser_scan_t m;
-  m.utime = s.utime;
-  m.scan_id = s.scan_id;
-  m.sensor = sensor;
-  m.angle_min = static_cast<float>(s.angle_min);
-  m.angle_increment = static_cast<float>(s.angle_increment);
-  m.range_min = static_cast<float>(s.range_min);
-  m.range_max = static_cast<float>(s.range_max);
-  m.scan_time = 0.f;
-  m.nranges = static_cast<int32_t>(s.ranges.size());
-  m.ranges.assign(s.ranges.begin(), s.ranges.end());
-  m.nintensities = 0;
-  return m;
-}
-
 Rectangle3 to_rectangle(const rectangle3d_t& m)
 {
   Rectangle3 r;

@@ -26,12 +26,12 @@ GatewayDetector::GatewayDetector(const DetectorOptions& options, HmmClassifier c
 {
 }
 
-std::vector<std::pair<Vlm, Observation>> GatewayDetector::observe_crossings(const Scan& scan) const
+std::vector<std::pair<Vlm, Observation>> GatewayDetector::observe_crossings(const sensors::LaserScan& scan) const
 {
   return observe_crossings(scan, extract_features(scan, options_.features));
 }
 
-std::vector<std::pair<Vlm, Observation>> GatewayDetector::observe_crossings(const Scan& scan, const ScanFeatures& f) const
+std::vector<std::pair<Vlm, Observation>> GatewayDetector::observe_crossings(const sensors::LaserScan& scan, const ScanFeatures& f) const
 {
   std::vector<std::pair<Vlm, Observation>> out;
   for (const Vlm& v : group_vlms(f, options_.vlm)) {

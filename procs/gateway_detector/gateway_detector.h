@@ -81,8 +81,8 @@ class GatewayDetector
   void add_rectangles(int64_t utime, const geometry::Pose2& map_from_capture, const std::vector<Rectangle3>& rectangles);
 
   // Per-scan crossing observations, exposed for training and tests.
-  std::vector<std::pair<Vlm, Observation>> observe_crossings(const Scan& scan) const;
-  std::vector<std::pair<Vlm, Observation>> observe_crossings(const Scan& scan, const ScanFeatures& features) const;
+  std::vector<std::pair<Vlm, Observation>> observe_crossings(const sensors::LaserScan& scan) const;
+  std::vector<std::pair<Vlm, Observation>> observe_crossings(const sensors::LaserScan& scan, const ScanFeatures& features) const;
   std::vector<FinishedSequence> take_finished_sequences() { return tracker_.take_finished(); }
   const GatewayTracker& tracker() const { return tracker_; }
   const DetectorOptions& options() const { return options_; }

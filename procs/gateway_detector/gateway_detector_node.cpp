@@ -75,7 +75,7 @@ bool GatewayDetectorNode::odometry_at(int64_t utime, geometry::Pose2* out) const
 void GatewayDetectorNode::on_laser(const laser_scan_t& m)
 {
   PosedScan s;
-  s.scan = to_scan(m);
+  s.scan = msg::to_laser_scan(m);
   s.base_from_laser = base_from_laser_;
   geometry::Pose2 odom;
   if (!odometry_at(m.utime, &odom)) {
@@ -94,7 +94,7 @@ void GatewayDetectorNode::on_aligned(const aligned_scan_t& m)
 {
   if (m.revision > 0) return;  // a loop-closure correction of an old scan: nothing new to see
   PosedScan s;
-  s.scan = to_scan(m.scan);
+  s.scan = msg::to_laser_scan(m.scan);
   s.scan.scan_id = m.scan_id;
   s.scan.utime = m.utime;
   s.map_from_base = msg::to_pose2(m.map_from_base);

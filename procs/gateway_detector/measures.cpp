@@ -14,7 +14,7 @@ const bool kOpen[kNumCrossingClasses][3] = {
     {true, false, false},  {false, false, true},  {false, false, false}, {false, true, false}};
 
 // Beam index range [first, last] between the bearings of two points, clipped to the scan.
-bool sector_beams(const Scan& scan, const Vec2& a, const Vec2& b, size_t* first, size_t* last)
+bool sector_beams(const sensors::LaserScan& scan, const Vec2& a, const Vec2& b, size_t* first, size_t* last)
 {
   double ba = std::atan2(a.y(), a.x()), bb = std::atan2(b.y(), b.x());
   if (ba > bb) std::swap(ba, bb);
@@ -71,7 +71,7 @@ double rectangularity_measure(const Vlm& v)
   return std::max(0.0, 1.0 - dev / (2.0 * M_PI));
 }
 
-SectorMeasures sector_measures(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o)
+SectorMeasures sector_measures(const sensors::LaserScan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o)
 {
   SectorMeasures r;
   size_t first, last;
@@ -102,19 +102,19 @@ SectorMeasures sector_measures(const Scan& scan, const Line& line, const Vec2& a
   return r;
 }
 
-double on_line_fsm(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o, int* beams)
+double on_line_fsm(const sensors::LaserScan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o, int* beams)
 {
   const SectorMeasures m = sector_measures(scan, line, a, b, o);
   if (beams) *beams = m.beams;
   return m.on_line;
 }
 
-double over_line_fsm(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o)
+double over_line_fsm(const sensors::LaserScan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o)
 {
   return sector_measures(scan, line, a, b, o).over_line;
 }
 
-Measures measure(const Scan& scan, const Vlm& v, const MeasureOptions& o)
+Measures measure(const sensors::LaserScan& scan, const Vlm& v, const MeasureOptions& o)
 {
   Measures m;
   m.w_d = distance_measure(v, o.hallway_width);

@@ -59,15 +59,15 @@ struct SectorMeasures
   double occluded = 0.0;
   int beams = 0;  // valid beams between the gateway points
 };
-SectorMeasures sector_measures(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o);
+SectorMeasures sector_measures(const sensors::LaserScan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o);
 
 double distance_measure(const Vlm& vlm, double hallway_width);  // W_d
 double rectangularity_measure(const Vlm& vlm);                  // W_r
 // On Line / Over Line FSM of the beams between gateway points a and b (bearing order free).
-double on_line_fsm(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o, int* beams = nullptr);
-double over_line_fsm(const Scan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o);
+double on_line_fsm(const sensors::LaserScan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o, int* beams = nullptr);
+double over_line_fsm(const sensors::LaserScan& scan, const Line& line, const Vec2& a, const Vec2& b, const MeasureOptions& o);
 
-Measures measure(const Scan& scan, const Vlm& vlm, const MeasureOptions& options);
+Measures measure(const sensors::LaserScan& scan, const Vlm& vlm, const MeasureOptions& options);
 ObservationVector class_weights(const Measures& m, const MeasureOptions& options);
 
 }  // namespace rgnav::gateway_detector

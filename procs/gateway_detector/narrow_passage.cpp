@@ -6,7 +6,7 @@
 
 namespace rgnav::gateway_detector {
 
-std::optional<ClosestPair> closest_pair(const Scan& scan, double am, double half)
+std::optional<ClosestPair> closest_pair(const sensors::LaserScan& scan, double am, double half)
 {
   double best_l = std::numeric_limits<double>::infinity(), best_r = best_l;
   size_t il = 0, ir = 0;
@@ -39,7 +39,7 @@ std::optional<ClosestPair> closest_pair(const Scan& scan, double am, double half
   return c;
 }
 
-std::optional<size_t> walk_to_gap(const Scan& scan, size_t from, size_t to, const NarrowPassageOptions& o)
+std::optional<size_t> walk_to_gap(const sensors::LaserScan& scan, size_t from, size_t to, const NarrowPassageOptions& o)
 {
   const double dmin = o.min_passage_width();
   const Vec2 opposite = scan.point(to);
@@ -64,7 +64,7 @@ std::optional<size_t> walk_to_gap(const Scan& scan, size_t from, size_t to, cons
   return std::nullopt;
 }
 
-double surface_extent(const Scan& scan, size_t i, double link)
+double surface_extent(const sensors::LaserScan& scan, size_t i, double link)
 {
   if (i >= scan.size() || !scan.hit(i)) return 0.0;
   auto walk = [&](int step) {
@@ -80,7 +80,7 @@ double surface_extent(const Scan& scan, size_t i, double link)
   return (scan.point(walk(+1)) - scan.point(walk(-1))).norm();
 }
 
-std::vector<NarrowPassage> detect_narrow_passages(const Scan& scan, const NarrowPassageOptions& o)
+std::vector<NarrowPassage> detect_narrow_passages(const sensors::LaserScan& scan, const NarrowPassageOptions& o)
 {
   std::vector<NarrowPassage> out;
   const double dmin = o.min_passage_width();
@@ -131,7 +131,7 @@ std::vector<NarrowPassage> detect_narrow_passages(const Scan& scan, const Narrow
   return out;
 }
 
-std::vector<NarrowPassage> detect_wall_gaps(const Scan& scan, const ScanFeatures& f, const NarrowPassageOptions& o)
+std::vector<NarrowPassage> detect_wall_gaps(const sensors::LaserScan& scan, const ScanFeatures& f, const NarrowPassageOptions& o)
 {
   std::vector<NarrowPassage> out;
   const double dmin = o.min_passage_width();

@@ -62,17 +62,17 @@ struct ClosestPair
   size_t left = 0, right = 0;
   double d_lr = 0.0, d_np = 0.0, aperture = 0.0;
 };
-std::optional<ClosestPair> closest_pair(const Scan& scan, double viewing_direction, double half_range);
+std::optional<ClosestPair> closest_pair(const sensors::LaserScan& scan, double viewing_direction, double half_range);
 // Walks from beam `from` toward beam `to` while consecutive points are closer than D_lr^min and
 // the opposite gateway point is still further than D_lr^min. Returns the beam at the edge of the
 // first gap (a new candidate gateway point), or nullopt if no free space opens up.
-std::optional<size_t> walk_to_gap(const Scan& scan, size_t from, size_t to, const NarrowPassageOptions& o);
+std::optional<size_t> walk_to_gap(const sensors::LaserScan& scan, size_t from, size_t to, const NarrowPassageOptions& o);
 
-std::vector<NarrowPassage> detect_narrow_passages(const Scan& scan, const NarrowPassageOptions& options);
+std::vector<NarrowPassage> detect_narrow_passages(const sensors::LaserScan& scan, const NarrowPassageOptions& options);
 // Extent [m] of the surface through beam i: the distance between the ends of the run of hits
 // around it in which each hit lies within link_distance of the next.
-double surface_extent(const Scan& scan, size_t i, double link_distance);
+double surface_extent(const sensors::LaserScan& scan, size_t i, double link_distance);
 // Door-width gaps in the virtual lines of the scan (see wall_gaps above).
-std::vector<NarrowPassage> detect_wall_gaps(const Scan& scan, const ScanFeatures& features, const NarrowPassageOptions& options);
+std::vector<NarrowPassage> detect_wall_gaps(const sensors::LaserScan& scan, const ScanFeatures& features, const NarrowPassageOptions& options);
 
 }  // namespace rgnav::gateway_detector

@@ -6,13 +6,13 @@
 
 namespace rgnav::rg_kernel {
 
-std::vector<Eigen::Vector2d> laser_points(const laser_scan_t& s)
+std::vector<Eigen::Vector2d> laser_points(const sensors::LaserScan& s)
 {
   std::vector<Eigen::Vector2d> pts;
   pts.reserve(s.ranges.size());
   for (size_t i = 0; i < s.ranges.size(); ++i) {
     const double r = s.ranges[i];
-    if (r <= s.range_min || r >= s.range_max) continue;
+    if (!(r > s.range_min && r < s.range_max)) continue;
     const double a = s.angle_min + static_cast<double>(i) * s.angle_increment;
     pts.emplace_back(r * std::cos(a), r * std::sin(a));
   }
@@ -27,7 +27,7 @@ ScanInput to_input(const aligned_scan_t& m)
   s.revision = m.revision;
   s.map_from_base = msg::to_pose2(m.map_from_base);
   s.base_from_laser = msg::to_pose2(m.base_from_laser);
-  s.laser_points = laser_points(m.scan);
+  s.laser_points = laser_points(msg::to_laser_scan(m.scan));
   return s;
 }
 

@@ -4,7 +4,7 @@
 
 namespace rgnav::scan_mapper {
 
-std::string check_scan(const Scan& s, const InputLimits& l)
+std::string check_scan(const sensors::LaserScan& s, const InputLimits& l)
 {
   if (s.scan_id <= 0) return "scan id must be > 0";
   if (s.utime < 0 || s.utime > l.max_utime) return "scan time outside [0, year 2100]";

@@ -23,7 +23,7 @@ struct InputLimits
   int64_t max_odometry_gap_us = 10'000'000;
 };
 
-std::string check_scan(const Scan& scan, const InputLimits& limits = {});
+std::string check_scan(const sensors::LaserScan& scan, const InputLimits& limits = {});
 std::string check_odometry(const OdometrySample& sample, const InputLimits& limits = {});
 
 }  // namespace rgnav::scan_mapper

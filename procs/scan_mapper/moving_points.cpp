@@ -4,7 +4,7 @@
 
 namespace rgnav::scan_mapper {
 
-ScanView::ScanView(const Scan& scan, const Pose2& map_from_laser, const MovingPointOptions& o)
+ScanView::ScanView(const sensors::LaserScan& scan, const Pose2& map_from_laser, const MovingPointOptions& o)
     : scan_(scan),
       laser_from_map_(map_from_laser.inverse()),
       origin_(map_from_laser.translation()),

@@ -31,13 +31,13 @@ struct MovingPointOptions
 class ScanView
 {
  public:
-  ScanView(const Scan& scan, const Pose2& map_from_laser, const MovingPointOptions& options);
+  ScanView(const sensors::LaserScan& scan, const Pose2& map_from_laser, const MovingPointOptions& options);
   // Both beams around p (map frame) reach past it by margin_m (a beam without return reaches to
   // the range limit). normal (map frame, or zero if unknown) is p's surface normal.
   bool sees_through(const Eigen::Vector2d& p, const Eigen::Vector2d& normal) const;
 
  private:
-  const Scan& scan_;
+  const sensors::LaserScan& scan_;
   Pose2 laser_from_map_;
   Eigen::Vector2d origin_;
   double margin_;

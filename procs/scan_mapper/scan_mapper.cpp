@@ -89,7 +89,7 @@ std::optional<Pose2> ScanMapper::map_from_odom() const
   return nodes_.back().map_from_base * nodes_.back().odom_from_base.inverse();
 }
 
-MapperUpdate ScanMapper::add_scan(const Scan& scan)
+MapperUpdate ScanMapper::add_scan(const sensors::LaserScan& scan)
 {
   ++stats_.scans_in;
   if (!check_scan(scan).empty()) {
@@ -138,7 +138,7 @@ IcpOptions ScanMapper::fit_options() const
   return o;
 }
 
-MapperUpdate ScanMapper::process(const Scan& scan, const Pose2& odom)
+MapperUpdate ScanMapper::process(const sensors::LaserScan& scan, const Pose2& odom)
 {
   MapperUpdate up;
   ScanNode node;

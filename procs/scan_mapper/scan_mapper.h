@@ -61,7 +61,7 @@ namespace rgnav::scan_mapper {
 // One accepted scan.
 struct ScanNode
 {
-  Scan scan;
+  sensors::LaserScan scan;
   Pose2 odom_from_base;      // raw odometry at scan time
   Pose2 map_from_base;       // current estimate
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
@@ -116,7 +116,7 @@ class ScanMapper
   // The odometry source restarted (new origin): relocalise the next scan like after a restart.
   void reset_odometry();
   // Inputs failing input_checks.h are refused (counted in stats().invalid).
-  MapperUpdate add_scan(const Scan& scan);
+  MapperUpdate add_scan(const sensors::LaserScan& scan);
 
   void set_deferred_optimization(bool deferred) { deferred_ = deferred; }
   // Deferred mode: the job left by the last add_scan (once). No closure is searched while a
@@ -145,7 +145,7 @@ class ScanMapper
     std::unique_ptr<PointMap> points;
   };
 
-  MapperUpdate process(const Scan& scan, const Pose2& odom);
+  MapperUpdate process(const sensors::LaserScan& scan, const Pose2& odom);
   void prepare_points(ScanNode* node) const;
   // The node's surface normals, oriented toward its laser.
   void compute_normals(ScanNode* node) const;

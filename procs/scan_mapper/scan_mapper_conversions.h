@@ -1,6 +1,7 @@
-// LCM messages <-> the scan mapper's plain types. The only place that knows both.
+// LCM messages <-> the scan mapper's plain types. Poses and scans convert with common/msg.
 #pragma once
 
+#include "msg/conversions.h"
 #include "rgnav/aligned_scan_t.hpp"
 #include "rgnav/laser_scan_t.hpp"
 #include "rgnav/odometry_t.hpp"
@@ -10,10 +11,6 @@
 
 namespace rgnav::scan_mapper {
 
-Pose2 to_pose(const pose2d_t& m);
-pose2d_t to_message(const Pose2& p);
-Scan to_scan(const laser_scan_t& m);
-laser_scan_t to_message(const Scan& s, const std::string& sensor);
 OdometrySample to_odometry(const odometry_t& m);
 aligned_scan_t to_aligned_scan(const ScanNode& node, const Pose2& base_from_laser, const std::string& sensor);
 slam_pose_t to_slam_pose(const ScanNode& node, const Pose2& map_from_odom);

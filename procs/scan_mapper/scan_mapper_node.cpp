@@ -54,7 +54,7 @@ ScanMapperNode::ScanMapperNode(runtime::Node& node, const ScanMapperOptions& opt
   }
   mapper_->set_deferred_optimization(true);
   node_.subscribe<odometry_t>(channels_.odometry, [this](const odometry_t& m) { on_odometry(to_odometry(m), m.seq); });
-  node_.subscribe<laser_scan_t>(channels_.laser, [this](const laser_scan_t& m) { on_scan(to_scan(m)); });
+  node_.subscribe<laser_scan_t>(channels_.laser, [this](const laser_scan_t& m) { on_scan(msg::to_laser_scan(m)); });
   node_.watch_fd([this] { return worker_.fd(); }, [this] { on_optimization_done(); });
 }
 
@@ -113,12 +113,12 @@ void ScanMapperNode::on_odometry(const OdometrySample& sample, int64_t seq)
   mapper_->add_odometry(sample);
 }
 
-void ScanMapperNode::on_scan(const Scan& in)
+void ScanMapperNode::on_scan(const sensors::LaserScan& in)
 {
   if (const auto why = check_scan(in, limits_); !why.empty()) return drop(channels_.laser, why);
   // Equal times are left to the gating (some logs stamp several scans alike); older is refused.
   if (in.utime < last_scan_utime_) return drop(channels_.laser, "scan older than the last accepted one");
-  Scan scan = in;
+  sensors::LaserScan scan = in;
   bool laser_restarted = false;
   scan.scan_id = ids_.id_for(in.scan_id, &laser_restarted);
   if (laser_restarted)

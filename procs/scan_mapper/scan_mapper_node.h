@@ -65,7 +65,7 @@ class ScanMapperNode
 
  private:
   void on_odometry(const OdometrySample& sample, int64_t seq);
-  void on_scan(const Scan& scan);
+  void on_scan(const sensors::LaserScan& scan);
   void on_optimization_done();
   void drop(const std::string& channel, const std::string& why);
   // Journals (if persistent), then publishes the given corrections, the node and SLAM_POSE.

@@ -5,7 +5,7 @@
 
 namespace rgnav::scan_mapper {
 
-Points scan_to_points(const Scan& scan, const Pose2& base_from_laser, const PointFilterOptions& o)
+Points scan_to_points(const sensors::LaserScan& scan, const Pose2& base_from_laser, const PointFilterOptions& o)
 {
   Points raw;
   raw.reserve(scan.ranges.size());

@@ -1,4 +1,4 @@
-// Scan → points in the robot (base) frame, thinned to a minimum spacing so that dense near
+// A scan → points in the robot (base) frame, thinned to a minimum spacing so that dense near
 // ranges do not dominate the registration (Holz et al.'s sparse point maps, epsilon_D).
 #pragma once
 
@@ -13,7 +13,7 @@ struct PointFilterOptions
   double min_spacing_m = 0.05;  // consecutive kept points are at least this far apart
 };
 
-Points scan_to_points(const Scan& scan, const Pose2& base_from_laser, const PointFilterOptions& options);
+Points scan_to_points(const sensors::LaserScan& scan, const Pose2& base_from_laser, const PointFilterOptions& options);
 
 // Keeps a point when it is at least `spacing` away from the previously kept one (scan order).
 Points thin_points(const Points& points, double spacing);

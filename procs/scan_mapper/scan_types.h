@@ -1,4 +1,4 @@
-// The plain inputs of the scan mapper (no LCM): scans and odometry samples.
+// The plain inputs of the scan mapper (no LCM): scans (sensors::LaserScan) and odometry samples.
 #pragma once
 
 #include <Eigen/Core>
@@ -7,16 +7,9 @@
 #include <vector>
 
 #include "scan_mapper/pose_math.h"
+#include "sensors/laser_scan.h"
 
 namespace rgnav::scan_mapper {
-
-struct Scan
-{
-  int64_t utime = 0;    // [us] message time of the scan
-  int64_t scan_id = 0;  // id of the LASER_FRONT message
-  float angle_min = 0.f, angle_increment = 0.f, range_min = 0.f, range_max = 0.f;
-  std::vector<float> ranges;  // [m]
-};
 
 struct OdometrySample
 {

@@ -14,8 +14,11 @@ bool finite(const Pose2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()
 
 void write_node(persist::ByteWriter& w, const ScanNode& n)
 {
-  w.put(n.scan.utime), w.put(n.scan.scan_id), w.put(n.scan.angle_min), w.put(n.scan.angle_increment);
-  w.put(n.scan.range_min), w.put(n.scan.range_max);
+  w.put(n.scan.utime), w.put(n.scan.scan_id);
+  // The scan's header as float, as laser_scan_t carries it (the mapper's scans came over the bus
+  // or were rounded like it: the values are floats held in doubles).
+  w.put(static_cast<float>(n.scan.angle_min)), w.put(static_cast<float>(n.scan.angle_increment));
+  w.put(static_cast<float>(n.scan.range_min)), w.put(static_cast<float>(n.scan.range_max));
   w.put(static_cast<uint64_t>(n.scan.ranges.size()));
   for (float r : n.scan.ranges) w.put(r);
   w.put(n.odom_from_base);

@@ -45,15 +45,9 @@ OfflineRun run_pipeline(const importers::ImportedLog& log, const LoadedPipeline&
       pipeline.add_odometry({p.utime, geometry::Pose2(p.x, p.y, p.theta)});
     } else if (e.kind == importers::LogEvent::Kind::kScan) {
       const auto& s = log.scans[e.index];
-      scan_mapper::Scan scan;
-      scan.utime = s.utime;
+      sensors::LaserScan scan = s;
       scan.scan_id = s.scan_id > 0 ? s.scan_id : next_id + 1;   // logs without ids: count them
       next_id = std::max(next_id + 1, scan.scan_id);
-      scan.angle_min = s.angle_min;
-      scan.angle_increment = s.angle_increment;
-      scan.range_min = s.range_min;
-      scan.range_max = s.range_max;
-      scan.ranges = s.ranges;
       pipeline.add_scan(scan);
     }
   }

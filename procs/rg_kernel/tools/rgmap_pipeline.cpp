@@ -5,22 +5,16 @@
 #include <optional>
 
 #include "gateway_detector/gateway_conversions.h"
+#include "procs/rg_kernel/rg_kernel_conversions.h"
 
 namespace rgnav::rgmap_pipeline {
 namespace {
 
-// What the gateway detector makes of an ALIGNED_SCAN (gateway_conversions' to_scan + on_aligned).
+// What the gateway detector makes of an ALIGNED_SCAN (msg::to_laser_scan + on_aligned).
 gateway_detector::PosedScan to_posed_scan(const scan_mapper::ScanNode& n, const scan_mapper::Pose2& base_from_laser)
 {
   gateway_detector::PosedScan p;
-  const auto& s = n.scan;
-  p.scan.utime = s.utime;
-  p.scan.scan_id = s.scan_id;
-  p.scan.angle_min = s.angle_min;
-  p.scan.angle_increment = s.angle_increment;
-  p.scan.range_min = s.range_min;
-  p.scan.range_max = s.range_max;
-  p.scan.ranges.assign(s.ranges.begin(), s.ranges.end());
+  p.scan = n.scan;
   p.map_from_base = n.map_from_base;
   p.base_from_laser = base_from_laser;
   return p;
@@ -36,14 +30,7 @@ rg_kernel::ScanInput to_kernel_input(const scan_mapper::ScanNode& n, const scan_
   in.revision = n.revision;
   in.map_from_base = n.map_from_base;
   in.base_from_laser = base_from_laser;
-  in.laser_points.reserve(s.ranges.size());
-  for (size_t i = 0; i < s.ranges.size(); ++i) {
-    const double r = s.ranges[i];
-    if (!(r > s.range_min && r < s.range_max)) continue;
-    // Beam angles as the message conversions compute them (float fields, double arithmetic).
-    const double a = s.angle_min + static_cast<double>(i) * s.angle_increment;
-    in.laser_points.emplace_back(r * std::cos(a), r * std::sin(a));
-  }
+  in.laser_points = rg_kernel::laser_points(s);
   return in;
 }
 
@@ -78,7 +65,7 @@ void RgMapPipeline::add_odometry(const scan_mapper::OdometrySample& sample)
   else mapper_.add_odometry(sample);
 }
 
-void RgMapPipeline::add_scan(const scan_mapper::Scan& scan)
+void RgMapPipeline::add_scan(const sensors::LaserScan& scan)
 {
   ++counts_.scans_in;
   if (options_.poses_as_given) {
@@ -93,7 +80,7 @@ void RgMapPipeline::add_scan(const scan_mapper::Scan& scan)
   pass_on(nodes[static_cast<size_t>(up.node)]);
 }
 
-void RgMapPipeline::add_given_pose_scan(const scan_mapper::Scan& scan)
+void RgMapPipeline::add_given_pose_scan(const sensors::LaserScan& scan)
 {
   ++given_stats_.scans_in;
   // The newest pose before the scan in input order: recorded logs put the pose of each scan

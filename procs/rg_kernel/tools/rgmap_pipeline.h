@@ -32,7 +32,7 @@ class RgMapPipeline
   RgMapPipeline(const PipelineOptions& options, gateway_detector::HmmClassifier classifier = {});
 
   void add_odometry(const scan_mapper::OdometrySample& sample);
-  void add_scan(const scan_mapper::Scan& scan);
+  void add_scan(const sensors::LaserScan& scan);
 
   // Accepted scans with their final pose estimates (given poses: the odometry at the scan).
   std::vector<scan_mapper::ScanNode> nodes() const;
@@ -44,7 +44,7 @@ class RgMapPipeline
  private:
   void pass_on(const scan_mapper::ScanNode& node);
   void correct(const scan_mapper::ScanNode& node);
-  void add_given_pose_scan(const scan_mapper::Scan& scan);
+  void add_given_pose_scan(const sensors::LaserScan& scan);
 
   const PipelineOptions options_;
   scan_mapper::ScanMapper mapper_;

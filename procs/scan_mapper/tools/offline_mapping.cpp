@@ -23,21 +23,15 @@ double thread_cpu_seconds()
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-Scan to_scan(const importers::ScanRecord& r, int64_t id)
+// A log scan with its id: the log's, or `id` for logs without ids.
+sensors::LaserScan with_id(sensors::LaserScan s, int64_t id)
 {
-  Scan s;
-  s.utime = r.utime;
-  s.scan_id = r.scan_id > 0 ? r.scan_id : id;
-  s.angle_min = r.angle_min;
-  s.angle_increment = r.angle_increment;
-  s.range_min = r.range_min;
-  s.range_max = r.range_max;
-  s.ranges = r.ranges;
+  if (s.scan_id <= 0) s.scan_id = id;
   return s;
 }
 
 // The pose of a scan that was not accepted, between nodes[k] and nodes[k + 1] (see below).
-Pose2 register_between(const std::vector<ScanNode>& nodes, size_t k, const ScanEstimate& s, const Scan& scan,
+Pose2 register_between(const std::vector<ScanNode>& nodes, size_t k, const ScanEstimate& s, const sensors::LaserScan& scan,
                        const ScanMapperOptions& options)
 {
   const Pose2 by_odometry = s.map_from_base;
@@ -86,7 +80,7 @@ OfflineResult run_offline(const importers::ImportedLog& log, const ScanMapperOpt
   ScanMapper mapper(options);
   OdometryBuffer odom;
   std::vector<ScanEstimate> raw;  // scan, odometry (map pose filled in after the run)
-  std::vector<Scan> scans;        // ... and the scan itself
+  std::vector<sensors::LaserScan> scans;        // ... and the scan itself
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = thread_cpu_seconds();
   int64_t next_id = 0;
@@ -97,7 +91,7 @@ OfflineResult run_offline(const importers::ImportedLog& log, const ScanMapperOpt
       mapper.add_odometry(s);
       odom.add(s);
     } else if (e.kind == importers::LogEvent::Kind::kScan) {
-      const Scan scan = to_scan(log.scans[e.index], ++next_id);
+      const sensors::LaserScan scan = with_id(log.scans[e.index], ++next_id);
       mapper.add_scan(scan);
       if (const auto o = odom.at(scan.utime, options.max_odometry_extrapolation_us)) {
         raw.push_back({scan.scan_id, scan.utime, *o, {}});

@@ -37,7 +37,7 @@ inline DriverOptions fast_options(const std::string& port)
 
 // Services the driver, appending scans to *scans, until pred() or the timeout (generous:
 // these bound a hang, they do not measure speed). Returns pred().
-inline bool run_until(Lms2xxDriver& driver, std::vector<LaserScan>* scans, const std::function<bool()>& pred,
+inline bool run_until(Lms2xxDriver& driver, std::vector<Lms2xxScan>* scans, const std::function<bool()>& pred,
                       std::chrono::milliseconds timeout = std::chrono::seconds(10))
 {
   const auto end = std::chrono::steady_clock::now() + timeout;

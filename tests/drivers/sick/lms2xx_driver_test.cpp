@@ -46,18 +46,18 @@ struct Rig
   Lms2xxEmulator emulator;
 };
 
-void expect_ranges_match_room(const LaserScan& s, const SyntheticRoom& room, double step)
+void expect_ranges_match_room(const sensors::LaserScan& s, const SyntheticRoom& room, double step)
 {
-  ASSERT_GT(s.ranges_m.size(), 0u);
+  ASSERT_GT(s.ranges.size(), 0u);
   int doorway = 0;
-  for (size_t i = 0; i < s.ranges_m.size(); ++i) {
-    const double bearing = s.angle_min_rad + static_cast<double>(i) * s.angle_increment_rad;
+  for (size_t i = 0; i < s.ranges.size(); ++i) {
+    const double bearing = s.angle_min + static_cast<double>(i) * s.angle_increment;
     const double truth = room.range_at(bearing);
-    if (!std::isfinite(truth) || truth >= s.range_max_m) {
-      EXPECT_EQ(s.ranges_m[i], static_cast<float>(s.range_max_m)) << "beam " << i;
+    if (!std::isfinite(truth) || truth >= s.range_max) {
+      EXPECT_EQ(s.ranges[i], static_cast<float>(s.range_max)) << "beam " << i;
       ++doorway;
     } else {
-      EXPECT_NEAR(s.ranges_m[i], truth, step / 2 + 1e-4) << "beam " << i;
+      EXPECT_NEAR(s.ranges[i], truth, step / 2 + 1e-4) << "beam " << i;
     }
   }
   EXPECT_GT(doorway, 0) << "the doorway should give some no-return beams";
@@ -67,7 +67,7 @@ TEST(Lms2xxDriver, InitSwitchesBaudSetsUnitsAndStreamsCorrectRanges)
 {
   Rig rig;  // powers on at 9600 baud in cm
   Lms2xxDriver driver(fast_options(rig.emulator.port_path()));
-  std::vector<LaserScan> scans;
+  std::vector<Lms2xxScan> scans;
   ASSERT_TRUE(run_until(driver, &scans, [&] { return scans.size() >= 30; })) << driver.status_text();
 
   EXPECT_EQ(driver.state(), Lms2xxDriver::State::kStreaming);
@@ -79,24 +79,24 @@ TEST(Lms2xxDriver, InitSwitchesBaudSetsUnitsAndStreamsCorrectRanges)
   EXPECT_EQ(driver.stats().crc_errors, 0u);
   EXPECT_EQ(driver.stats().connects, 1u);
 
-  const LaserScan& s = scans.back();
-  ASSERT_EQ(s.ranges_m.size(), 181u);
-  EXPECT_NEAR(s.angle_min_rad, -M_PI / 2, 1e-9);
-  EXPECT_NEAR(s.angle_increment_rad, M_PI / 180, 1e-12);
-  EXPECT_NEAR(s.range_max_m, 8.183, 1e-9);
-  EXPECT_NEAR(s.range_min_m, 0.001, 1e-12);
-  EXPECT_NEAR(s.scan_time_s, 1.0 / 75, 1e-9);
+  const sensors::LaserScan& s = scans.back().scan;
+  ASSERT_EQ(s.ranges.size(), 181u);
+  EXPECT_NEAR(s.angle_min, -M_PI / 2, 1e-9);
+  EXPECT_NEAR(s.angle_increment, M_PI / 180, 1e-12);
+  EXPECT_NEAR(s.range_max, 8.183, 1e-9);
+  EXPECT_NEAR(s.range_min, 0.001, 1e-12);
+  EXPECT_NEAR(s.scan_time, 1.0 / 75, 1e-9);
   expect_ranges_match_room(s, *rig.room, 0.001);
   // Beam 90 looks straight ahead through the doorway; beam 0 hits the right wall at 2.5 m.
-  EXPECT_FLOAT_EQ(s.ranges_m[90], static_cast<float>(s.range_max_m));
-  EXPECT_NEAR(s.ranges_m[0], 2.5, 0.0006);
+  EXPECT_FLOAT_EQ(s.ranges[90], static_cast<float>(s.range_max));
+  EXPECT_NEAR(s.ranges[0], 2.5, 0.0006);
 }
 
 TEST(Lms2xxDriver, TimestampsTrackTheEmulatedAcquisitionTime)
 {
   Rig rig;
   Lms2xxDriver driver(fast_options(rig.emulator.port_path()));
-  std::vector<LaserScan> scans;
+  std::vector<Lms2xxScan> scans;
   ASSERT_TRUE(run_until(driver, &scans, [&] { return scans.size() >= 40; })) << driver.status_text();
   const auto truth = rig.emulator.sent_scans();
   ASSERT_GE(truth.size(), scans.size());
@@ -104,8 +104,8 @@ TEST(Lms2xxDriver, TimestampsTrackTheEmulatedAcquisitionTime)
   // so scan i is the emulator's record i.
   ASSERT_EQ(driver.stats().crc_errors, 0u);
   for (size_t i = 1; i < scans.size(); ++i) {
-    EXPECT_GT(scans[i].first_beam_utime, scans[i - 1].first_beam_utime);
-    const int64_t err = scans[i].first_beam_utime - truth[i].first_beam_utime;
+    EXPECT_GT(scans[i].scan.utime, scans[i - 1].scan.utime);
+    const int64_t err = scans[i].scan.utime - truth[i].first_beam_utime;
     // The estimate is late only by scheduling delays; it is never early by more than rounding.
     // Generous upper bound: this guards against a wrong formula (off by a scan period or the
     // wire time), not against a loaded machine.
@@ -121,13 +121,13 @@ TEST(Lms2xxDriver, HalfDegreeVariantGives361BeamsInCentimetres)
   o.variant = {180, 50};
   o.units = Units::kCentimetres;
   Lms2xxDriver driver(o);
-  std::vector<LaserScan> scans;
+  std::vector<Lms2xxScan> scans;
   ASSERT_TRUE(run_until(driver, &scans, [&] { return scans.size() >= 10; })) << driver.status_text();
-  const LaserScan& s = scans.back();
-  ASSERT_EQ(s.ranges_m.size(), 361u);
-  EXPECT_NEAR(s.angle_increment_rad, M_PI / 360, 1e-12);
-  EXPECT_NEAR(s.range_max_m, 81.83, 1e-9);  // 80 m mode
-  EXPECT_NEAR(s.scan_time_s, 2.0 / 75, 1e-9);
+  const sensors::LaserScan& s = scans.back().scan;
+  ASSERT_EQ(s.ranges.size(), 361u);
+  EXPECT_NEAR(s.angle_increment, M_PI / 360, 1e-12);
+  EXPECT_NEAR(s.range_max, 81.83, 1e-9);  // 80 m mode
+  EXPECT_NEAR(s.scan_time, 2.0 / 75, 1e-9);
   expect_ranges_match_room(s, *rig.room, 0.01);
 }
 
@@ -135,7 +135,7 @@ TEST(Lms2xxDriver, GarbageIsSkippedAndTheStreamContinues)
 {
   Rig rig;
   Lms2xxDriver driver(fast_options(rig.emulator.port_path()));
-  std::vector<LaserScan> scans;
+  std::vector<Lms2xxScan> scans;
   ASSERT_TRUE(run_until(driver, &scans, [&] { return scans.size() >= 5; })) << driver.status_text();
   // Noise with a fake start (STX, host address, absurd length) and a NAK-looking byte.
   rig.emulator.inject_garbage({0x11, 0x22, 0x02, 0x80, 0xF0, 0xFF, 0x33, 0x02, 0x99, 0x44});
@@ -145,14 +145,14 @@ TEST(Lms2xxDriver, GarbageIsSkippedAndTheStreamContinues)
   EXPECT_GE(driver.stats().skipped_bytes, 8u);
   EXPECT_EQ(driver.stats().crc_errors, 0u);
   EXPECT_EQ(driver.stats().connects, 1u);  // never lost the link
-  expect_ranges_match_room(scans.back(), *rig.room, 0.001);
+  expect_ranges_match_room(scans.back().scan, *rig.room, 0.001);
 }
 
 TEST(Lms2xxDriver, OneCorruptCrcDropsExactlyThatScan)
 {
   Rig rig;
   Lms2xxDriver driver(fast_options(rig.emulator.port_path()));
-  std::vector<LaserScan> scans;
+  std::vector<Lms2xxScan> scans;
   ASSERT_TRUE(run_until(driver, &scans, [&] { return scans.size() >= 5; })) << driver.status_text();
   rig.emulator.corrupt_next_scans(1);
   const size_t before = scans.size();
@@ -174,7 +174,7 @@ TEST(Lms2xxDriver, ReconnectsAfterUnplugAndReplug)
 {
   Rig rig;
   Lms2xxDriver driver(fast_options(rig.emulator.port_path()));
-  std::vector<LaserScan> scans;
+  std::vector<Lms2xxScan> scans;
   ASSERT_TRUE(run_until(driver, &scans, [&] { return scans.size() >= 5; })) << driver.status_text();
   rig.emulator.unplug();
   ASSERT_TRUE(run_until(driver, &scans, [&] { return driver.state() == Lms2xxDriver::State::kDisconnected; }))
@@ -190,14 +190,14 @@ TEST(Lms2xxDriver, ReconnectsAfterUnplugAndReplug)
   ASSERT_TRUE(run_until(driver, &scans, [&] { return scans.size() >= before + 10; })) << driver.status_text();
   EXPECT_EQ(driver.stats().connects, 2u);
   EXPECT_GE(driver.stats().disconnects, 1u);
-  expect_ranges_match_room(scans.back(), *rig.room, 0.001);
+  expect_ranges_match_room(scans.back().scan, *rig.room, 0.001);
 }
 
 TEST(Lms2xxDriver, ReconnectsAfterPowerCycle)
 {
   Rig rig;
   Lms2xxDriver driver(fast_options(rig.emulator.port_path()));
-  std::vector<LaserScan> scans;
+  std::vector<Lms2xxScan> scans;
   ASSERT_TRUE(run_until(driver, &scans, [&] { return scans.size() >= 5; })) << driver.status_text();
   rig.emulator.unplug();
   rig.emulator.replug(/*power_cycle=*/true);  // back at 9600 baud, not streaming
@@ -211,7 +211,7 @@ TEST(Lms2xxDriver, SilentDeviceTriggersReconnect)
 {
   Rig rig;
   Lms2xxDriver driver(fast_options(rig.emulator.port_path()));
-  std::vector<LaserScan> scans;
+  std::vector<Lms2xxScan> scans;
   ASSERT_TRUE(run_until(driver, &scans, [&] { return scans.size() >= 5; })) << driver.status_text();
   rig.emulator.set_silent(true);
   ASSERT_TRUE(run_until(driver, &scans, [&] { return driver.stats().disconnects >= 1; })) << driver.status_text();
@@ -229,14 +229,14 @@ TEST(Lms2xxDriver, LowerSessionBaudStreamsAtTheRateTheLineAllows)
   o.desired_baud = 38400;
   o.silence_timeout = 1000ms;
   Lms2xxDriver driver(o);
-  std::vector<LaserScan> scans;
+  std::vector<Lms2xxScan> scans;
   ASSERT_TRUE(run_until(driver, &scans, [&] { return scans.size() >= 6; })) << driver.status_text();
   EXPECT_EQ(rig.emulator.baud(), 38400);
   EXPECT_EQ(driver.current_baud(), 38400);
   // A 372-byte telegram takes 97 ms at 38400 baud: the device skips the scans in between.
   EXPECT_GT(rig.emulator.stats().scans_skipped, 5 * rig.emulator.stats().scans_sent / 2);
   // Consecutive scans are a whole number of rotations (8 at this rate) apart.
-  const double dt = (scans.back().first_beam_utime - scans[scans.size() - 2].first_beam_utime) * 1e-6;
+  const double dt = (scans.back().scan.utime - scans[scans.size() - 2].scan.utime) * 1e-6;
   EXPECT_GT(dt, 7.5 / 75);
 }
 
@@ -246,7 +246,7 @@ TEST(Lms2xxDriver, WrongPasswordIsReportedAndRetried)
   auto o = fast_options(rig.emulator.port_path());
   o.password = "WRONG_PW";
   Lms2xxDriver driver(o);
-  std::vector<LaserScan> scans;
+  std::vector<Lms2xxScan> scans;
   ASSERT_TRUE(run_until(driver, &scans, [&] { return driver.stats().disconnects >= 2; })) << driver.status_text();
   EXPECT_NE(driver.last_error().find("password"), std::string::npos) << driver.last_error();
   EXPECT_TRUE(scans.empty());

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "bus/typed.h"
+#include "msg/conversions.h"
 #include "sim/sim_conversions.h"
 #include "sim/simulator.h"
 #include "sim/world_yaml.h"
@@ -33,7 +34,7 @@ std::vector<uint8_t> run(uint64_t seed, int steps)
     const double omega = ((k / 75) % 2 == 0) ? 0.4 : -0.4;
     cmd.set(sim.now_utime(), {0.4, omega}, 200'000);
     const StepOutput out = sim.step(std::chrono::microseconds(13333));
-    for (const auto& s : out.scans) append(to_laser_scan_msg(s));
+    for (const auto& s : out.scans) append(msg::to_msg(s));
     for (const auto& s : out.odometry) {
       append(to_odometry_msg(s));
       append(to_truth_msg(s));

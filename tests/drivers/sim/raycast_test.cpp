@@ -51,7 +51,7 @@ TEST(RayCast, ScanBeamsMatchGeometryWithinQuantisation)
   w.walls.push_back(wall({-10, 1.5}, {10, 1.5}));  // left, y = 1.5
   const Scene scene(w);
   Lms2xxModel laser(exact_laser(), Rng(1));
-  const LaserScan s = laser.measure(scene, kNoDoors, {}, {0, 0, 0}, 123, 1);
+  const sensors::LaserScan s = laser.measure(scene, kNoDoors, {}, {0, 0, 0}, 123, 1);
   ASSERT_EQ(s.ranges.size(), 181u);
   EXPECT_NEAR(s.angle_increment, M_PI / 180.0, 1e-12);
   EXPECT_NEAR(s.angle_min, -M_PI / 2, 1e-12);
@@ -133,13 +133,13 @@ TEST(RayCast, RangeModesAndBeamCounts)
   w.walls.push_back(wall({0.0, 3.21234}, {1.0, 3.21234}));
   const Scene scene(w);
   Lms2xxModel mm(exact_laser(361, 8), Rng(1));
-  const LaserScan a = mm.measure(scene, kNoDoors, {}, {0, 0, 0}, 0, 1);
+  const sensors::LaserScan a = mm.measure(scene, kNoDoors, {}, {0, 0, 0}, 0, 1);
   ASSERT_EQ(a.ranges.size(), 361u);
   EXPECT_FLOAT_EQ(a.ranges[180], static_cast<float>(8.183));  // 20 m is beyond the 8 m mode
   EXPECT_FLOAT_EQ(a.ranges[360], 3.212f);                      // mm resolution
   EXPECT_NEAR(a.scan_time, 1.0 / 37.5, 1e-12);
   Lms2xxModel cm(exact_laser(181, 80), Rng(1));
-  const LaserScan b = cm.measure(scene, kNoDoors, {}, {0, 0, 0}, 0, 1);
+  const sensors::LaserScan b = cm.measure(scene, kNoDoors, {}, {0, 0, 0}, 0, 1);
   EXPECT_FLOAT_EQ(b.ranges[90], 20.0f);
   EXPECT_FLOAT_EQ(b.ranges[180], 3.21f);                       // cm resolution
   EXPECT_NEAR(b.scan_time, 1.0 / 75.0, 1e-12);
@@ -156,7 +156,7 @@ TEST(RayCast, NoiseHasTheConfiguredSpread)
   double sum = 0, sum2 = 0;
   int n = 0;
   for (int k = 0; k < 200; ++k) {
-    const LaserScan s = laser.measure(scene, kNoDoors, {}, {0, 0, 0}, 0, k + 1);
+    const sensors::LaserScan s = laser.measure(scene, kNoDoors, {}, {0, 0, 0}, 0, k + 1);
     const double e = s.ranges[90] - 4.0;
     sum += e;
     sum2 += e * e;

@@ -30,19 +30,6 @@ int class_of(sim::GatewayClass c)
 
 bool same_direction(double a, double b) { return std::fabs(geometry::normalize_angle(a - b)) < 0.3; }
 
-Scan to_scan(const sim::LaserScan& l)
-{
-  Scan s;
-  s.utime = l.utime;
-  s.scan_id = l.scan_id;
-  s.angle_min = l.angle_min;
-  s.angle_increment = l.angle_increment;
-  s.range_min = l.range_min;
-  s.range_max = l.range_max;
-  s.ranges.assign(l.ranges.begin(), l.ranges.end());
-  return s;
-}
-
 geometry::Pose2 to_pose(const sim::Pose2& p) { return geometry::Pose2(p.x, p.y, p.theta); }
 
 double elapsed_ms(std::chrono::steady_clock::time_point t0)
@@ -175,7 +162,10 @@ std::vector<LabelledSequence> record_sequences(const sim::World& world, const De
       while (!follower.done() && sim.time_s() < limit) {
         sim.step(dt);
         PosedScan ps;
-        ps.scan = to_scan(laser.measure(sim.scene(), sim.doors_open(), sim.people(), sim.truth(), sim.now_utime(), ++id));
+        // The scan as measured, its header in double, not rounded to float as on LASER_FRONT:
+        // max-range readings (8.183 m as float, 8.1829996) lie below range_max (8.183) and so
+        // count as hits here, not as "no return". Kept as it was so the figures stay.
+        ps.scan = laser.measure(sim.scene(), sim.doors_open(), sim.people(), sim.truth(), sim.now_utime(), ++id);
         ps.map_from_base = to_pose(sim.truth());
         ps.base_from_laser = mount;
         const auto t0 = std::chrono::steady_clock::now();
@@ -264,7 +254,8 @@ DoorEvaluation evaluate_doors(const sim::World& world, const DetectorOptions& op
   while (!follower.done() && sim.time_s() < limit) {
     sim.step(dt);
     PosedScan ps;
-    ps.scan = to_scan(laser.measure(sim.scene(), sim.doors_open(), sim.people(), sim.truth(), sim.now_utime(), ++id));
+    ps.scan = laser.measure(  // double header, as above: max-range readings count as hits
+        sim.scene(), sim.doors_open(), sim.people(), sim.truth(), sim.now_utime(), ++id);
     ps.map_from_base = to_pose(sim.truth());
     ps.base_from_laser = mount;
     const auto t0 = std::chrono::steady_clock::now();

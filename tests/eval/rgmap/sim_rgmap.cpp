@@ -14,16 +14,11 @@ using Eigen::Vector2d;
 
 geometry::Pose2 to_sm(const sim::Pose2& p) { return geometry::Pose2(p.x, p.y, p.theta); }
 
-scan_mapper::Scan to_scan(const sim::LaserScan& s)
+// The simulated scan as the mapper would get it from LASER_FRONT: header rounded to float.
+sensors::LaserScan to_scan(const sensors::LaserScan& s)
 {
-  scan_mapper::Scan out;
-  out.utime = s.utime;
-  out.scan_id = s.scan_id + 1;   // ids start at 1 like LASER_FRONT's
-  out.angle_min = static_cast<float>(s.angle_min);
-  out.angle_increment = static_cast<float>(s.angle_increment);
-  out.range_min = static_cast<float>(s.range_min);
-  out.range_max = static_cast<float>(s.range_max);
-  out.ranges = s.ranges;
+  sensors::LaserScan out = sensors::with_message_precision(s);
+  out.scan_id = s.scan_id + 1;  // ids start at 1 like LASER_FRONT's
   return out;
 }
 

@@ -31,7 +31,7 @@ Vlm true_vlm(double x0, double w)
 
 TEST(Features, StraightWallIsOneSegmentAndOneVirtualLine)
 {
-  const Scan s = cast({{{2, -3}, {2, 3}}}, geometry::Pose2());
+  const sensors::LaserScan s = cast({{{2, -3}, {2, 3}}}, geometry::Pose2());
   const auto f = extract_features(s, FeatureOptions{});
   ASSERT_EQ(f.segments.size(), 1u);
   EXPECT_NEAR(f.segments[0].line.rho, 2.0, 1e-6);
@@ -42,7 +42,7 @@ TEST(Features, StraightWallIsOneSegmentAndOneVirtualLine)
 TEST(Features, CollinearPiecesFormOneVirtualLine)
 {
   // A wall with a door gap: two segments, one virtual line.
-  const Scan s = cast({{{2, 0.5}, {2, 3}}, {{2, -3}, {2, -0.5}}, {{6, -5}, {6, 5}}}, geometry::Pose2());
+  const sensors::LaserScan s = cast({{{2, 0.5}, {2, 3}}, {{2, -3}, {2, -0.5}}, {{6, -5}, {6, 5}}}, geometry::Pose2());
   const auto f = extract_features(s, FeatureOptions{});
   int on_wall = 0;
   for (const auto& vl : f.virtual_lines)
@@ -56,7 +56,7 @@ TEST(Features, CollinearPiecesFormOneVirtualLine)
 TEST(Features, DepthSingularitiesAtTheNearSideOfJumps)
 {
   // A wall across the whole field of view with a gap: exactly the two gap edges.
-  const Scan s = cast({{{2, 0.5}, {2, 20}}, {{2, -20}, {2, -0.5}}, {{6, -5}, {6, 5}}}, geometry::Pose2());
+  const sensors::LaserScan s = cast({{{2, 0.5}, {2, 20}}, {{2, -20}, {2, -0.5}}, {{6, -5}, {6, 5}}}, geometry::Pose2());
   const auto ds = depth_singularities(s, 0.5);
   ASSERT_EQ(ds.size(), 2u);
   for (const auto& d : ds) {
@@ -93,7 +93,7 @@ TEST(Measures, OnLineAndOverLineFollowTheWalls)
   const MeasureOptions o;
   const Vlm v = true_vlm(2.0, 2.0);
   // T-crossing seen from x = -2: the crossing square is [0, 2]; in laser frame at x0 = 2.
-  const Scan t = cast(crossing(kT, 2.0), geometry::Pose2(-2.0, 0, 0));
+  const sensors::LaserScan t = cast(crossing(kT, 2.0), geometry::Pose2(-2.0, 0, 0));
   const Measures m = measure(t, v, o);
   EXPECT_GT(m.on_line[kFrontSector], 0.95);
   EXPECT_LT(m.over_line[kFrontSector], 0.05);
@@ -115,7 +115,7 @@ TEST(Measures, EveryClassWinsOnItsOwnIdealCrossing)
   const Vlm v = true_vlm(2.0, 2.0);
   for (int c = 0; c < kNumCrossingClasses; ++c) {
     const test::Walls ws = crossing(c, 2.0);
-    const Scan s = cast(ws, geometry::Pose2(-2.0, 0, 0));
+    const sensors::LaserScan s = cast(ws, geometry::Pose2(-2.0, 0, 0));
     const auto w = class_weights(measure(s, v, o), o);
     EXPECT_EQ(std::max_element(w.begin(), w.end()) - w.begin(), c) << crossing_class_name(c);
   }
@@ -128,7 +128,7 @@ TEST(Measures, ClutterBeforeTheLineIsLeftOutOfTheSectorWhenAsked)
   const Vlm v = true_vlm(2.0, 2.0);
   test::Walls ws = crossing(kDeadEnd, 2.0);
   ws.push_back({{1.4, -0.4}, {1.4, 0.4}});
-  const Scan s = cast(ws, geometry::Pose2(-2.0, 0, 0));
+  const sensors::LaserScan s = cast(ws, geometry::Pose2(-2.0, 0, 0));
   MeasureOptions paper;
   MeasureOptions robust;
   robust.exclude_occluded = true;
@@ -157,7 +157,7 @@ TEST(Measures, AWhollyHiddenSectorSaysNothing)
   const Vlm v = true_vlm(2.0, 2.0);
   test::Walls ws = crossing(kX, 2.0);
   ws.push_back({{1.0, -1.0}, {1.0, 1.0}});
-  const Scan s = cast(ws, geometry::Pose2(0.0, 0, 0));
+  const sensors::LaserScan s = cast(ws, geometry::Pose2(0.0, 0, 0));
   MeasureOptions robust;
   robust.exclude_occluded = true;
   const Measures m = measure(s, v, robust);
@@ -177,8 +177,8 @@ TEST(Measures, ALargerSetbackTellsAWallBehindClutterFromAnOpening)
   // setback line as if the side were open, but not a 0.6 m one; a real side branch does.
   Vlm v;
   ASSERT_TRUE(make_vlm(through({0, 0.6}, {1, 0.6}), through({0, -1}, {1, -1}), through({4, 0}, {4, 1}), through({2, 0}, {2, 1}), &v));
-  const Scan closed = cast({{{-10, 1}, {10, 1}}, {{-10, -1}, {10, -1}}}, geometry::Pose2());
-  const Scan open = cast(crossing(kT, 2.0), geometry::Pose2(-2.0, 0, 0));
+  const sensors::LaserScan closed = cast({{{-10, 1}, {10, 1}}, {{-10, -1}, {10, -1}}}, geometry::Pose2());
+  const sensors::LaserScan open = cast(crossing(kT, 2.0), geometry::Pose2(-2.0, 0, 0));
   MeasureOptions near_setback, far_setback;
   far_setback.over_line_setback = 0.6;
   EXPECT_GT(measure(closed, v, near_setback).over_line[kLeftSector], 0.95);

@@ -33,13 +33,8 @@ TEST(RealLog, IntelDoorsAreTraversedAndPassagesHaveDoorWidths)
   for (size_t i = 0; i < log.scans.size(); ++i) {
     const auto& r = log.scans[i];
     PosedScan ps;
-    ps.scan.utime = r.utime;
+    ps.scan = r;
     ps.scan.scan_id = static_cast<int64_t>(i + 1);
-    ps.scan.angle_min = r.angle_min;
-    ps.scan.angle_increment = r.angle_increment;
-    ps.scan.range_min = r.range_min;
-    ps.scan.range_max = r.range_max;
-    ps.scan.ranges.assign(r.ranges.begin(), r.ranges.end());
     const auto& p = log.reference[i];
     ps.map_from_base = geometry::Pose2(p.x, p.y, p.theta);
     for (const auto& np : detect_narrow_passages(ps.scan, det.options().narrow_passages)) {

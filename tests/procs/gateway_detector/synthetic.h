@@ -20,13 +20,13 @@ struct Wall
 };
 using Walls = std::vector<Wall>;
 
-inline Scan cast(const Walls& walls, const geometry::Pose2& world_from_laser, double noise = 0.0, unsigned seed = 1,
+inline sensors::LaserScan cast(const Walls& walls, const geometry::Pose2& world_from_laser, double noise = 0.0, unsigned seed = 1,
                  int beams = 181, double range_max = 8.183)
 {
-  Scan s;
+  sensors::LaserScan s;
   s.angle_min = -M_PI / 2;
   s.angle_increment = M_PI / (beams - 1);
-  s.range_max = range_max;
+  s.range_max = static_cast<float>(range_max);  // as laser_scan_t carries it: max-range readings are "no return"
   std::mt19937 rng(seed);
   std::normal_distribution<double> n(0.0, noise);
   const Vec2 o = world_from_laser.translation();
@@ -44,7 +44,7 @@ inline Scan cast(const Walls& walls, const geometry::Pose2& world_from_laser, do
       if (t > 1e-9 && u >= 0 && u <= 1) best = std::min(best, t);
     }
     double r = best + (noise > 0 ? n(rng) : 0.0);
-    s.ranges.push_back(best < range_max ? std::max(0.01, r) : range_max);
+    s.ranges.push_back(static_cast<float>(best < range_max ? std::max(0.01, r) : range_max));
   }
   return s;
 }

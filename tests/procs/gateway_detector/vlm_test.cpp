@@ -45,7 +45,7 @@ TEST_P(VlmGrouping, FindsTheCrossingAndItsClass)
   const auto [cls, w] = GetParam();
   const GatewayDetector det(options_for(w));
   for (double dist : {4.0, 2.5}) {
-    const Scan s = cast(crossing(cls, w), geometry::Pose2(-dist, 0.0, 0.0), 0.005, 7);
+    const sensors::LaserScan s = cast(crossing(cls, w), geometry::Pose2(-dist, 0.0, 0.0), 0.005, 7);
     const auto hs = det.observe_crossings(s);
     const auto* h = true_hypothesis(hs, dist, w, 0.25);
     ASSERT_NE(h, nullptr) << crossing_class_name(cls) << " at " << dist << " m: " << hs.size() << " hypotheses";
@@ -76,7 +76,7 @@ TEST(VlmGrouping, HiddenLineFromSingularityAndFromPrior)
 TEST(VlmGrouping, PlainHallwayHasNoFrontLine)
 {
   const GatewayDetector det(options_for(2.0));
-  const Scan s = cast({{{-10, 1}, {30, 1}}, {{-10, -1}, {30, -1}}}, geometry::Pose2());
+  const sensors::LaserScan s = cast({{{-10, 1}, {30, 1}}, {{-10, -1}, {30, -1}}}, geometry::Pose2());
   EXPECT_TRUE(det.observe_crossings(s).empty());
 }
 

@@ -46,14 +46,7 @@ importers::ImportedLog simulated_log()
     for (const auto& s : out.scans) {
       odometry_until(s.utime);
       if (n++ % kEveryNthScan != 0) continue;
-      importers::ScanRecord r;
-      r.utime = s.utime;
-      r.angle_min = static_cast<float>(s.angle_min);
-      r.angle_increment = static_cast<float>(s.angle_increment);
-      r.range_min = static_cast<float>(s.range_min);
-      r.range_max = static_cast<float>(s.range_max);
-      r.ranges = s.ranges;
-      log.add_scan(std::move(r));
+      log.add_scan(sensors::with_message_precision(s));
     }
     odometry_until(INT64_MAX);
   }

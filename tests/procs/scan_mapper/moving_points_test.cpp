@@ -22,7 +22,7 @@ TEST(ScanView, SeesThroughWhereBothBeamsReachPastByTheMargin)
 {
   const auto world = room();
   const sm::testing::LaserModel m;
-  const sm::Scan scan = sm::testing::cast_scan(world, sm::Pose2{}, m);
+  const rgnav::sensors::LaserScan scan = sm::testing::cast_scan(world, sm::Pose2{}, m);
   sm::MovingPointOptions o;
   o.margin_m = 0.3;
   const sm::ScanView view(scan, sm::Pose2{}, o);
@@ -43,7 +43,7 @@ TEST(ScanView, ABeamWithoutReturnSeesThroughToTheRangeLimit)
 {
   sm::testing::LaserModel m;
   m.max_range = 8.0;
-  const sm::Scan scan = sm::testing::cast_scan({}, sm::Pose2{}, m);  // nothing within range
+  const rgnav::sensors::LaserScan scan = sm::testing::cast_scan({}, sm::Pose2{}, m);  // nothing within range
   const sm::ScanView view(scan, sm::Pose2{1.0, 0.0, 0.0}, sm::MovingPointOptions{});
   EXPECT_TRUE(view.sees_through({6.0, 0.0}, Eigen::Vector2d::Zero()));
   EXPECT_FALSE(view.sees_through({8.9, 0.0}, Eigen::Vector2d::Zero()));
@@ -51,7 +51,7 @@ TEST(ScanView, ABeamWithoutReturnSeesThroughToTheRangeLimit)
 
 TEST(ScanView, MarksOnlyWhatAViewSeesThrough)
 {
-  const sm::Scan scan = sm::testing::cast_scan(room(), sm::Pose2{}, sm::testing::LaserModel{});
+  const rgnav::sensors::LaserScan scan = sm::testing::cast_scan(room(), sm::Pose2{}, sm::testing::LaserModel{});
   const std::vector<sm::ScanView> views{sm::ScanView(scan, sm::Pose2{}, sm::MovingPointOptions{})};
   const sm::Points points{{3.0, 0.5}, {5.0, 0.5}, {2.0, -1.0}};
   const sm::Points normals(points.size(), Eigen::Vector2d(1.0, 0.0));

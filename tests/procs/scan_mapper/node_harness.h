@@ -80,7 +80,7 @@ inline odometry_t drive_odometry(int i, int64_t seq0 = 0)
   odometry_t o{};
   o.utime = 1'000'000 + i * 100'000;
   o.seq = seq0 + i + 1;
-  o.odom_from_base = to_message(Pose2{truth.x() * 1.01, truth.y(), truth.theta()});
+  o.odom_from_base = msg::to_msg(Pose2{truth.x() * 1.01, truth.y(), truth.theta()});
   return o;
 }
 
@@ -90,8 +90,9 @@ inline laser_scan_t drive_scan(int i, int64_t id0 = 0)
   std::mt19937 rng(static_cast<unsigned>(2 + i));
   LaserModel m;
   m.noise_m = 0.01;
-  const auto scan = cast_scan(world, drive_truth(i), m, &rng, id0 + i + 1, 1'000'000 + i * 100'000);
-  return to_message(scan, "laser_front");
+  auto scan = cast_scan(world, drive_truth(i), m, &rng, id0 + i + 1, 1'000'000 + i * 100'000);
+  scan.sensor = "laser_front";
+  return msg::to_msg(scan);
 }
 
 // Steps [from, to): odometry then a scan each; `settle` waits for optimisations after each.

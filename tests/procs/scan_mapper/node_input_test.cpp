@@ -156,11 +156,11 @@ TEST(ScanMapperInput, LibraryRefusesWhatTheChecksRefuse)
   sm::ScanMapper mapper(sm::testing::node_test_options());
   mapper.add_odometry({1'000'000, sm::Pose2{std::nan(""), 0, 0}});
   mapper.add_odometry({1'000'000, sm::Pose2{0, 0, 0}});
-  auto scan = sm::to_scan(drive_scan(0));
+  auto scan = rgnav::msg::to_laser_scan(drive_scan(0));
   scan.utime = 1'000'000;
   scan.ranges[3] = kNaN;
   EXPECT_FALSE(mapper.add_scan(scan).accepted);
   EXPECT_EQ(mapper.stats().invalid, 2);
   EXPECT_TRUE(mapper.nodes().empty());
-  EXPECT_EQ(sm::check_scan(sm::to_scan(drive_scan(0))), "");
+  EXPECT_EQ(sm::check_scan(rgnav::msg::to_laser_scan(drive_scan(0))), "");
 }

@@ -21,7 +21,7 @@ struct Case
   sm::Pose2 motion;          // reference_from_current, the transform to recover
 };
 
-sm::Points points_of(const sm::Scan& s)
+sm::Points points_of(const rgnav::sensors::LaserScan& s)
 {
   sm::PointFilterOptions o;
   return sm::scan_to_points(s, sm::Pose2{}, o);

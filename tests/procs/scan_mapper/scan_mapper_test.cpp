@@ -24,7 +24,7 @@ struct SyntheticRun
 {
   std::vector<sm::Pose2> truth;   // per scan
   std::vector<sm::Pose2> odom;    // drifting odometry per scan
-  std::vector<sm::Scan> scans;
+  std::vector<rgnav::sensors::LaserScan> scans;
 };
 
 // Drives along the waypoints (from the first) `laps` times with biased odometry (2 % scale,

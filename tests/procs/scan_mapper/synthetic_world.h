@@ -47,10 +47,11 @@ struct LaserModel
   double outlier_share = 0.0;  // beams replaced by a random short range
 };
 
-inline Scan cast_scan(const std::vector<Segment>& world, const Pose2& map_from_laser, const LaserModel& m,
-                      std::mt19937* rng = nullptr, int64_t id = 1, int64_t utime = 0)
+inline sensors::LaserScan cast_scan(const std::vector<Segment>& world, const Pose2& map_from_laser,
+                                    const LaserModel& m, std::mt19937* rng = nullptr, int64_t id = 1,
+                                    int64_t utime = 0)
 {
-  Scan s;
+  sensors::LaserScan s;
   s.scan_id = id;
   s.utime = utime;
   s.angle_min = static_cast<float>(-m.fov / 2);
