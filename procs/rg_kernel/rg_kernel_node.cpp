@@ -40,9 +40,10 @@ ObjectOptions load_object_options(const config::Config& s)
   return o;
 }
 
-NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_root)
+NodeConfig load_node_config(const config::Config& cfg, const config::RobotDescription& robot, const std::string& repo_root)
 {
   NodeConfig c;
+  c.kernel.build.robot_radius = robot.radius;
   const auto k = cfg.section("kernel");
   c.kernel.gateway_match_distance = k.number("gateway_match_distance_m", c.kernel.gateway_match_distance, 0.1, 5.0);
   c.kernel.merge_min_scans = static_cast<int>(k.integer("merge_min_scans", c.kernel.merge_min_scans, 1, 1000));

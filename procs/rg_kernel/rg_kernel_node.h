@@ -13,6 +13,7 @@
 #include <string>
 
 #include "config/config.h"
+#include "config/robot_description.h"
 #include "procs/rg_kernel/rg_kernel.h"
 #include "procs/rg_kernel/state_store.h"
 #include "rgmap/rg_graph.h"
@@ -41,7 +42,8 @@ struct NodeConfig
   std::string rg_graph = "RG_GRAPH";
 };
 
-NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_root);
+// The robot radius (free cells under the robot at each scan) is the robot description's.
+NodeConfig load_node_config(const config::Config& cfg, const config::RobotDescription& robot, const std::string& repo_root);
 ObjectOptions load_object_options(const config::Config& objects_section);
 
 class RgKernelNode

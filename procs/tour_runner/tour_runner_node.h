@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "config/robot_description.h"
 #include "procs/tour_runner/pure_pursuit.h"
 #include "procs/tour_runner/tour.h"
 #include "procs/tour_runner/tour_sequencer.h"
@@ -38,8 +39,9 @@ struct Channels
   std::string base_cmd = "BASE_CMD";
 };
 
+// The laser mounting pose and the follower's robot radius are the robot description's.
 TourRunnerOptions load_options(const config::Config& tour_section, const config::Config& follower_section,
-                               const std::string& config_dir);
+                               const config::RobotDescription& robot, const std::string& config_dir);
 Channels load_channels(const config::Config& section);
 
 class TourRunnerNode

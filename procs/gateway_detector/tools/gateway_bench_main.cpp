@@ -120,7 +120,7 @@ int main(int argc, char** argv)
     auto training = tools::load_training_config(config_dir + "/gateway_models/training.yaml");
     if (repetitions > 0) training.record.repetitions = repetitions;
     const auto detector_cfg = config::Config::load(config_dir + "/gateway_detector.yaml");
-    const DetectorOptions base = load_detector_options(detector_cfg);
+    const DetectorOptions base = load_detector_options(detector_cfg, config::load_robot_description_file(config_dir + "/robot.yaml"));
     std::vector<double> scan_ms;
     std::vector<std::string> targets_missed;
     json rates = json::object();

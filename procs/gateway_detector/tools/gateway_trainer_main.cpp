@@ -32,7 +32,7 @@ int main(int argc, char** argv)
     auto training = tools::load_training_config(models_dir + "/training.yaml");
     if (repetitions > 0) training.record.repetitions = repetitions;
     const auto detector_cfg = config::Config::load(config_dir + "/gateway_detector.yaml");
-    const DetectorOptions base = load_detector_options(detector_cfg);
+    const DetectorOptions base = load_detector_options(detector_cfg, config::load_robot_description_file(config_dir + "/robot.yaml"));
 
     std::map<double, std::vector<tools::LabelledSequence>> by_width;
     for (const auto& env : training.environments) {

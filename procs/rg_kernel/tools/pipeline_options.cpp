@@ -13,10 +13,11 @@ LoadedPipeline load_pipeline(const PipelineConfigPaths& paths)
 {
   LoadedPipeline out;
   auto& o = out.options;
-  o.mapper = scan_mapper::load_scan_mapper_options(config::Config::load(paths.scan_mapper).section("scan_mapper"));
+  out.robot = config::load_robot_description_file(paths.robot);
+  o.mapper = scan_mapper::load_scan_mapper_options(config::Config::load(paths.scan_mapper).section("scan_mapper"), out.robot);
 
   const auto gw = config::Config::load(paths.gateway_detector);
-  o.detector = gateway_detector::load_detector_options(gw);
+  o.detector = gateway_detector::load_detector_options(gw, out.robot);
   const auto cls = gateway_detector::load_classifier_config(gw.section("classifier"), paths.gateway_detector);
   if (!cls.models_path.empty() && std::filesystem::exists(cls.models_path)) {
     auto models = gateway_detector::load_gateway_models(cls.models_path);
@@ -34,7 +35,7 @@ LoadedPipeline load_pipeline(const PipelineConfigPaths& paths)
   }
 
   // The kernel's loader also reads persistence/publish/channels, which offline runs ignore.
-  const auto node = rg_kernel::load_node_config(config::Config::load(paths.rg_kernel), "");
+  const auto node = rg_kernel::load_node_config(config::Config::load(paths.rg_kernel), out.robot, "");
   o.kernel = node.kernel;
   o.graph = node.graph;
   return out;
