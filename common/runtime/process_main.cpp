@@ -21,6 +21,11 @@ std::string default_config_dir()
   return std::string(RGNAV_SOURCE_DIR) + "/config";
 }
 
+std::string default_robot_path(const std::string& config_path)
+{
+  return config::robot_path_beside(config_path, default_config_dir() + "/robot.yaml");
+}
+
 std::string default_data_dir()
 {
   if (const char* dir = std::getenv("RGNAV_DATA_DIR"); dir && *dir) return dir;
@@ -32,11 +37,13 @@ int process_main(int argc, char** argv, const std::string& default_name, const P
 {
   CLI::App app{"rgnav process " + default_name};
   std::string config_path = default_config_dir() + "/" + default_name + ".yaml";
+  std::string robot_path;
   std::string lcm_url;
   std::string name;
   std::string log_level = "info";
   bool check_only = false;
   app.add_option("--config", config_path, "process config (YAML)");
+  app.add_option("--robot", robot_path, "robot description (YAML; default: robot.yaml beside the config)");
   app.add_option("--lcm-url", lcm_url, "LCM URL, overrides node.lcm_url");
   app.add_option("--name", name, "process name, overrides node.name");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
@@ -58,20 +65,22 @@ int process_main(int argc, char** argv, const std::string& default_name, const P
 
   try {
     const auto cfg = config::Config::load(config_path);
+    if (robot_path.empty()) robot_path = default_robot_path(config_path);
+    const auto robot = config::load_robot_description_file(robot_path);
     NodeOptions node_options = load_node_options(cfg.section("node"), default_name);
     if (!name.empty()) node_options.name = name;
     if (!lcm_url.empty()) node_options.lcm_url = lcm_url;
     if (check_only) {
       // Build everything but the bus: a config check must not need a network.
       Node node(node_options, std::make_unique<bus::FakeBus>());
-      ProcessContext ctx{cfg, node, config_path, true};
+      ProcessContext ctx{cfg, robot, node, config_path, true};
       auto keep = setup(ctx);
       cfg.finish();
-      std::cout << config_path << ": ok\n";
+      std::cout << config_path << " (robot " << robot_path << "): ok\n";
       return 0;
     }
     Node node(node_options);
-    ProcessContext ctx{cfg, node, config_path};
+    ProcessContext ctx{cfg, robot, node, config_path};
     auto keep = setup(ctx);
     cfg.finish();
     return node.run();

@@ -7,7 +7,7 @@ int main(int argc, char** argv)
   using namespace rgnav;
   return runtime::process_main(argc, argv, "laser_driver", [](runtime::ProcessContext& ctx) -> std::shared_ptr<void> {
     auto options = drivers::sick::load_laser_driver_options(ctx.config.section("laser_driver"),
-                                                            ctx.config.section("channels"));
+                                                            ctx.config.section("channels"), ctx.robot);
     return std::make_shared<drivers::sick::LaserDriverNode>(ctx.node, std::move(options));
   });
 }

@@ -14,7 +14,8 @@ std::chrono::milliseconds ms(const config::Config& c, const std::string& key, in
 
 }  // namespace
 
-LaserDriverOptions load_laser_driver_options(const config::Config& c, const config::Config& channels)
+LaserDriverOptions load_laser_driver_options(const config::Config& c, const config::Config& channels,
+                                             const config::RobotDescription& robot)
 {
   LaserDriverOptions o;
   DriverOptions& d = o.driver;
@@ -43,15 +44,11 @@ LaserDriverOptions load_laser_driver_options(const config::Config& c, const conf
   d.silence_timeout = ms(c, "silence_timeout_ms", d.silence_timeout.count(), 10, 60000);
   d.reconnect_interval = ms(c, "reconnect_interval_ms", d.reconnect_interval.count(), 10, 600000);
   d.transmit_delay = std::chrono::microseconds(c.integer("transmit_delay_us", 0, 0, 100000));
-  // has() first: Config::section() of a key missing inside a section throws (yaml-cpp
-  // zombie node), reported to the lead; the defaults apply when it is absent.
-  if (c.has("mounting")) {
-    const auto m = c.section("mounting");
-    o.mounting.x_m = m.number("x_m", o.mounting.x_m, -2.0, 2.0);
-    o.mounting.y_m = m.number("y_m", o.mounting.y_m, -2.0, 2.0);
-    o.mounting.z_m = m.number("z_m", o.mounting.z_m, 0.0, 3.0);
-    o.mounting.yaw_rad = m.number("yaw_rad", o.mounting.yaw_rad, -M_PI, M_PI);
-  }
+  const auto& mount = robot.laser_front;
+  o.mounting.x_m = mount.base_from_laser.x();
+  o.mounting.y_m = mount.base_from_laser.y();
+  o.mounting.z_m = mount.height;
+  o.mounting.yaw_rad = mount.base_from_laser.theta();
   try {
     validate(d);
   } catch (const std::invalid_argument& e) {

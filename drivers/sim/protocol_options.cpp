@@ -5,13 +5,14 @@
 
 namespace rgnav::sim {
 
-ProtocolOptions load_protocol_options(const ProtocolSection& files, const config::Config& protocol)
+ProtocolOptions load_protocol_options(const ProtocolSection& files, const config::Config& protocol,
+                                      const config::RobotDescription& robot)
 {
   ProtocolOptions o;
   o.files = files;
   const auto laser_cfg = config::Config::load(files.laser_driver_config);
   const auto laser =
-      drivers::sick::load_laser_driver_options(laser_cfg.section("laser_driver"), laser_cfg.section("channels"));
+      drivers::sick::load_laser_driver_options(laser_cfg.section("laser_driver"), laser_cfg.section("channels"), robot);
   o.laser_port = laser.driver.port;
   if (o.laser_port.rfind("/dev/", 0) == 0)
     protocol.fail("laser_driver_config", files.laser_driver_config + " names the port " + o.laser_port +

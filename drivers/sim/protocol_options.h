@@ -23,6 +23,7 @@ struct ProtocolOptions
 // Reads the driver configs `files` names. Their own errors name their files; a config the
 // simulator cannot serve (a /dev port, a SocketCAN interface) is an error naming
 // 'protocol.<key>' of `protocol_section`.
-ProtocolOptions load_protocol_options(const ProtocolSection& files, const config::Config& protocol_section);
+ProtocolOptions load_protocol_options(const ProtocolSection& files, const config::Config& protocol_section,
+                                      const config::RobotDescription& robot);
 
 }  // namespace rgnav::sim

@@ -22,7 +22,7 @@ int main(int argc, char** argv)
   return runtime::process_main(
       argc, argv, "sim",
       [&](runtime::ProcessContext& ctx) -> std::shared_ptr<void> {
-        auto options = sim::load_simulator_options(ctx.config);
+        auto options = sim::load_simulator_options(ctx.config, ctx.robot);
         auto process = sim::load_process_options(ctx.config.section("sim"));
         if (!interface_arg.empty())
           process.interface = interface_arg == "protocol" ? sim::InterfaceMode::kProtocol : sim::InterfaceMode::kDirect;
@@ -37,7 +37,7 @@ int main(int argc, char** argv)
         sim::SimNode::HardwareFactory hardware;
         if (process.interface == sim::InterfaceMode::kProtocol) {
 #if RGNAV_SIM_PROTOCOL
-          const auto protocol = sim::load_protocol_options(protocol_files, ctx.config.section("protocol"));
+          const auto protocol = sim::load_protocol_options(protocol_files, ctx.config.section("protocol"), ctx.robot);
           // --check-config validates the protocol options but opens no pseudo-terminal or bus.
           if (!ctx.checking_only)
             hardware = [protocol](sim::Simulator& s) { return std::make_unique<sim::ProtocolHardware>(protocol, s); };

@@ -4,7 +4,7 @@
 
 namespace rgnav::sim {
 
-SimulatorOptions load_simulator_options(const config::Config& cfg)
+SimulatorOptions load_simulator_options(const config::Config& cfg, const config::RobotDescription& described)
 {
   SimulatorOptions o;
   const auto sim = cfg.section("sim");
@@ -14,7 +14,7 @@ SimulatorOptions load_simulator_options(const config::Config& cfg)
   o.laser_enabled = sim.boolean("laser_enabled", o.laser_enabled);
 
   const auto robot = cfg.section("robot");
-  o.robot.radius = robot.number("radius", o.robot.radius, 0.05, 2.0);
+  o.robot.radius = described.radius;
   o.robot.height = robot.number("height", o.robot.height, 0.1, 3.0);
   o.robot.ground_clearance = robot.number("ground_clearance", o.robot.ground_clearance, 0.0, 0.5);
   if (o.robot.ground_clearance >= o.robot.height) robot.fail("ground_clearance", "must be below height");
@@ -41,11 +41,11 @@ SimulatorOptions load_simulator_options(const config::Config& cfg)
   o.laser.range_mode_m = static_cast<int>(laser.integer("range_mode_m", o.laser.range_mode_m, 8, 80));
   if (o.laser.range_mode_m != 8 && o.laser.range_mode_m != 80) laser.fail("range_mode_m", "must be 8 (mm) or 80 (cm)");
   o.laser.noise_sigma = laser.number("noise_sigma", o.laser.noise_sigma, 0.0, 1.0);
-  const auto mount = laser.numbers("mount", {o.laser.mount_x, o.laser.mount_y, o.laser.mount_yaw}, -3.2, 3.2, 3, 3);
-  o.laser.mount_x = mount[0];
-  o.laser.mount_y = mount[1];
-  o.laser.mount_yaw = mount[2];
-  o.laser.mount_height = laser.number("mount_height", o.laser.mount_height, 0.01, 3.0);
+  const auto& mount = described.laser_front.base_from_laser;
+  o.laser.mount_x = mount.x();
+  o.laser.mount_y = mount.y();
+  o.laser.mount_yaw = mount.theta();
+  o.laser.mount_height = described.laser_front.height;
   return o;
 }
 

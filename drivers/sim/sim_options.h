@@ -1,10 +1,12 @@
 // Loading the simulator's options from config/sim.yaml (sections robot, drive, odometry,
-// laser, sim). Every key is validated; out-of-range values name file and key.
+// laser, sim) and the robot description (radius, laser mounting). Every key is validated;
+// out-of-range values name file and key.
 #pragma once
 
 #include <string>
 
 #include "config/config.h"
+#include "config/robot_description.h"
 #include "sim/simulator.h"
 
 namespace rgnav::sim {
@@ -35,7 +37,8 @@ struct ProtocolSection
   bool internal_broker = true;      // run the virtual CAN bus in rgnav_sim (else: vcan_broker)
 };
 
-SimulatorOptions load_simulator_options(const config::Config& cfg);
+// The footprint radius and the laser mounting pose and height are the robot description's.
+SimulatorOptions load_simulator_options(const config::Config& cfg, const config::RobotDescription& robot);
 ProcessOptions load_process_options(const config::Config& sim_section);
 ProtocolSection load_protocol_section(const config::Config& protocol_section, const std::string& config_dir);
 // Protocol mode runs the real drivers on the wall clock (serial line, CAN timing, deadman), so

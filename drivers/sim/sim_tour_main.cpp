@@ -14,17 +14,21 @@ int main(int argc, char** argv)
 {
   using namespace rgnav;
   CLI::App app{"plan a tour through an rgnav world"};
-  std::string world_arg, out_path, sim_config, worlds_dir;
+  std::string world_arg, out_path, sim_config, robot_path, worlds_dir;
   sim::TourOptions options;
   app.add_option("world", world_arg, "world name (under --worlds-dir) or world file")->required();
   app.add_option("--out", out_path, "write the tour here instead of stdout");
-  app.add_option("--sim-config", sim_config, "take the robot size from this sim.yaml");
+  app.add_option("--sim-config", sim_config, "take the robot size from this sim.yaml and its robot description");
+  app.add_option("--robot", robot_path, "robot description (default: robot.yaml beside --sim-config)");
   app.add_option("--worlds-dir", worlds_dir, "where world names are looked up");
   app.add_option("--margin", options.margin, "clearance kept beyond the robot radius [m]");
   CLI11_PARSE(app, argc, argv);
   try {
     sim::RobotOptions robot;
-    if (!sim_config.empty()) robot = sim::load_simulator_options(config::Config::load(sim_config)).robot;
+    if (!sim_config.empty()) {
+      if (robot_path.empty()) robot_path = config::robot_path_beside(sim_config, "robot.yaml");
+      robot = sim::load_simulator_options(config::Config::load(sim_config), config::load_robot_description_file(robot_path)).robot;
+    }
     const std::string path = sim::resolve_world_path(world_arg, worlds_dir);
     const sim::World world = sim::load_world(path);
     const sim::Tour tour = sim::plan_tour(world, robot, options);

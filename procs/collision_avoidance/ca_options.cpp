@@ -4,7 +4,7 @@
 
 namespace rgnav::collision_avoidance {
 
-CaNodeOptions load_ca_options(const config::Config& root)
+CaNodeOptions load_ca_options(const config::Config& root, const config::RobotDescription& robot)
 {
   CaNodeOptions o;
   const auto ch = root.section("channels");
@@ -17,10 +17,8 @@ CaNodeOptions load_ca_options(const config::Config& root)
   o.channels.trajectory = ch.string("trajectory", o.channels.trajectory);
 
   auto& c = o.ca;
-  const auto robot = root.section("robot");
-  c.planner.robot_radius = robot.number("radius_m", c.planner.robot_radius, 0.05, 2.0);
-  const auto laser = robot.numbers("base_from_laser", {0.12, 0.0, 0.0}, -10.0, 10.0, 3, 3);
-  c.base_from_laser = Pose2(laser[0], laser[1], laser[2]);
+  c.planner.robot_radius = robot.radius;
+  c.base_from_laser = robot.laser_front.base_from_laser;
 
   const auto map = root.section("local_map");
   c.map.max_scans = static_cast<int>(map.integer("max_scans", c.map.max_scans, 1, 100));

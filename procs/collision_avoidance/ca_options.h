@@ -1,10 +1,12 @@
-// Options of collision avoidance, loaded and validated from config/collision_avoidance.yaml.
+// Options of collision avoidance, loaded and validated from config/collision_avoidance.yaml;
+// the robot's radius and laser mounting pose come from the robot description.
 #pragma once
 
 #include <string>
 
 #include "collision_avoidance/collision_avoidance.h"
 #include "config/config.h"
+#include "config/robot_description.h"
 
 namespace rgnav::collision_avoidance {
 
@@ -25,6 +27,6 @@ struct CaNodeOptions
   CaOptions ca;
 };
 
-CaNodeOptions load_ca_options(const config::Config& root);
+CaNodeOptions load_ca_options(const config::Config& root, const config::RobotDescription& robot);
 
 }  // namespace rgnav::collision_avoidance

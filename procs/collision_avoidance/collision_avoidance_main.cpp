@@ -6,7 +6,7 @@
 int main(int argc, char** argv)
 {
   return rgnav::runtime::process_main(argc, argv, "collision_avoidance", [](rgnav::runtime::ProcessContext& ctx) {
-    const auto options = rgnav::collision_avoidance::load_ca_options(ctx.config);
+    const auto options = rgnav::collision_avoidance::load_ca_options(ctx.config, ctx.robot);
     return std::make_shared<rgnav::collision_avoidance::CaNode>(ctx.node, options);
   });
 }

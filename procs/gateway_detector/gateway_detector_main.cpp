@@ -17,7 +17,7 @@ int main(int argc, char** argv)
 {
   return runtime::process_main(argc, argv, "gateway_detector", [](runtime::ProcessContext& ctx) {
     const auto& cfg = ctx.config;
-    const DetectorOptions options = load_detector_options(cfg);
+    const DetectorOptions options = load_detector_options(cfg, ctx.robot);
     const auto classifier_cfg = load_classifier_config(cfg.section("classifier"), ctx.config_path);
     HmmClassifier classifier;
     if (!classifier_cfg.models_path.empty() && std::filesystem::exists(classifier_cfg.models_path)) {
@@ -34,6 +34,6 @@ int main(int argc, char** argv)
     }
     return std::make_shared<GatewayDetectorNode>(ctx.node, GatewayDetector(options, std::move(classifier)),
                                                  load_node_channels(cfg.section("channels")),
-                                                 load_laser_mount(cfg.section("laser")));
+                                                 ctx.robot.laser_front.base_from_laser);
   });
 }

@@ -26,12 +26,6 @@ NodeChannels load_node_channels(const config::Config& c)
   return n;
 }
 
-geometry::Pose2 load_laser_mount(const config::Config& s)
-{
-  const auto v = s.numbers("base_from_laser", {0.12, 0.0, 0.0}, -10.0, 10.0, 3, 3);
-  return geometry::Pose2(v[0], v[1], v[2]);
-}
-
 GatewayDetectorNode::GatewayDetectorNode(runtime::Node& node, GatewayDetector detector, NodeChannels channels,
                                          geometry::Pose2 base_from_laser)
     : node_(node), detector_(std::move(detector)), channels_(std::move(channels)), base_from_laser_(base_from_laser)

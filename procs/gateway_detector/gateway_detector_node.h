@@ -27,12 +27,11 @@ struct NodeChannels
   std::string events = "GATEWAY_EVENTS";
 };
 NodeChannels load_node_channels(const config::Config& channels);
-// base_from_laser for LASER_FRONT input (ALIGNED_SCAN carries its own).
-geometry::Pose2 load_laser_mount(const config::Config& section);
 
 class GatewayDetectorNode
 {
  public:
+  // base_from_laser (the robot description's) for LASER_FRONT input; ALIGNED_SCAN carries its own.
   GatewayDetectorNode(runtime::Node& node, GatewayDetector detector, NodeChannels channels, geometry::Pose2 base_from_laser);
 
   int64_t scans_processed() const { return scans_; }

@@ -4,7 +4,7 @@
 
 namespace rgnav::gateway_detector {
 
-DetectorOptions load_detector_options(const config::Config& cfg)
+DetectorOptions load_detector_options(const config::Config& cfg, const config::RobotDescription& robot)
 {
   DetectorOptions o;
   {
@@ -53,7 +53,7 @@ DetectorOptions load_detector_options(const config::Config& cfg)
     n.viewing_directions = s.numbers("viewing_directions_rad", n.viewing_directions, -M_PI, M_PI, 1, 16);
     n.half_range = s.number("half_range_rad", n.half_range, 0.1, M_PI);
     n.max_distance = s.number("max_distance_m", n.max_distance, 0.2, 20.0);
-    n.robot_radius = s.number("robot_radius_m", n.robot_radius, 0.05, 2.0);
+    n.robot_radius = robot.radius;
     n.safety_distance = s.number("safety_distance_m", n.safety_distance, 0.0, 1.0);
     n.min_width = s.number("min_width_m", n.min_width, 0.1, 5.0);
     n.max_width = s.number("max_width_m", n.max_width, 0.1, 10.0);

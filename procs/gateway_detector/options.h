@@ -5,13 +5,15 @@
 #include <string>
 
 #include "config/config.h"
+#include "config/robot_description.h"
 #include "gateway_detector/gateway_detector.h"
 #include "gateway_detector/hmm.h"
 
 namespace rgnav::gateway_detector {
 
-// Reads sections features, crossings, narrow_passages, doors, tracking of `cfg`.
-DetectorOptions load_detector_options(const config::Config& cfg);
+// Reads sections features, crossings, narrow_passages, doors, tracking of `cfg`; the robot
+// radius (narrow passages: D_lr^min) is the robot description's.
+DetectorOptions load_detector_options(const config::Config& cfg, const config::RobotDescription& robot);
 HmmTrainingOptions load_training_options(const config::Config& section);
 
 // The `classifier:` section: where the trained models are (relative paths resolve against

@@ -32,7 +32,7 @@ int main(int argc, char** argv)
   return rgnav::runtime::process_main(
       argc, argv, "lld",
       [&](rgnav::runtime::ProcessContext& ctx) -> std::shared_ptr<void> {
-        const auto options = rgnav::lld::load_lld_options(ctx.config);
+        const auto options = rgnav::lld::load_lld_options(ctx.config, ctx.robot);
         auto writer = std::make_shared<StatsWriter>();
         // A config check starts no control loop (no SCHED_FIFO thread, no mlockall).
         writer->node = std::make_shared<rgnav::lld::LldNode>(ctx.node, options, /*start_thread=*/!ctx.checking_only);

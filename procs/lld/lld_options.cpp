@@ -2,7 +2,7 @@
 
 namespace rgnav::lld {
 
-LldOptions load_lld_options(const config::Config& root)
+LldOptions load_lld_options(const config::Config& root, const config::RobotDescription& robot)
 {
   LldOptions o;
   const auto ch = root.section("channels");
@@ -37,16 +37,19 @@ LldOptions load_lld_options(const config::Config& root)
   o.follower.end_tolerance = tr.number("end_tolerance_m", o.follower.end_tolerance, 0.001, 0.5);
   o.follower.end_settle_timeout = tr.number("end_settle_timeout_s", o.follower.end_settle_timeout, 0.0, 30.0);
 
+  // The drive's accelerations are the robot's; the speeds the lld drives at are its own, within
+  // the robot's.
   auto& l = o.follower.limits;
   const auto lim = root.section("limits");
-  l.v_max = lim.number("v_max_mps", l.v_max, 0.01, 2.0);
-  l.a_max = lim.number("a_max_mps2", l.a_max, 0.01, 5.0);
+  const auto& drive = robot.drive;
+  l.v_max = lim.number("v_max_mps", l.v_max, 0.01, drive.max_v);
+  l.a_max = drive.max_accel;
   l.a_lat_max = lim.number("a_lat_max_mps2", l.a_lat_max, 0.01, 5.0);
-  l.omega_max = lim.number("omega_max_radps", l.omega_max, 0.01, 5.0);
-  l.alpha_max = lim.number("alpha_max_radps2", l.alpha_max, 0.01, 20.0);
+  l.omega_max = lim.number("omega_max_radps", l.omega_max, 0.01, drive.max_omega);
+  l.alpha_max = drive.max_alpha;
   l.omega_jump_max = lim.number("omega_jump_max_radps", l.omega_jump_max, 0.0, 2.0);
   o.follower.profile_fraction = lim.number("profile_fraction", o.follower.profile_fraction, 0.3, 1.0);
-  o.follower.stop_decel = lim.number("stop_decel_mps2", o.follower.stop_decel, 0.01, 5.0);
+  o.follower.stop_decel = lim.number("stop_decel_mps2", o.follower.stop_decel, 0.01, drive.max_accel);
 
   const auto to = root.section("timeouts");
   o.follower.odometry_timeout = to.number("odometry_s", o.follower.odometry_timeout, 0.02, 5.0);

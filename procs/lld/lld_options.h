@@ -4,6 +4,7 @@
 #include <string>
 
 #include "config/config.h"
+#include "config/robot_description.h"
 #include "lld/follower.h"
 
 namespace rgnav::lld {
@@ -32,7 +33,8 @@ struct LldOptions
   FollowerOptions follower;
 };
 
-// Reads the `channels`, `loop`, `tracking`, `limits` and `timeouts` sections.
-LldOptions load_lld_options(const config::Config& root);
+// Reads the `channels`, `loop`, `tracking`, `limits` and `timeouts` sections; the drive's
+// acceleration limits are the robot description's, and the lld's speeds must stay within its.
+LldOptions load_lld_options(const config::Config& root, const config::RobotDescription& robot);
 
 }  // namespace rgnav::lld

@@ -14,8 +14,6 @@ namespace {
 
 // [m] neighbouring end points farther apart than this are a depth jump: no free wedge between.
 constexpr double kMaxWedgeGap = 0.5;
-// [m] B21r footprint: the cells under the robot at each scan are free.
-constexpr double kRobotRadius = 0.26;
 
 uint64_t cell_key(int32_t x, int32_t y) { return (static_cast<uint64_t>(static_cast<uint32_t>(x)) << 32) | static_cast<uint32_t>(y); }
 int32_t key_x(uint64_t k) { return static_cast<int32_t>(static_cast<uint32_t>(k >> 32)); }
@@ -64,14 +62,14 @@ void for_cells_in_triangle(const Vector2d& o, const Vector2d& a, const Vector2d&
 // (no depth jump between them) bound a free triangle; the end points' cells stay unmarked.
 template <class F>
 void carve_scan(const Vector2d& o, const std::vector<Vector2d>& pts, const std::vector<bool>& usable, double res,
-                double max_gap, F f)
+                double max_gap, double robot_radius, F f)
 {
   // Where the robot stood is free too (a forward-looking laser never sees its own position).
-  const int32_t r = static_cast<int32_t>(std::ceil(kRobotRadius / res));
+  const int32_t r = static_cast<int32_t>(std::ceil(robot_radius / res));
   const int32_t ox = cell_index(o.x(), res), oy = cell_index(o.y(), res);
   for (int32_t y = oy - r; y <= oy + r; ++y)
     for (int32_t x = ox - r; x <= ox + r; ++x)
-      if ((Vector2d((x + 0.5) * res, (y + 0.5) * res) - o).norm() <= kRobotRadius) f(x, y);
+      if ((Vector2d((x + 0.5) * res, (y + 0.5) * res) - o).norm() <= robot_radius) f(x, y);
   for (size_t i = 0; i + 1 < pts.size(); ++i) {
     if (!usable[i] || !usable[i + 1] || (pts[i] - pts[i + 1]).norm() > max_gap) continue;
     // Shrink the wedge by half a cell so the wall cells at its far edge are not marked free.
@@ -135,7 +133,7 @@ void RegionBuilder::add_incrementally(const StoredScan& scan) const
     lo_ = lo_.cwiseMin(pts[i]);
     hi_ = hi_.cwiseMax(pts[i]);
   }
-  carve_scan(o, pts, usable, options_.freespace_resolution, kMaxWedgeGap,
+  carve_scan(o, pts, usable, options_.freespace_resolution, kMaxWedgeGap, options_.robot_radius,
              [&](int32_t x, int32_t y) { free_cells_.insert(cell_key(x, y)); });
 }
 
@@ -235,7 +233,7 @@ void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-    carve_scan(o, pts, usable, res, kMaxWedgeGap, [&](int32_t x, int32_t y) { cells_set.insert(cell_key(x, y)); });
+    carve_scan(o, pts, usable, res, kMaxWedgeGap, options_.robot_radius, [&](int32_t x, int32_t y) { cells_set.insert(cell_key(x, y)); });
   }
   std::vector<Cell> cells;
   for (const uint64_t k : cells_set) cells.emplace_back(key_x(k), key_y(k));

@@ -43,6 +43,7 @@ struct RegionBuildOptions
   LineAlignOptions align;              // scans aligned to the line map before merging (line map only)
   double freespace_resolution = 0.15;  // [m] (diss.: 15 cm)
   double freespace_max_range = 8.0;    // [m] beams are carved up to this length
+  double robot_radius = 0.26;          // [m] the cells under the robot at each scan are free (robot.yaml radius_m)
   // [m] the exact freespace leaves out what the robot only saw through a passage narrower than
   // this (freespace_trim.h); 0: off
   double freespace_min_passage = 1.0;

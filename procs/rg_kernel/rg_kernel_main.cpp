@@ -11,7 +11,7 @@ int main(int argc, char** argv)
   return runtime::process_main(
       argc, argv, "rg_kernel",
       [&](runtime::ProcessContext& ctx) {
-        auto config = rg_kernel::load_node_config(ctx.config, runtime::default_config_dir() + "/..");
+        auto config = rg_kernel::load_node_config(ctx.config, ctx.robot, runtime::default_config_dir() + "/..");
         if (!state_dir.empty()) config.state_dir = state_dir;
         if (ctx.checking_only) config.state_dir.clear();  // a config check opens no journal
         return std::make_shared<rg_kernel::RgKernelNode>(ctx.node, config);

@@ -13,10 +13,10 @@
 
 namespace rgnav::rg_kernel {
 
-NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_root)
+NodeConfig load_node_config(const config::Config& cfg, const config::RobotDescription& robot, const std::string& repo_root)
 {
   NodeConfig c;
-  c.kernel = load_kernel_options(cfg);
+  c.kernel = load_kernel_options(cfg, robot);
   c.graph = load_graph_options(cfg.section("graph"));
   const auto p = cfg.section("persistence");
   c.state_dir = p.string("state_dir", "logs/state/rg_kernel");

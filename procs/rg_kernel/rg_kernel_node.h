@@ -13,6 +13,7 @@
 #include <string>
 
 #include "config/config.h"
+#include "config/robot_description.h"
 #include "procs/rg_kernel/rg_kernel.h"
 #include "procs/rg_kernel/state_store.h"
 #include "rgmap/rg_graph.h"
@@ -41,8 +42,9 @@ struct NodeConfig
   std::string rg_graph = "RG_GRAPH";
 };
 
-// The kernel's options (rg_kernel_options.h) and the node's own: persistence, publish, channels.
-NodeConfig load_node_config(const config::Config& cfg, const std::string& repo_root);
+// The kernel's options (rg_kernel_options.h, with the robot description's radius) and the
+// node's own: persistence, publish, channels.
+NodeConfig load_node_config(const config::Config& cfg, const config::RobotDescription& robot, const std::string& repo_root);
 
 class RgKernelNode
 {

@@ -32,9 +32,10 @@ ObjectOptions load_object_options(const config::Config& s)
   return o;
 }
 
-KernelOptions load_kernel_options(const config::Config& cfg)
+KernelOptions load_kernel_options(const config::Config& cfg, const config::RobotDescription& robot)
 {
   KernelOptions c;
+  c.build.robot_radius = robot.radius;
   const auto k = cfg.section("kernel");
   c.gateway_match_distance = k.number("gateway_match_distance_m", c.gateway_match_distance, 0.1, 5.0);
   c.merge_min_scans = static_cast<int>(k.integer("merge_min_scans", c.merge_min_scans, 1, 1000));

@@ -14,7 +14,7 @@ int main(int argc, char** argv)
   return rgnav::runtime::process_main(
       argc, argv, "scan_mapper",
       [&](rgnav::runtime::ProcessContext& ctx) {
-        const auto options = sm::load_scan_mapper_options(ctx.config.section("scan_mapper"));
+        const auto options = sm::load_scan_mapper_options(ctx.config.section("scan_mapper"), ctx.robot);
         const auto channels = sm::load_scan_mapper_channels(ctx.config.section("channels"));
         auto persistence = sm::load_persistence_options(ctx.config.section("persistence"));
         if (!state_file.empty()) persistence.state_file = state_file;

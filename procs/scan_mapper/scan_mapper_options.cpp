@@ -7,12 +7,11 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 }
 
-ScanMapperOptions load_scan_mapper_options(const config::Config& c)
+ScanMapperOptions load_scan_mapper_options(const config::Config& c, const config::RobotDescription& robot)
 {
   ScanMapperOptions o;
-  // Same convention as config/robot.yaml: x [m], y [m], theta [rad].
-  const auto mount = c.numbers("base_from_laser", {0.0, 0.0, 0.0}, -10.0, 10.0, 3, 3);
-  o.base_from_laser = Pose2{mount[0], mount[1], normalize_angle(mount[2])};
+  const auto& mount = robot.laser_front.base_from_laser;
+  o.base_from_laser = Pose2{mount.x(), mount.y(), normalize_angle(mount.theta())};
   const auto gate = c.section("gating");
   o.min_travel_m = gate.number("min_travel_m", o.min_travel_m, 0.0, 10.0);
   o.min_rotation_rad = gate.number("min_rotation_deg", o.min_rotation_rad / kDeg, 0.0, 180.0) * kDeg;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "config/config.h"
+#include "config/robot_description.h"
 #include "scan_mapper/correlative_matcher.h"
 #include "scan_mapper/icp.h"
 #include "scan_mapper/loop_search.h"
@@ -150,6 +151,7 @@ struct ScanMapperOptions
   double republish_min_change_rad = 0.002;
 };
 
-ScanMapperOptions load_scan_mapper_options(const config::Config& section);
+// The laser mounting pose is the robot description's (laser_front.base_from_laser).
+ScanMapperOptions load_scan_mapper_options(const config::Config& section, const config::RobotDescription& robot);
 
 }  // namespace rgnav::scan_mapper

@@ -12,7 +12,7 @@ int main(int argc, char** argv)
   return runtime::process_main(
       argc, argv, "tour_runner",
       [&](runtime::ProcessContext& ctx) {
-        auto options = tour_runner::load_options(ctx.config.section("tour"), ctx.config.section("follower"),
+        auto options = tour_runner::load_options(ctx.config.section("tour"), ctx.config.section("follower"), ctx.robot,
                                                  runtime::default_config_dir());
         if (!tour_file.empty()) options.tour_file = tour_file;
         return std::make_shared<tour_runner::TourRunnerNode>(ctx.node, options,

@@ -4,7 +4,8 @@
 
 namespace rgnav::tour_runner {
 
-TourRunnerOptions load_options(const config::Config& t, const config::Config& f, const std::string& config_dir)
+TourRunnerOptions load_options(const config::Config& t, const config::Config& f, const config::RobotDescription& robot,
+                               const std::string& config_dir)
 {
   TourRunnerOptions o;
   o.tour_file = t.required_string("file");
@@ -18,12 +19,11 @@ TourRunnerOptions load_options(const config::Config& t, const config::Config& f,
   o.max_speed = t.number("max_speed_mps", o.max_speed, 0.05, 2.0);
   o.scan_stale_s = t.number("scan_stale_s", o.scan_stale_s, 0.05, 5.0);
   o.cmd_deadline_us = static_cast<int32_t>(t.integer("cmd_deadline_us", o.cmd_deadline_us, 10'000, 1'000'000));
-  const auto bl = t.numbers("base_from_laser", {0.12, 0.0, 0.0}, -5, 5, 3, 3);
-  o.base_from_laser = geometry::Pose2(bl[0], bl[1], bl[2]);
+  o.base_from_laser = robot.laser_front.base_from_laser;
   o.follower.max_v = f.number("max_v_mps", o.follower.max_v, 0.05, 1.5);
   o.follower.max_omega = f.number("max_omega_radps", o.follower.max_omega, 0.1, 3.0);
   o.follower.turn_in_place_angle = f.number("turn_in_place_rad", o.follower.turn_in_place_angle, 0.1, M_PI);
-  o.follower.robot_radius = f.number("robot_radius_m", o.follower.robot_radius, 0.05, 1.0);
+  o.follower.robot_radius = robot.radius;
   o.follower.stop_distance = f.number("stop_distance_m", o.follower.stop_distance, 0.0, 2.0);
   o.follower.slow_distance = f.number("slow_distance_m", o.follower.slow_distance, 0.05, 5.0);
   if (o.follower.slow_distance <= o.follower.stop_distance) f.fail("slow_distance_m", "must exceed stop_distance_m");

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "config/config.h"
+#include "config/robot_description.h"
 #include "geometry/pose2.h"
 #include "procs/tour_runner/pure_pursuit.h"
 #include "procs/tour_runner/tour_sequencer.h"
@@ -25,8 +26,9 @@ struct TourRunnerOptions
   int32_t cmd_deadline_us = 200'000;
 };
 
-// Relative tour files resolve against config_dir.
+// Relative tour files resolve against config_dir. The laser mounting pose and the follower's
+// robot radius are the robot description's.
 TourRunnerOptions load_options(const config::Config& tour_section, const config::Config& follower_section,
-                               const std::string& config_dir);
+                               const config::RobotDescription& robot, const std::string& config_dir);
 
 }  // namespace rgnav::tour_runner

@@ -119,5 +119,37 @@ TEST(RuntimeProcess, BadConfigExitsTwo)
   EXPECT_NE(read_file(dir.file("stderr")).find("hearbeat_typo"), std::string::npos) << read_file(dir.file("stderr"));
 }
 
+TEST(RuntimeProcess, BadRobotDescriptionExitsTwoBesideTheConfigOrByFlag)
+{
+  // The robot description beside the process config is the default; --robot names another.
+  TempDir dir;
+  {
+    std::ifstream in(std::string(RGNAV_INTEGRATION_CONFIG_DIR) + "/contract_subscriber.yaml");
+    std::ofstream out(dir.file("contract_subscriber.yaml"));
+    out << in.rdbuf();
+    std::ifstream robot_in(std::string(RGNAV_SOURCE_DIR) + "/config/robot.yaml");
+    std::ofstream robot_out(dir.file("robot.yaml"));
+    robot_out << robot_in.rdbuf() << "radius_typo: 1\n";
+    std::ofstream other(dir.file("other_robot.yaml"));
+    other << "robot: {name: b21r}\n";
+  }
+  ChildOptions o;
+  o.stderr_path = dir.file("stderr");
+  auto status = run_to_completion({RGNAV_CONTRACT_SUBSCRIBER, "--config", dir.file("contract_subscriber.yaml"),
+                                   "--lcm-url", "memq://", "--check-config"},
+                                  seconds(20), o);
+  EXPECT_TRUE(status.exited && status.code == 2) << status.describe();
+  EXPECT_NE(read_file(dir.file("stderr")).find("radius_typo"), std::string::npos) << read_file(dir.file("stderr"));
+  status = run_to_completion({RGNAV_CONTRACT_SUBSCRIBER, "--config", dir.file("contract_subscriber.yaml"), "--robot",
+                              dir.file("other_robot.yaml"), "--lcm-url", "memq://", "--check-config"},
+                             seconds(20), o);
+  EXPECT_TRUE(status.exited && status.code == 2) << status.describe();
+  EXPECT_NE(read_file(dir.file("stderr")).find("robot.radius_m"), std::string::npos) << read_file(dir.file("stderr"));
+  status = run_to_completion({RGNAV_CONTRACT_SUBSCRIBER, "--config", dir.file("contract_subscriber.yaml"), "--robot",
+                              std::string(RGNAV_SOURCE_DIR) + "/config/robot.yaml", "--lcm-url", "memq://", "--check-config"},
+                             seconds(20), o);
+  EXPECT_TRUE(status.exited && status.code == 0) << status.describe() << read_file(dir.file("stderr"));
+}
+
 }  // namespace
 }  // namespace rgnav::testing

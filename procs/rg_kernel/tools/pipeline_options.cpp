@@ -15,10 +15,11 @@ LoadedPipeline load_pipeline(const PipelineConfigPaths& paths)
 {
   LoadedPipeline out;
   auto& o = out.options;
-  o.mapper = scan_mapper::load_offline_options(paths.scan_mapper);
+  out.robot = config::load_robot_description_file(paths.robot);
+  o.mapper = scan_mapper::load_offline_options(paths.scan_mapper, out.robot);
 
   const auto gw = config::Config::load(paths.gateway_detector);
-  o.detector = gateway_detector::load_detector_options(gw);
+  o.detector = gateway_detector::load_detector_options(gw, out.robot);
   const auto cls = gateway_detector::load_classifier_config(gw.section("classifier"), paths.gateway_detector);
   if (!cls.models_path.empty() && std::filesystem::exists(cls.models_path)) {
     auto models = gateway_detector::load_gateway_models(cls.models_path);
@@ -34,10 +35,10 @@ LoadedPipeline load_pipeline(const PipelineConfigPaths& paths)
     out.classifier_note = "none (" + (cls.models_path.empty() ? std::string("not configured") : cls.models_path + " missing") +
                           "): crossings classified by their observation weights";
   }
-  config::finish_except(gw, {"node", "channels", "laser"});
+  config::finish_except(gw, {"node", "channels"});
 
   const auto kernel_cfg = config::Config::load(paths.rg_kernel);
-  o.kernel = rg_kernel::load_kernel_options(kernel_cfg);
+  o.kernel = rg_kernel::load_kernel_options(kernel_cfg, out.robot);
   o.graph = rg_kernel::load_graph_options(kernel_cfg.section("graph"));
   config::finish_except(kernel_cfg, {"node", "channels", "persistence", "publish"});
   return out;

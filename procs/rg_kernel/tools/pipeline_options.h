@@ -1,11 +1,13 @@
 // Options of the offline RG mapping pipeline: the scan mapper's, the gateway detector's and the
 // RG kernel's, each loaded from its own process config (config/scan_mapper.yaml,
-// config/gateway_detector_aligned.yaml, config/rg_kernel.yaml) by that process's own loader,
-// so the offline tool and the live processes can never disagree about a parameter.
+// config/gateway_detector_aligned.yaml, config/rg_kernel.yaml) by that process's own loader
+// with the robot description (config/robot.yaml), so the offline tool and the live processes
+// can never disagree about a parameter.
 #pragma once
 
 #include <string>
 
+#include "config/robot_description.h"
 #include "gateway_detector/gateway_detector.h"
 #include "gateway_detector/hmm.h"
 #include "procs/rg_kernel/rg_kernel.h"
@@ -32,10 +34,12 @@ struct PipelineConfigPaths
   std::string scan_mapper;       // config/scan_mapper.yaml
   std::string gateway_detector;  // config/gateway_detector_aligned.yaml
   std::string rg_kernel;         // config/rg_kernel.yaml
+  std::string robot;             // config/robot.yaml
 };
 
 struct LoadedPipeline
 {
+  config::RobotDescription robot;
   PipelineOptions options;
   gateway_detector::HmmClassifier classifier;  // empty: crossings classified by their weights
   std::string classifier_note;                 // where the models came from, or why there are none

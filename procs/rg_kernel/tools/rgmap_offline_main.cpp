@@ -16,7 +16,8 @@ int main(int argc, char** argv)
   CLI::App app{"Build an RG map offline from an LCM log (scan mapper + gateway detector + RG kernel)"};
   const std::string cfg_dir = rgnav::runtime::default_config_dir();
   std::string log_path, out;
-  rp::PipelineConfigPaths paths{cfg_dir + "/scan_mapper.yaml", cfg_dir + "/gateway_detector_aligned.yaml", cfg_dir + "/rg_kernel.yaml"};
+  rp::PipelineConfigPaths paths{cfg_dir + "/scan_mapper.yaml", cfg_dir + "/gateway_detector_aligned.yaml", cfg_dir + "/rg_kernel.yaml",
+                                cfg_dir + "/robot.yaml"};
   std::vector<double> mount;
   bool given = false, no_pictures = false;
   rp::OutputOptions oo;
@@ -25,6 +26,7 @@ int main(int argc, char** argv)
   app.add_option("--config", paths.scan_mapper, "scan mapper config")->check(CLI::ExistingFile);
   app.add_option("--gateway-config", paths.gateway_detector, "gateway detector config")->check(CLI::ExistingFile);
   app.add_option("--rg-config", paths.rg_kernel, "RG kernel config")->check(CLI::ExistingFile);
+  app.add_option("--robot", paths.robot, "robot description")->check(CLI::ExistingFile);
   app.add_option("--base-from-laser", mount, "laser mounting pose of the logged robot: x y theta [m m rad]")->expected(3);
   app.add_flag("--poses-as-given", given, "take the log's odometry as corrected poses (no scan matching)");
   app.add_option("--pixels-per-metre", oo.pixels_per_metre, "RG map picture scale")->check(CLI::Range(1.0, 500.0));

@@ -1,5 +1,6 @@
 // rgnav_map: the scan mapper offline over an LCM log (LASER_FRONT + ODOMETRY).
-//   rgnav_map LOG.lcmlog --out DIR [--config config/scan_mapper.yaml] [--base-from-laser X Y THETA]
+//   rgnav_map LOG.lcmlog --out DIR [--config config/scan_mapper.yaml] [--robot config/robot.yaml]
+//             [--base-from-laser X Y THETA]
 // Writes DIR/trajectory.txt, DIR/aligned_scans.lcmlog, DIR/map.png and prints a summary.
 #include <CLI/CLI.hpp>
 
@@ -16,16 +17,18 @@ namespace sm = rgnav::scan_mapper;
 int main(int argc, char** argv)
 {
   CLI::App app{"Map an LCM log offline with the scan mapper"};
-  std::string log_path, out, config_path = rgnav::runtime::default_config_dir() + "/scan_mapper.yaml";
+  std::string log_path, out, config_path = rgnav::runtime::default_config_dir() + "/scan_mapper.yaml", robot_path;
   std::vector<double> mount;
   app.add_option("log", log_path, "LCM log with LASER_FRONT and ODOMETRY")->required()->check(CLI::ExistingFile);
   app.add_option("--out", out, "output folder")->required();
   app.add_option("--config", config_path, "scan mapper config");
+  app.add_option("--robot", robot_path, "robot description (default: robot.yaml beside the config)");
   app.add_option("--base-from-laser", mount, "laser mounting pose of the logged robot: x y theta [m m rad]")->expected(3);
   CLI11_PARSE(app, argc, argv);
   sm::ScanMapperOptions options;
   try {
-    options = sm::load_offline_options(config_path);
+    if (robot_path.empty()) robot_path = rgnav::runtime::default_robot_path(config_path);
+    options = sm::load_offline_options(config_path, rgnav::config::load_robot_description_file(robot_path));
   } catch (const std::exception& e) {
     std::cerr << "rgnav_map: " << e.what() << "\n";
     return 2;

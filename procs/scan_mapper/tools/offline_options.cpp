@@ -4,10 +4,10 @@
 
 namespace rgnav::scan_mapper {
 
-ScanMapperOptions load_offline_options(const std::string& config_path)
+ScanMapperOptions load_offline_options(const std::string& config_path, const config::RobotDescription& robot)
 {
   const auto cfg = config::Config::load(config_path);
-  const ScanMapperOptions options = load_scan_mapper_options(cfg.section("scan_mapper"));
+  const ScanMapperOptions options = load_scan_mapper_options(cfg.section("scan_mapper"), robot);
   config::finish_except(cfg, {"node", "channels", "persistence"});
   return options;
 }

@@ -10,7 +10,8 @@
 
 namespace rgnav::scan_mapper {
 
-// Throws config::ConfigError naming the file and key.
-ScanMapperOptions load_offline_options(const std::string& config_path);
+// The laser mounting pose is the robot description's. Throws config::ConfigError naming the file
+// and key.
+ScanMapperOptions load_offline_options(const std::string& config_path, const config::RobotDescription& robot);
 
 }  // namespace rgnav::scan_mapper

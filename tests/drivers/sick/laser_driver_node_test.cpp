@@ -26,7 +26,8 @@ TEST(LaserDriverOptions, TheShippedConfigIsValid)
 {
   const auto cfg = config::Config::load(SICK_CONFIG_FILE);
   runtime::load_node_options(cfg.section("node"), "laser_driver");
-  const auto o = load_laser_driver_options(cfg.section("laser_driver"), cfg.section("channels"));
+  const auto robot = config::load_robot_description_file(config::robot_path_beside(SICK_CONFIG_FILE, ""));
+  const auto o = load_laser_driver_options(cfg.section("laser_driver"), cfg.section("channels"), robot);
   EXPECT_NO_THROW(cfg.finish());
   EXPECT_EQ(o.channel, "LASER_FRONT");
   EXPECT_EQ(o.driver.desired_baud, 500000);
@@ -34,12 +35,29 @@ TEST(LaserDriverOptions, TheShippedConfigIsValid)
   EXPECT_EQ(o.driver.units, Units::kMillimetres);
 }
 
+TEST(LaserDriverOptions, TheMountingIsTheRobotDescriptions)
+{
+  config::RobotDescription robot;
+  robot.laser_front.base_from_laser = geometry::Pose2(0.3, -0.1, 0.5);
+  robot.laser_front.height = 0.7;
+  const auto cfg = parse("channels: {laser: LASER_FRONT}\nlaser_driver:\n  port: /dev/null\n");
+  const auto o = load_laser_driver_options(cfg.section("laser_driver"), cfg.section("channels"), robot);
+  EXPECT_DOUBLE_EQ(o.mounting.x_m, 0.3);
+  EXPECT_DOUBLE_EQ(o.mounting.y_m, -0.1);
+  EXPECT_DOUBLE_EQ(o.mounting.z_m, 0.7);
+  EXPECT_DOUBLE_EQ(o.mounting.yaw_rad, 0.5);
+  // A copy of it in the driver's config is refused (one robot description).
+  const auto copied = parse("channels: {laser: LASER_FRONT}\nlaser_driver:\n  port: /dev/null\n  mounting: {x_m: 0.12}\n");
+  load_laser_driver_options(copied.section("laser_driver"), copied.section("channels"), robot);
+  EXPECT_THROW(copied.finish(), config::ConfigError);
+}
+
 TEST(LaserDriverOptions, RejectsImpossibleSettingsNamingTheKey)
 {
   const std::string base = "channels: {laser: LASER_FRONT}\nlaser_driver:\n  port: /dev/null\n";
   auto load = [&](const std::string& extra) {
     const auto cfg = parse(base + extra);
-    return load_laser_driver_options(cfg.section("laser_driver"), cfg.section("channels"));
+    return load_laser_driver_options(cfg.section("laser_driver"), cfg.section("channels"), config::RobotDescription{});
   };
   EXPECT_NO_THROW(load(""));
   auto expect_error = [&](const std::string& extra, const std::string& key) {
@@ -59,7 +77,7 @@ TEST(LaserDriverOptions, RejectsImpossibleSettingsNamingTheKey)
   EXPECT_THROW(
       {
         const auto cfg = parse("channels: {}\nlaser_driver: {}\n");
-        load_laser_driver_options(cfg.section("laser_driver"), cfg.section("channels"));
+        load_laser_driver_options(cfg.section("laser_driver"), cfg.section("channels"), config::RobotDescription{});
       },
       config::ConfigError);  // port is required
 }

@@ -20,6 +20,7 @@ namespace {
 
 std::string config_dir() { return std::string(RGNAV_SOURCE_DIR) + "/config"; }
 std::string config_path(const std::string& name) { return config_dir() + "/" + name; }
+config::RobotDescription robot() { return config::load_robot_description_file(config_path("robot.yaml")); }
 
 // The YAML tree of a config file without the listed "section.key" entries.
 std::string tree_without(const std::string& file, const std::vector<std::pair<std::string, std::string>>& drop)
@@ -46,10 +47,10 @@ TEST(ProtocolConfig, ShippedSimYamlServesTheSimDriverConfigs)
   const auto files = load_protocol_section(cfg.section("protocol"), config_dir());
   EXPECT_EQ(files.laser_driver_config, config_path("laser_driver_sim.yaml"));
   EXPECT_EQ(files.base_driver_config, config_path("base_driver_sim.yaml"));
-  const ProtocolOptions p = load_protocol_options(files, cfg.section("protocol"));
+  const ProtocolOptions p = load_protocol_options(files, cfg.section("protocol"), robot());
 
   const auto laser_cfg = config::Config::load(files.laser_driver_config);
-  const auto laser = drivers::sick::load_laser_driver_options(laser_cfg.section("laser_driver"), laser_cfg.section("channels"));
+  const auto laser = drivers::sick::load_laser_driver_options(laser_cfg.section("laser_driver"), laser_cfg.section("channels"), robot());
   EXPECT_EQ(p.laser_port, laser.driver.port);
   EXPECT_EQ(p.laser_port.rfind("/tmp/", 0), 0u) << "a simulated port, never a device";
 
@@ -67,9 +68,9 @@ TEST(ProtocolConfig, ShippedSimYamlServesTheSimDriverConfigs)
 TEST(ProtocolConfig, TheSimulatedLaserSitsWhereTheDriverSaysItIs)
 {
   const auto cfg = config::Config::load(config_path("sim.yaml"));
-  const SimulatorOptions sim = load_simulator_options(cfg);
+  const SimulatorOptions sim = load_simulator_options(cfg, robot());
   const auto laser_cfg = config::Config::load(config_path("laser_driver_sim.yaml"));
-  const auto laser = drivers::sick::load_laser_driver_options(laser_cfg.section("laser_driver"), laser_cfg.section("channels"));
+  const auto laser = drivers::sick::load_laser_driver_options(laser_cfg.section("laser_driver"), laser_cfg.section("channels"), robot());
   EXPECT_EQ(sim.laser.sensor, laser.sensor);
   EXPECT_DOUBLE_EQ(sim.laser.mount_x, laser.mounting.x_m);
   EXPECT_DOUBLE_EQ(sim.laser.mount_y, laser.mounting.y_m);
@@ -113,7 +114,7 @@ TEST_F(ProtocolConfigErrors, ARealPortOrSocketCanIsRefusedNamingTheKey)
   files.laser_driver_config = config_path("laser_driver.yaml");  // the robot's: /dev/ttyLMS
   files.base_driver_config = config_path("base_driver_sim.yaml");
   try {
-    load_protocol_options(files, protocol);
+    load_protocol_options(files, protocol, robot());
     FAIL() << "a /dev port must be refused";
   } catch (const config::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("protocol.laser_driver_config"), std::string::npos) << e.what();
@@ -121,13 +122,13 @@ TEST_F(ProtocolConfigErrors, ARealPortOrSocketCanIsRefusedNamingTheKey)
   files.laser_driver_config = config_path("laser_driver_sim.yaml");
   files.base_driver_config = variant("socketcan.yaml", "interface: virtual", "interface: socketcan");
   try {
-    load_protocol_options(files, protocol);
+    load_protocol_options(files, protocol, robot());
     FAIL() << "a SocketCAN config must be refused";
   } catch (const config::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("protocol.base_driver_config"), std::string::npos) << e.what();
   }
   files.base_driver_config = variant("bad_counts.yaml", "counts_per_unit: 146000", "counts_per_unit: 0");
-  EXPECT_THROW(load_protocol_options(files, protocol), config::ConfigError) << "the driver's own validation applies";
+  EXPECT_THROW(load_protocol_options(files, protocol, robot()), config::ConfigError) << "the driver's own validation applies";
 }
 
 TEST_F(ProtocolConfigErrors, ProtocolModeNeedsTheRealtimeClock)

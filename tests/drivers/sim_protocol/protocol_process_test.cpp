@@ -245,7 +245,8 @@ TEST(SimProtocolProcesses, RealDriversOnTheSimulatedB21r)
   EXPECT_EQ(in.scans_not_from_driver, 0) << "rgnav_sim must not publish LASER_FRONT in protocol mode";
 
   // --- The scans are the simulator's world seen from SIM_TRUTH's pose (standing still).
-  const auto opts = sim::load_simulator_options(config::Config::load(cfg.sim));
+  const auto opts = sim::load_simulator_options(config::Config::load(cfg.sim),
+                                               config::load_robot_description_file(source_config("robot.yaml")));
   const sim::World office = sim::load_world(world);
   const sim::Scene scene(office);
   ASSERT_TRUE(in.pump_until([&] { return in.standstill(); }, 3000ms));

@@ -413,11 +413,12 @@ int main(int argc, char** argv)
   app.add_flag("--oblivious-too", oblivious_too, "also run the courses with people who wait only rather than touch the robot");
   CLI11_PARSE(app, argc, argv);
 
+  const auto robot = config::load_robot_description_file(config_dir + "/robot.yaml");
   const auto lcfg = config::Config::load(config_dir + "/lld.yaml");
-  const lld::LldOptions lo = lld::load_lld_options(lcfg);
+  const lld::LldOptions lo = lld::load_lld_options(lcfg, robot);
   config::finish_except(lcfg, {"node"});
   const auto ccfg = config::Config::load(config_dir + "/collision_avoidance.yaml");
-  const auto co = collision_avoidance::load_ca_options(ccfg);
+  const auto co = collision_avoidance::load_ca_options(ccfg, robot);
   config::finish_except(ccfg, {"node"});
 
   nlohmann::json j;

@@ -19,8 +19,9 @@ namespace {
 TEST(OfficeTour, TheRobotGetsPastThePeopleInTheHallways)
 {
   const std::string config = std::string(RGNAV_SOURCE_DIR) + "/config/";
-  const auto lo = lld::load_lld_options(config::Config::load(config + "lld.yaml"));
-  const auto co = collision_avoidance::load_ca_options(config::Config::load(config + "collision_avoidance.yaml"));
+  const auto robot = config::load_robot_description_file(config + "robot.yaml");
+  const auto lo = lld::load_lld_options(config::Config::load(config + "lld.yaml"), robot);
+  const auto co = collision_avoidance::load_ca_options(config::Config::load(config + "collision_avoidance.yaml"), robot);
   const sim::World world = sim::load_world(config + "worlds/office.yaml");
   const std::vector<Eigen::Vector2d> tour = demo_tour(world);
   ASSERT_FALSE(tour.empty());

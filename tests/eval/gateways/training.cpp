@@ -72,8 +72,8 @@ HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, c
 DetectorOptions load_detector_config(const std::string& config_dir)
 {
   const auto cfg = config::Config::load(config_dir + "/gateway_detector.yaml");
-  const DetectorOptions options = load_detector_options(cfg);
-  config::finish_except(cfg, {"node", "channels", "laser", "classifier"});
+  const DetectorOptions options = load_detector_options(cfg, config::load_robot_description_file(config_dir + "/robot.yaml"));
+  config::finish_except(cfg, {"node", "channels", "classifier"});
   return options;
 }
 

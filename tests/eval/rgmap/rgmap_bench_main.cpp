@@ -66,7 +66,8 @@ int main(int argc, char** argv)
 {
   CLI::App app{"Evaluate RG maps: simulated tours against ground truth, real logs by counts"};
   const std::string cfg_dir = rgnav::runtime::default_config_dir();
-  rp::PipelineConfigPaths paths{cfg_dir + "/scan_mapper.yaml", cfg_dir + "/gateway_detector_aligned.yaml", cfg_dir + "/rg_kernel.yaml"};
+  rp::PipelineConfigPaths paths{cfg_dir + "/scan_mapper.yaml", cfg_dir + "/gateway_detector_aligned.yaml", cfg_dir + "/rg_kernel.yaml",
+                                cfg_dir + "/robot.yaml"};
   std::string sim_config = cfg_dir + "/sim.yaml", json_path, out_dir;
   std::vector<std::string> sims, reals;
   rp::SimTourOptions tour;
@@ -74,6 +75,7 @@ int main(int argc, char** argv)
   app.add_option("--config", paths.scan_mapper, "scan mapper config")->check(CLI::ExistingFile);
   app.add_option("--gateway-config", paths.gateway_detector, "gateway detector config")->check(CLI::ExistingFile);
   app.add_option("--rg-config", paths.rg_kernel, "RG kernel config")->check(CLI::ExistingFile);
+  app.add_option("--robot", paths.robot, "robot description")->check(CLI::ExistingFile);
   app.add_option("--sim-config", sim_config, "simulator config (robot, odometry error, laser)")->check(CLI::ExistingFile);
   app.add_option("--sim", sims, "NAME=WORLD (world file or IPA map image), repeatable");
   app.add_option("--real", reals, "NAME=LOG.lcmlog with corrected poses as odometry (taken as given), repeatable");
@@ -106,7 +108,7 @@ int main(int argc, char** argv)
     j["logs"] = nlohmann::json::object();
     if (!sims.empty()) {
       const auto sim_cfg = rgnav::config::Config::load(sim_config);
-      const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg);
+      const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg, loaded.robot);
       rgnav::config::finish_except(sim_cfg, {"node", "channels", "protocol"});
       for (const auto& spec : sims) {
         const auto [name, path] = split_spec(spec);

@@ -250,12 +250,13 @@ nlohmann::json summarize_seeds(const std::vector<nlohmann::json>& runs)
 int main(int argc, char** argv)
 {
   CLI::App app{"SLAM benchmark of the scan mapper"};
-  std::string json_path, maps_dir, config_path = rgnav::runtime::default_config_dir() + "/scan_mapper.yaml";
+  std::string json_path, maps_dir, config_path = rgnav::runtime::default_config_dir() + "/scan_mapper.yaml", robot_path;
   std::vector<std::string> reals;
   app.add_option("--json", json_path, "result file")->required();
   app.add_option("--maps", maps_dir, "folder for maps and trajectories")->required();
   app.add_option("--real", reals, "NAME=LOG[@X,Y,THETA] (laser mounting pose of that robot)");
   app.add_option("--config", config_path, "scan mapper config (one parameter set for everything)");
+  app.add_option("--robot", robot_path, "robot description (default: robot.yaml beside the config)");
   std::vector<std::string> sims;
   std::string sim_config = rgnav::runtime::default_config_dir() + "/sim.yaml";
 #ifdef RGNAV_SLAM_BENCH_SIM
@@ -272,7 +273,9 @@ int main(int argc, char** argv)
 #endif
   CLI11_PARSE(app, argc, argv);
   try {
-    const auto options = sm::load_offline_options(config_path);
+    if (robot_path.empty()) robot_path = rgnav::runtime::default_robot_path(config_path);
+    const auto robot = rgnav::config::load_robot_description_file(robot_path);
+    const auto options = sm::load_offline_options(config_path, robot);
     nlohmann::json out;
     out["config"] = config_path;
     for (const auto& spec : reals) {
@@ -284,7 +287,7 @@ int main(int argc, char** argv)
 #ifdef RGNAV_SLAM_BENCH_SIM
     if (!sims.empty() || !sims_with_people.empty()) {
       const auto sim_cfg = rgnav::config::Config::load(sim_config);
-      const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg);
+      const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg, robot);
       rgnav::config::finish_except(sim_cfg, {"node", "channels", "protocol"});
       const auto& e = sim_options.odometry;
       out["sim_config"] = sim_config;

@@ -191,7 +191,8 @@ TEST(GatewayModels, CheckedInModelsLoad)
   // They were trained on features made the way every shipped detector config makes them (the
   // demo's aligned config once kept an old setback, and its detector refused to start).
   for (const char* name : {"gateway_detector.yaml", "gateway_detector_aligned.yaml"}) {
-    const auto o = load_detector_options(config::Config::load(std::string(RGNAV_SOURCE_DIR "/config/") + name));
+    const auto o = load_detector_options(config::Config::load(std::string(RGNAV_SOURCE_DIR "/config/") + name),
+                                         config::load_robot_description_file(RGNAV_SOURCE_DIR "/config/robot.yaml"));
     const auto bad = models_mismatch(m, o.measures);
     EXPECT_FALSE(bad.has_value()) << name << ": " << bad->key << ": " << bad->reason;
   }

@@ -104,7 +104,8 @@ TEST(NarrowPassage, ShippedConfigsTakeTheBuildingsWiderDoorways)
   const sensors::LaserScan wide_door = cast(test::door(2.0, 1.4), geometry::Pose2(0.3, 0.05, 0.0), 0.005);
   EXPECT_TRUE(detect_narrow_passages(wide_door, NarrowPassageOptions{}).empty());
   for (const char* name : {"gateway_detector.yaml", "gateway_detector_aligned.yaml"}) {
-    const auto o = load_detector_options(config::Config::load(std::string(RGNAV_SOURCE_DIR "/config/") + name));
+    const auto o = load_detector_options(config::Config::load(std::string(RGNAV_SOURCE_DIR "/config/") + name),
+                                         config::load_robot_description_file(RGNAV_SOURCE_DIR "/config/robot.yaml"));
     const auto nps = detect_narrow_passages(wide_door, o.narrow_passages);
     ASSERT_EQ(nps.size(), 1u) << name;
     EXPECT_NEAR(nps[0].width, 1.4, 0.1) << name;

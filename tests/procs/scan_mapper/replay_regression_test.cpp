@@ -31,7 +31,8 @@ imp::ImportedLog first_scans(const imp::ImportedLog& log, size_t n)
 sm::ScanMapperOptions shipped_options()
 {
   const auto cfg = rgnav::config::Config::load(std::string(RGNAV_SOURCE_DIR) + "/config/scan_mapper.yaml");
-  auto o = sm::load_scan_mapper_options(cfg.section("scan_mapper"));
+  auto o = sm::load_scan_mapper_options(
+      cfg.section("scan_mapper"), rgnav::config::load_robot_description_file(std::string(RGNAV_SOURCE_DIR) + "/config/robot.yaml"));
   o.base_from_laser = sm::Pose2{};  // the Intel log's scans are in the robot frame
   return o;
 }

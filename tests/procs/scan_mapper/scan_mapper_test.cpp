@@ -209,45 +209,61 @@ TEST(OdometryBuffer, InterpolatesAndHoldsBriefly)
 TEST(ScanMapperOptions, LoadsAndRejectsBadValues)
 {
   const auto ok = rgnav::config::Config::parse("scan_mapper:\n  gating:\n    min_travel_m: 0.3\n", "test");
-  EXPECT_DOUBLE_EQ(sm::load_scan_mapper_options(ok.section("scan_mapper")).min_travel_m, 0.3);
+  EXPECT_DOUBLE_EQ(sm::load_scan_mapper_options(ok.section("scan_mapper"), rgnav::config::RobotDescription{}).min_travel_m, 0.3);
   const auto bad = rgnav::config::Config::parse("scan_mapper:\n  gating:\n    min_travel_m: -1\n", "test");
-  EXPECT_THROW(sm::load_scan_mapper_options(bad.section("scan_mapper")), rgnav::config::ConfigError);
+  EXPECT_THROW(sm::load_scan_mapper_options(bad.section("scan_mapper"), rgnav::config::RobotDescription{}), rgnav::config::ConfigError);
   const auto sided = rgnav::config::Config::parse(
       "scan_mapper:\n  registration:\n    icp:\n      max_normal_angle_deg: 90\n  loop_closure:\n    max_rms_m: 0.03\n", "test");
-  const auto so = sm::load_scan_mapper_options(sided.section("scan_mapper"));
+  const auto so = sm::load_scan_mapper_options(sided.section("scan_mapper"), rgnav::config::RobotDescription{});
   EXPECT_DOUBLE_EQ(so.icp.max_normal_angle_deg, 90.0);
   EXPECT_DOUBLE_EQ(so.loop.max_rms_m, 0.03);
   const auto hall = rgnav::config::Config::parse("scan_mapper:\n  loop_closure:\n    degenerate_variance_m2: 50\n", "test");
-  EXPECT_DOUBLE_EQ(sm::load_scan_mapper_options(hall.section("scan_mapper")).loop.degenerate_variance_m2, 50.0);
+  EXPECT_DOUBLE_EQ(sm::load_scan_mapper_options(hall.section("scan_mapper"), rgnav::config::RobotDescription{}).loop.degenerate_variance_m2, 50.0);
   const auto witness = rgnav::config::Config::parse(
       "scan_mapper:\n  loop_closure:\n    degenerate_keeps_graph_axis: true\n    degenerate_covariance_scale: 16\n", "test");
-  const auto wo = sm::load_scan_mapper_options(witness.section("scan_mapper"));
+  const auto wo = sm::load_scan_mapper_options(witness.section("scan_mapper"), rgnav::config::RobotDescription{});
   EXPECT_TRUE(wo.loop.degenerate_keeps_graph_axis);
   EXPECT_DOUBLE_EQ(wo.loop.degenerate_covariance_scale, 16.0);
   const auto stronger = rgnav::config::Config::parse("scan_mapper:\n  loop_closure:\n    degenerate_covariance_scale: 0.5\n", "test");
-  EXPECT_THROW(sm::load_scan_mapper_options(stronger.section("scan_mapper")), rgnav::config::ConfigError);
+  EXPECT_THROW(sm::load_scan_mapper_options(stronger.section("scan_mapper"), rgnav::config::RobotDescription{}), rgnav::config::ConfigError);
   const auto blunt = rgnav::config::Config::parse("scan_mapper:\n  registration:\n    icp:\n      max_normal_angle_deg: 200\n", "test");
-  EXPECT_THROW(sm::load_scan_mapper_options(blunt.section("scan_mapper")), rgnav::config::ConfigError);
+  EXPECT_THROW(sm::load_scan_mapper_options(blunt.section("scan_mapper"), rgnav::config::RobotDescription{}), rgnav::config::ConfigError);
   const auto scaled = rgnav::config::Config::parse("scan_mapper:\n  odometry_scale:\n    window_m: 20\n", "test");
-  EXPECT_DOUBLE_EQ(sm::load_scan_mapper_options(scaled.section("scan_mapper")).odometry_scale.window_m, 20.0);
+  EXPECT_DOUBLE_EQ(sm::load_scan_mapper_options(scaled.section("scan_mapper"), rgnav::config::RobotDescription{}).odometry_scale.window_m, 20.0);
   const auto loose = rgnav::config::Config::parse("scan_mapper:\n  odometry_scale:\n    max_error: 0.6\n", "test");
-  EXPECT_THROW(sm::load_scan_mapper_options(loose.section("scan_mapper")), rgnav::config::ConfigError);
+  EXPECT_THROW(sm::load_scan_mapper_options(loose.section("scan_mapper"), rgnav::config::RobotDescription{}), rgnav::config::ConfigError);
   const auto beam = rgnav::config::Config::parse(
       "scan_mapper:\n  points:\n    beam_normals:\n      max_gap_m: 0.8\n      max_bend_deg: 10\n"
       "  odometry_noise:\n    adapt:\n      degeneracy: true\n",
       "test");
-  const auto bo = sm::load_scan_mapper_options(beam.section("scan_mapper"));
+  const auto bo = sm::load_scan_mapper_options(beam.section("scan_mapper"), rgnav::config::RobotDescription{});
   EXPECT_DOUBLE_EQ(bo.normals.beam_max_gap_m, 0.8);
   EXPECT_NEAR(bo.normals.beam_max_bend_rad, 10.0 * M_PI / 180.0, 1e-12);
   EXPECT_TRUE(bo.odometry_noise.adapt_degeneracy);
   const auto bent = rgnav::config::Config::parse("scan_mapper:\n  points:\n    beam_normals:\n      max_bend_deg: 60\n", "test");
-  EXPECT_THROW(sm::load_scan_mapper_options(bent.section("scan_mapper")), rgnav::config::ConfigError);
+  EXPECT_THROW(sm::load_scan_mapper_options(bent.section("scan_mapper"), rgnav::config::RobotDescription{}), rgnav::config::ConfigError);
   const auto typo = rgnav::config::Config::parse("scan_mapper:\n  gating:\n    min_travle_m: 0.3\n", "test");
-  sm::load_scan_mapper_options(typo.section("scan_mapper"));
+  sm::load_scan_mapper_options(typo.section("scan_mapper"), rgnav::config::RobotDescription{});
   EXPECT_THROW(typo.finish(), rgnav::config::ConfigError);
   // The shipped config is valid and complete.
   const auto shipped = rgnav::config::Config::load(std::string(RGNAV_SOURCE_DIR) + "/config/scan_mapper.yaml");
-  sm::load_scan_mapper_options(shipped.section("scan_mapper"));
+  const auto robot = rgnav::config::load_robot_description_file(std::string(RGNAV_SOURCE_DIR) + "/config/robot.yaml");
+  sm::load_scan_mapper_options(shipped.section("scan_mapper"), robot);
+}
+
+TEST(ScanMapperOptions, TheLaserMountIsTheRobotDescriptions)
+{
+  rgnav::config::RobotDescription robot;
+  robot.laser_front.base_from_laser = sm::Pose2(0.3, -0.1, 0.5);
+  const auto cfg = rgnav::config::Config::parse("scan_mapper:\n  gating:\n    min_travel_m: 0.3\n", "test");
+  const auto o = sm::load_scan_mapper_options(cfg.section("scan_mapper"), robot);
+  EXPECT_DOUBLE_EQ(o.base_from_laser.x(), 0.3);
+  EXPECT_DOUBLE_EQ(o.base_from_laser.y(), -0.1);
+  EXPECT_DOUBLE_EQ(o.base_from_laser.theta(), 0.5);
+  // A copy of it in the mapper's config is refused as an unknown key.
+  const auto copied = rgnav::config::Config::parse("scan_mapper:\n  base_from_laser: [0.12, 0.0, 0.0]\n", "test");
+  sm::load_scan_mapper_options(copied.section("scan_mapper"), robot);
+  EXPECT_THROW(copied.finish(), rgnav::config::ConfigError);
 }
 
 TEST(ScanMapper, GatesCorrectsDriftAndClosesTheLoop)
