@@ -222,6 +222,15 @@ ExitStatus run_to_completion(std::vector<std::string> argv, std::chrono::millise
   return child.stop(std::chrono::milliseconds(1000));
 }
 
+std::string executable_dir()
+{
+  char buf[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) return ".";
+  std::string p(buf, static_cast<size_t>(n));
+  return p.substr(0, p.rfind('/'));
+}
+
 std::string read_file(const std::string& path)
 {
   std::ifstream in(path, std::ios::binary);

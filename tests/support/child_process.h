@@ -100,6 +100,9 @@ ExitStatus run_to_completion(std::vector<std::string> argv, std::chrono::millise
 // Reads a whole file ("" if it does not exist).
 std::string read_file(const std::string& path);
 
+// The folder of the running executable: build/bin, beside the processes a test starts.
+std::string executable_dir();
+
 // A fresh empty directory under $TMPDIR (or /tmp), removed with its contents on destruction.
 class TempDir
 {

@@ -36,25 +36,13 @@ namespace {
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-std::string bin_dir()
-{
-  char buf[4096];
-  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (n <= 0) return ".";
-  std::string p(buf, static_cast<size_t>(n));
-  return p.substr(0, p.rfind('/'));
-}
-
 std::string source_config(const std::string& name) { return std::string(RGNAV_SOURCE_DIR) + "/config/" + name; }
 
 // A shipped config with exact text replacements, written into the test's directory.
 std::string copy_config(const testing::TempDir& dir, const std::string& name,
                         const std::vector<std::pair<std::string, std::string>>& edits, std::string out = "")
 {
-  std::ifstream in(source_config(name));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
+  std::string text = testing::read_file(source_config(name));
   for (const auto& [from, to] : edits) {
     const size_t at = text.find(from);
     if (at == std::string::npos) throw std::runtime_error(name + ": '" + from + "' not found");
@@ -209,7 +197,7 @@ TEST(SimProtocolProcesses, RealDriversOnTheSimulatedB21r)
   testing::TempDir dir("rgnav_sim_protocol");
   const RunConfigs cfg = write_configs(dir, "internal");
   const std::string url = testing::test_udpm_url();
-  const std::string bin = bin_dir();
+  const std::string bin = testing::executable_dir();
   const std::string world = source_config("worlds/office.yaml");
 
   bus::LcmBus lcm(url);
@@ -331,7 +319,7 @@ TEST(SimProtocolProcesses, ExternalBrokerAndConfigChecks)
   testing::TempDir dir("rgnav_sim_protocol_ext");
   const RunConfigs cfg = write_configs(dir, "external");
   const std::string url = testing::test_udpm_url();
-  const std::string bin = bin_dir();
+  const std::string bin = testing::executable_dir();
   const std::string world = source_config("worlds/office.yaml");
 
   // Protocol mode refuses a clock the real drivers cannot follow: exit 2 naming the key.
