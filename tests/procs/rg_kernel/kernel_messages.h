@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rgnav/aligned_scan_t.hpp"
+#include "laser_scan_msg.h"
 #include "rgnav/gateway_event_t.hpp"
 #include "synthetic_world.h"
 
@@ -26,15 +27,8 @@ inline aligned_scan_t aligned_scan_msg(const std::vector<Wall>& walls, int64_t u
   m.scan_id = scan_id;
   m.map_from_base = map_from_base;
   m.odom_from_base = m.map_from_base;
+  m.scan = rgnav::testing::laser_scan_msg(utime, scan_id, 8.0f, 8.0f);
   laser_scan_t& s = m.scan;
-  s.utime = m.utime;
-  s.scan_id = m.scan_id;
-  s.sensor = "laser_front";
-  s.angle_min = static_cast<float>(-M_PI / 2);
-  s.angle_increment = static_cast<float>(M_PI / 180);
-  s.range_max = 8.0f;
-  s.nranges = 181;
-  s.ranges.assign(181, 8.0f);
   const geometry::Pose2 pose(m.map_from_base.x, m.map_from_base.y, m.map_from_base.theta);
   // cast() drops max-range beams; recover each beam's range from its bearing.
   for (const auto& p : cast(walls, pose, 8.0, pillars)) {

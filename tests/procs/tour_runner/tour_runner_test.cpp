@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "fake_bus_node.h"
+#include "laser_scan_msg.h"
 #include "procs/tour_runner/pure_pursuit.h"
 #include "procs/tour_runner/tour.h"
 #include "procs/tour_runner/tour_runner_node.h"
@@ -133,16 +134,7 @@ struct NodeHarness : rgnav::testing::FakeBusNode
   }
   void scan(int64_t utime)
   {
-    laser_scan_t s{};
-    s.utime = utime;
-    s.scan_id = utime;
-    s.sensor = "laser_front";
-    s.angle_min = static_cast<float>(-M_PI / 2);
-    s.angle_increment = static_cast<float>(M_PI / 180);
-    s.range_max = 8.183f;
-    s.nranges = 181;
-    s.ranges.assign(181, 8.183f);
-    bus::publish(*bus, "LASER_FRONT", s);
+    bus::publish(*bus, "LASER_FRONT", rgnav::testing::laser_scan_msg(utime, utime, 8.183f, 8.183f));
   }
   template <class T>
   std::vector<T> received(const std::string& ch)
