@@ -137,10 +137,8 @@ TEST(BaseDriverProcesses, OdometryFollowsBaseCmdAndSigtermExitsCleanly)
   }));
 
   // SIGTERM: clean exits.
-  const auto drv = driver.stop(5000ms);
-  EXPECT_TRUE(drv.clean()) << drv.describe() << "\n" << driver.stderr_text();
-  const auto brk = broker.stop(5000ms);
-  EXPECT_TRUE(brk.clean()) << brk.describe() << "\n" << broker.stderr_text();
+  testing::expect_clean_stop(driver);
+  testing::expect_clean_stop(broker);
   EXPECT_EQ(odo.drops.total(), 0);
 }
 
@@ -153,10 +151,8 @@ TEST(BaseDriverProcesses, DriveEmulatorExitsCleanlyOnSigterm)
   testing::ChildProcess emulator({bin + "/drive_emulator", "--path", socket}, {dir.file("e.out"), dir.file("e.err"), {}, ""});
   std::this_thread::sleep_for(500ms);
   ASSERT_TRUE(emulator.running()) << emulator.stderr_text();
-  const auto e = emulator.stop(5000ms);
-  EXPECT_TRUE(e.clean()) << e.describe() << emulator.stderr_text();
-  const auto b = broker.stop(5000ms);
-  EXPECT_TRUE(b.clean()) << b.describe() << broker.stderr_text();
+  testing::expect_clean_stop(emulator);
+  testing::expect_clean_stop(broker);
   // A bad config refuses to start with exit code 2.
   std::ofstream(dir.file("bad.yaml")) << "drives: {translation: {node_id: 0}}\n";
   const auto bad = testing::run_to_completion({bin + "/base_driver", "--config", dir.file("bad.yaml"), "--check-config"},

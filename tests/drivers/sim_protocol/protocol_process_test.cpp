@@ -304,12 +304,9 @@ TEST(SimProtocolProcesses, RealDriversOnTheSimulatedB21r)
   EXPECT_LT(match_fraction(scene, office, opts.laser, *in.last_scan, start, 0.05), 0.6);
 
   // --- SIGTERM: every process exits cleanly (drivers first, then the hardware they use).
-  const auto l = laser.stop(5000ms);
-  EXPECT_TRUE(l.clean()) << l.describe() << "\n" << laser.stderr_text();
-  const auto b = base.stop(5000ms);
-  EXPECT_TRUE(b.clean()) << b.describe() << "\n" << base.stderr_text();
-  const auto s = simulator.stop(5000ms);
-  EXPECT_TRUE(s.clean()) << s.describe() << "\n" << simulator.stderr_text();
+  testing::expect_clean_stop(laser);
+  testing::expect_clean_stop(base);
+  testing::expect_clean_stop(simulator);
   EXPECT_EQ(in.drops.total(), 0);
 }
 
@@ -356,12 +353,9 @@ TEST(SimProtocolProcesses, ExternalBrokerAndConfigChecks)
   EXPECT_GT(in.truth->odom_from_base.y - y0, 0.2) << "the office start pose faces +y";
   ASSERT_TRUE(in.pump_until([&] { return in.standstill(); }, 5000ms));
 
-  const auto b = base.stop(5000ms);
-  EXPECT_TRUE(b.clean()) << b.describe() << "\n" << base.stderr_text();
-  const auto s = simulator.stop(5000ms);
-  EXPECT_TRUE(s.clean()) << s.describe() << "\n" << simulator.stderr_text();
-  const auto k = broker.stop(5000ms);
-  EXPECT_TRUE(k.clean()) << k.describe() << "\n" << broker.stderr_text();
+  testing::expect_clean_stop(base);
+  testing::expect_clean_stop(simulator);
+  testing::expect_clean_stop(broker);
 }
 
 }  // namespace
