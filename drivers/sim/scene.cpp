@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/segment2.h"
+
 namespace rgnav::sim {
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Liang-Barsky: does segment a-b touch the axis-aligned box [lo, hi]?
 bool segment_touches_box(const Vec2& a, const Vec2& b, const Vec2& lo, const Vec2& hi)
@@ -35,12 +35,10 @@ bool segment_touches_box(const Vec2& a, const Vec2& b, const Vec2& lo, const Vec
 
 double ray_segment(const Vec2& o, const Vec2& d, const Vec2& a, const Vec2& b)
 {
-  const Vec2 e = b - a;
-  const double denom = cross(d, e);
-  if (std::fabs(denom) < 1e-12) return kInf;  // parallel: grazing a wall end-on is no return
-  const Vec2 ao = a - o;
-  const double t = cross(ao, e) / denom;
-  const double u = cross(ao, d) / denom;
+  // Parallel (below 1e-12): grazing a wall end-on is no return.
+  const auto hit = geometry::ray_meets_line(o, d, a, b, 1e-12);
+  if (!hit) return kInf;
+  const double t = hit->along_ray, u = hit->along_line;
   if (t < 0.0 || u < 0.0 || u > 1.0) return kInf;
   return t;
 }
@@ -55,15 +53,6 @@ double ray_circle(const Vec2& o, const Vec2& d, const Vec2& c, double r)
   if (disc < 0.0) return kInf;
   const double t = -b - std::sqrt(disc);
   return t >= 0.0 ? t : kInf;
-}
-
-double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b)
-{
-  const Vec2 e = b - a;
-  const double len2 = e.squaredNorm();
-  double u = len2 > 0.0 ? (p - a).dot(e) / len2 : 0.0;
-  u = std::clamp(u, 0.0, 1.0);
-  return (a + u * e - p).norm();
 }
 
 Scene::Scene(const World& world, double cell_size) : cell_(cell_size)
@@ -202,7 +191,7 @@ Clearance Scene::clearance(const Vec2& p, double search_radius, const HeightBand
       for (uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
         const SceneSegment& s = segments_[cell_items_[k]];
         if (!active(s, band, door_open)) continue;
-        const double dist = point_segment_distance(p, s.a, s.b);
+        const double dist = geometry::point_segment_distance(p, s.a, s.b);
         if (dist < best.distance) {
           best.distance = dist;
           best.owner = s.owner;

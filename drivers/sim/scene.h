@@ -84,6 +84,5 @@ class Scene
 double ray_segment(const Vec2& o, const Vec2& d, const Vec2& a, const Vec2& b);
 // Ray-circle intersection from outside: distance or infinity (inside the circle: 0).
 double ray_circle(const Vec2& o, const Vec2& d, const Vec2& c, double r);
-double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b);
 
 }  // namespace rgnav::sim

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/segment2.h"
+
 namespace rgnav::gateway_detector {
 
 namespace {
@@ -56,14 +58,6 @@ double heading(const Vec2& v) { return std::atan2(v.y(), v.x()); }
 bool point_in_quadrangle(const std::vector<Vec2>& q, const Vec2& p, double margin)
 {
   return outside_side(q, p, margin) < 0;
-}
-
-double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b)
-{
-  const Vec2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  const double t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
 }
 
 void GatewayTracker::close_sequence(Track& t)
@@ -160,7 +154,7 @@ std::vector<TrackEvent> GatewayTracker::update(int64_t scan_id, const geometry::
     if (t.entered || t.finished) continue;
     if (track_det[ti] < 0) {
       const double gap = t.kind == GatewayKind::kNarrowPassage
-                             ? distance_to_segment(rp, t.points[0], t.points[1])
+                             ? geometry::point_segment_distance(rp, t.points[0], t.points[1])
                              : std::max(0.0, side_distance(t.points, static_cast<size_t>(std::max(0, outside_side(t.points, rp, 0.0))), rp));
       const bool moved_on = (rp - t.seen_robot).norm() >= options_.lost_travel || t.missed >= options_.max_missed_stationary;
       if (++t.missed > options_.max_missed && gap > options_.hold_distance && moved_on) {
@@ -250,7 +244,7 @@ void GatewayTracker::robot_relation(Track& t, const geometry::Pose2& robot, std:
     emit(EventKind::kApproached, heading(t.axis));
   }
   if (t.kind == GatewayKind::kNarrowPassage) {
-    const double d = distance_to_segment(rp, t.points[0], t.points[1]);
+    const double d = geometry::point_segment_distance(rp, t.points[0], t.points[1]);
     const int side = side_of(t.points[0], t.points[1], rp);
     if (!t.entered) {
       if (d < options_.enter_distance) {

@@ -124,6 +124,5 @@ class GatewayTracker
 };
 
 bool point_in_quadrangle(const std::vector<Vec2>& q, const Vec2& p, double margin = 0.0);
-double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b);
 
 }  // namespace rgnav::gateway_detector

@@ -1,3 +1,4 @@
+#include "geometry/segment2.h"
 #include "procs/rg_kernel/doorways.h"
 
 #include <algorithm>
@@ -135,7 +136,7 @@ std::optional<Line> doorway_stepped_through(const std::vector<rgmap::LineSegment
   for (const auto& seg : segments)
     if (segment_distance(mid, seg) <= reach) near.push_back(seg);
   for (const auto& [p, q] : find_doorways(near, o))
-    if (segments_cross(from, to, p, q)) return Line{p, q};
+    if (geometry::segments_cross(from, to, p, q)) return Line{p, q};
   return std::nullopt;
 }
 
@@ -144,7 +145,7 @@ std::vector<Line> doorways_not_crossed(const std::vector<Line>& doorways, const 
   std::vector<Line> out;
   for (const auto& [a, b] : doorways) {
     bool crossed = false;
-    for (size_t k = 0; k + 1 < path.size() && !crossed; ++k) crossed = segments_cross(path[k], path[k + 1], a, b);
+    for (size_t k = 0; k + 1 < path.size() && !crossed; ++k) crossed = geometry::segments_cross(path[k], path[k + 1], a, b);
     if (!crossed) out.push_back({a, b});
   }
   return out;

@@ -15,15 +15,6 @@ constexpr double kSideMargin = 0.5;
 
 }  // namespace
 
-std::optional<RayHit> ray_meets_line(const Vector2d& origin, const Vector2d& dir, const Vector2d& a, const Vector2d& b)
-{
-  auto cross = [](const Vector2d& u, const Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
-  const Vector2d d = b - a;
-  const double denom = cross(dir, d);
-  if (std::fabs(denom) < 1e-9) return std::nullopt;
-  return RayHit{cross(a - origin, d) / denom, cross(a - origin, dir) / denom};
-}
-
 std::vector<Line> gateway_edges(const std::vector<Vector2d>& points)
 {
   std::vector<Line> edges;

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/segment2.h"
 #include "rgmap/rg_map.h"
 
 namespace rgnav::rg_kernel {
@@ -20,14 +21,12 @@ using Line = std::pair<Eigen::Vector2d, Eigen::Vector2d>;
 
 // Where the ray from `origin` along `dir` (unit) meets the line through a and b: the distance
 // along the ray (negative: behind it) and the position along a -> b (0 at a, 1 at b); nullopt
-// if they are parallel.
-struct RayHit
+// if they are parallel, which for the kernel is |cross(dir, b - a)| < 1e-9.
+inline std::optional<geometry::RayHit> ray_meets_line(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir,
+                                                      const Eigen::Vector2d& a, const Eigen::Vector2d& b)
 {
-  double along_ray = 0.0;
-  double along_line = 0.0;
-};
-std::optional<RayHit> ray_meets_line(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir, const Eigen::Vector2d& a,
-                                     const Eigen::Vector2d& b);
+  return geometry::ray_meets_line(origin, dir, a, b, 1e-9);
+}
 
 // The boundary lines of one gateway: four points are a closed outline (its four sides),
 // otherwise consecutive point pairs are lines.

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/segment2.h"
 #include "procs/rg_kernel/gateway_geometry.h"
 #include "procs/rg_kernel/known_place.h"
 #include "procs/rg_kernel/rg_kernel.h"
@@ -79,7 +80,7 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
     if (a == b || (a != rid && b != rid)) continue;
     const geometry::Pose2& map_from_a = map_.region(g.region_a)->map_from_region;
     const Vector2d p = map_from_a * g.gateway_points[0], q = map_from_a * g.gateway_points[1];
-    if (!segments_cross(from, to, p, q)) continue;
+    if (!geometry::segments_cross(from, to, p, q)) continue;
     const Vector2d beyond = (rid == a ? 1.0 : -1.0) * line_normal_to_b(g);   // towards the other region
     if (beyond.dot(to - from) <= 0) continue;   // stepped back in from the far side
     spdlog::info("region {}: the robot went back through gateway {} (unreported)", rid, id);
@@ -111,10 +112,10 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
         outline.push_back(region_from_map * in_map.back());
       }
       const auto sides = gateway_edges(outline);
-      if (std::none_of(sides.begin(), sides.end(), [&](const Line& l) { return segments_cross(f, t, l.first, l.second); })) continue;
+      if (std::none_of(sides.begin(), sides.end(), [&](const Line& l) { return geometry::segments_cross(f, t, l.first, l.second); })) continue;
       if (origins.empty()) origins = builder.laser_origins();
       for (const StemSide& stem : stems_entered(outline, origins, side_reach(), builder.segments(), opening)) {
-        if (!segments_cross(f, t, stem.side.line.first, stem.side.line.second)) continue;
+        if (!geometry::segments_cross(f, t, stem.side.line.first, stem.side.line.second)) continue;
         if (stem.side.normal.dot(t - f) >= 0) continue;   // out of the junction into the region
         const double a_to_b = g.traversal_directions.front() + map_from_a.theta();
         const double heading = rid == a ? a_to_b : a_to_b + M_PI;   // the way that leads to the other region

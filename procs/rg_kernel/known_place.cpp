@@ -1,3 +1,4 @@
+#include "geometry/segment2.h"
 #include "procs/rg_kernel/known_place.h"
 
 #include <algorithm>
@@ -40,7 +41,7 @@ KnownPlaces::KnownPlaces(const rgmap::RgMap& map, const std::map<int64_t, Region
 bool KnownPlaces::sees(const Place& q, const Vector2d& from, const Vector2d& to) const
 {
   for (const auto& [a, b] : gateway_lines_)
-    if (segments_cross(from, to, a, b)) return false;
+    if (geometry::segments_cross(from, to, a, b)) return false;
   // Every cell on the way free in q's own bitmap: sample at half a cell.
   const geometry::Pose2 region_from_map = q.region->map_from_region.inverse();
   const double len = (to - from).norm();

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/segment2.h"
+
 namespace rgnav::rg_kernel {
 
 using Eigen::Vector2d;
@@ -16,11 +18,7 @@ void LineMapFidelity::add(const LineMapFidelity& other)
 
 double point_segment_distance(const Vector2d& p, const Vector2d& a, const Vector2d& b)
 {
-  const Vector2d d = b - a;
-  const double len2 = d.squaredNorm();
-  if (len2 < 1e-24) return (p - a).norm();
-  const double t = std::clamp((p - a).dot(d) / len2, 0.0, 1.0);
-  return (p - (a + t * d)).norm();
+  return geometry::point_segment_distance(p, a, b, 1e-24);
 }
 
 SegmentIndex::SegmentIndex(const std::vector<rgmap::LineSegment>& segments, double cap)

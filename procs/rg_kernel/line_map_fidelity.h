@@ -26,7 +26,8 @@ struct LineMapFidelity
   void add(const LineMapFidelity& other);   // sums counts (same tolerance and cap assumed)
 };
 
-// Distance from p to the segment a-b (to the nearer end point beyond its ends).
+// Distance from p to the segment a-b (to the nearer end point beyond its ends); a segment shorter
+// than 1e-12 m counts as the point a.
 double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 
 // Indexes segments on a grid so that the nearest one within `cap` is found without looking at

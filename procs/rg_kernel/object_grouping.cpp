@@ -7,6 +7,8 @@
 #include <limits>
 #include <set>
 
+#include "geometry/segment2.h"
+
 namespace rgnav::rg_kernel {
 
 using Eigen::Vector2d;
@@ -15,15 +17,12 @@ using rgmap::Object2d;
 
 namespace {
 
-double cross2(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+using geometry::cross;
 
+// Object grouping counts a segment shorter than 1e-9 m as a point.
 double point_segment_distance(const Vector2d& p, const Vector2d& a, const Vector2d& b)
 {
-  const Vector2d d = b - a;
-  const double l2 = d.squaredNorm();
-  if (l2 < 1e-18) return (p - a).norm();
-  const double t = std::clamp((p - a).dot(d) / l2, 0.0, 1.0);
-  return (p - (a + t * d)).norm();
+  return geometry::point_segment_distance(p, a, b, 1e-18);
 }
 
 double length(const LineSegment& s) { return (s.b - s.a).norm(); }
@@ -180,10 +179,11 @@ Object2d to_object(const Hypothesis& h, double confidence)
 
 double segment_distance(const LineSegment& s, const LineSegment& t)
 {
-  const Vector2d r = s.b - s.a, q = t.b - t.a;
-  const double den = cross2(r, q);
-  if (std::fabs(den) > 1e-12) {
-    const double a = cross2(t.a - s.a, q) / den, b = cross2(t.a - s.a, r) / den;
+  // Lines count as parallel unless |cross(s, t)| is strictly more than 1e-12.
+  static const double kParallelBelow = std::nextafter(1e-12, 1.0);
+  const auto hit = geometry::ray_meets_line(s.a, s.b - s.a, t.a, t.b, kParallelBelow);
+  if (hit) {
+    const double a = hit->along_ray, b = hit->along_line;
     if (a >= 0 && a <= 1 && b >= 0 && b <= 1) return 0;
   }
   return std::min({point_segment_distance(s.a, t.a, t.b), point_segment_distance(s.b, t.a, t.b),
@@ -193,9 +193,9 @@ double segment_distance(const LineSegment& s, const LineSegment& t)
 double corner_gap(const LineSegment& s, const LineSegment& t)
 {
   const Vector2d r = s.b - s.a, q = t.b - t.a;
-  const double den = cross2(r, q);
-  if (std::fabs(den) < 1e-12 * r.norm() * q.norm()) return std::numeric_limits<double>::infinity();
-  const Vector2d x = s.a + r * (cross2(t.a - s.a, q) / den);
+  const auto hit = geometry::ray_meets_line(s.a, r, t.a, t.b, 1e-12 * r.norm() * q.norm());
+  if (!hit) return std::numeric_limits<double>::infinity();
+  const Vector2d x = s.a + r * hit->along_ray;
   return std::max(point_segment_distance(x, s.a, s.b), point_segment_distance(x, t.a, t.b));
 }
 
@@ -252,7 +252,7 @@ std::vector<Object2d> group_rectangles(const std::vector<LineSegment>& segs, con
         if (o.complete_three_sides) {
           const Vector2d dj = (segs[j].b - segs[j].a).normalized();
           auto far_side = [&](const LineSegment& s) {
-            const double a = cross2(dj, s.a - segs[j].a), b = cross2(dj, s.b - segs[j].a);
+            const double a = cross(dj, s.a - segs[j].a), b = cross(dj, s.b - segs[j].a);
             return std::fabs(a) > std::fabs(b) ? a : b;
           };
           if (i < k && far_side(segs[i]) * far_side(segs[k]) > 0) add({i, j, k});

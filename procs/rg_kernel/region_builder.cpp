@@ -28,11 +28,10 @@ Vector2d clip_at_gateways(const Vector2d& o, const Vector2d& p, const RegionBuil
 {
   Vector2d end = p;
   for (const auto& [a, b] : lines) {
-    if (!segments_cross(o, end, a, b)) continue;
-    const Vector2d d = end - o, e = b - a;
-    const double den = d.x() * e.y() - d.y() * e.x();
-    const double t = ((a.x() - o.x()) * e.y() - (a.y() - o.y()) * e.x()) / den;
-    end = o + d * t;
+    if (!geometry::segments_cross(o, end, a, b)) continue;
+    const Vector2d d = end - o;
+    // No parallel test: the two cross.
+    end = o + d * geometry::ray_meets_line(o, d, a, b, 0.0)->along_ray;
   }
   return end;
 }
@@ -80,14 +79,6 @@ void carve_scan(const Vector2d& o, const std::vector<Vector2d>& pts, const std::
 }
 
 }  // namespace
-
-bool segments_cross(const Vector2d& p, const Vector2d& q, const Vector2d& a, const Vector2d& b)
-{
-  auto cross = [](const Vector2d& u, const Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
-  const double d1 = cross(q - p, a - p), d2 = cross(q - p, b - p);
-  const double d3 = cross(b - a, p - a), d4 = cross(b - a, q - a);
-  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
-}
 
 void RegionBuilder::add_scan(StoredScan scan)
 {

@@ -126,7 +126,4 @@ class RegionBuilder
   mutable Eigen::Vector2d hi_{-std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
 };
 
-// True if segment p-q properly crosses segment a-b.
-bool segments_cross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
-
 }  // namespace rgnav::rg_kernel

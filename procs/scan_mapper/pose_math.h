@@ -1,6 +1,6 @@
 // The scan mapper's planar poses are common/geometry/pose2.h; these are the few operations
-// on them the mapper needs beyond the class (increments as vectors for the Kalman filter,
-// interpolation of odometry).
+// on them the mapper needs beyond the class (increments as vectors for the Kalman filter;
+// interpolation of odometry is geometry::interpolate).
 #pragma once
 
 #include <Eigen/Core>
@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "geometry/pose2.h"
+#include "geometry/pose_track.h"
 
 namespace rgnav::scan_mapper {
 
@@ -22,10 +23,6 @@ inline double translation_norm(const Pose2& p) { return p.translation().norm(); 
 inline Eigen::Vector3d to_vector(const Pose2& p) { return {p.x(), p.y(), p.theta()}; }
 inline Pose2 pose_from_vector(const Eigen::Vector3d& v) { return Pose2(v.x(), v.y(), v.z()); }
 
-// Linear interpolation of poses (shortest way round in theta), s in [0, 1].
-inline Pose2 interpolate(const Pose2& a, const Pose2& b, double s)
-{
-  return Pose2(a.x() + s * (b.x() - a.x()), a.y() + s * (b.y() - a.y()), a.theta() + s * normalize_angle(b.theta() - a.theta()));
-}
+using geometry::interpolate;
 
 }  // namespace rgnav::scan_mapper

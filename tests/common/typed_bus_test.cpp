@@ -6,24 +6,15 @@
 
 #include "bus/fake_bus.h"
 #include "bus/lcm_bus.h"
+#include "laser_scan_msg.h"
 
 namespace rgnav::bus {
 namespace {
 
 laser_scan_t make_scan(int64_t id)
 {
-  laser_scan_t s;
-  s.utime = 1'000'000 + id;
-  s.scan_id = id;
-  s.sensor = "laser_front";
-  s.angle_min = static_cast<float>(-M_PI / 2);
-  s.angle_increment = static_cast<float>(M_PI / 180);
-  s.range_min = 0.0f;
-  s.range_max = 8.183f;
+  laser_scan_t s = testing::laser_scan_msg(1'000'000 + id, id, 8.183f, 2.5f);
   s.scan_time = 1.0f / 75;
-  s.nranges = 181;
-  s.ranges.assign(181, 2.5f);
-  s.nintensities = 0;
   return s;
 }
 

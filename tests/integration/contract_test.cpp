@@ -103,6 +103,32 @@ class Contract : public ::testing::Test
     return read_records(dir_.file("sent.tsv"));
   }
 
+  // Logs `rounds` of the publisher's messages to log_path (a subscriber beaconing heartbeats
+  // shows the logger is up first) and stops the logger once they are all in. `sent`: what the
+  // publisher says it sent.
+  void log_published(const std::string& log_path, int rounds, std::vector<MessageRecord>* sent)
+  {
+    HeartbeatWatch heartbeats(test_udpm_url());
+    ChildProcess logger = start_logger(log_path);
+    // The publisher's own heartbeats prove the logger is up only once it runs; use a subscriber
+    // as the 5 Hz beacon.
+    ChildProcess beacon(runtime_args(RGNAV_CONTRACT_SUBSCRIBER, "contract_subscriber.yaml"), logged("beacon"));
+    ASSERT_TRUE(heartbeats.wait_for("contract_subscriber", seconds(20), beacon.pid()));
+    ASSERT_TRUE(eventually(seconds(20), [&] { return !read_log(log_path).empty(); }));
+    *sent = publish(rounds);
+    ASSERT_TRUE(eventually(seconds(20), [&] { return contract_events(read_log(log_path)).size() >= sent->size(); }));
+    logger.signal(SIGINT);
+    ASSERT_TRUE(logger.wait_for(seconds(10)).has_value());
+  }
+
+  // Runs the Java check of the log against a record of what was sent.
+  ExitStatus java_check(const std::string& log_path, const std::string& sent_tsv)
+  {
+    const std::string classpath = std::string(RGNAV_LCM_JAR) + ":" + RGNAV_TYPES_JAR + ":" + RGNAV_CHECK_JAR;
+    return run_to_completion({RGNAV_JAVA, "-cp", classpath, "LogDecodeCheck", log_path, sent_tsv, kPrefix}, seconds(120),
+                             logged("java"));
+  }
+
   TempDir dir_{"rgnav_contract"};
 };
 
@@ -161,23 +187,9 @@ TEST_F(Contract, UdpmLoggerAndReplayDeliverByteIdenticalMessages)
 TEST_F(Contract, JavaClassesDecodeALogWrittenFromCpp)
 {
   const std::string log_path = dir_.file("java.lcmlog");
-  HeartbeatWatch heartbeats(test_udpm_url());
-  ChildProcess logger = start_logger(log_path);
-  // The publisher's own heartbeats prove the logger is up only once it runs; use a subscriber
-  // as the 5 Hz beacon, as above.
-  ChildProcess beacon(runtime_args(RGNAV_CONTRACT_SUBSCRIBER, "contract_subscriber.yaml"), logged("beacon"));
-  ASSERT_TRUE(heartbeats.wait_for("contract_subscriber", seconds(20), beacon.pid()));
-  ASSERT_TRUE(eventually(seconds(20), [&] { return !read_log(log_path).empty(); }));
-
-  const auto sent = publish(2);
-  ASSERT_TRUE(eventually(seconds(20), [&] { return contract_events(read_log(log_path)).size() >= sent.size(); }));
-  logger.signal(SIGINT);
-  ASSERT_TRUE(logger.wait_for(seconds(10)).has_value());
-
-  const std::string classpath = std::string(RGNAV_LCM_JAR) + ":" + RGNAV_TYPES_JAR + ":" + RGNAV_CHECK_JAR;
-  const auto status = run_to_completion({RGNAV_JAVA, "-cp", classpath, "LogDecodeCheck", log_path,
-                                         dir_.file("sent.tsv"), kPrefix},
-                                        seconds(120), logged("java"));
+  std::vector<MessageRecord> sent;
+  ASSERT_NO_FATAL_FAILURE(log_published(log_path, 2, &sent));
+  const auto status = java_check(log_path, dir_.file("sent.tsv"));
   EXPECT_TRUE(status.clean()) << status.describe() << "\n"
                               << read_file(dir_.file("java.stderr")) << read_file(dir_.file("java.stdout"));
   EXPECT_NE(read_file(dir_.file("java.stdout")).find("OK: " + std::to_string(sent.size()) + " events"),
@@ -189,15 +201,8 @@ TEST_F(Contract, JavaCheckFailsOnACorruptedRecord)
 {
   // The Java check must be able to fail: change one value in what C++ claims it sent.
   const std::string log_path = dir_.file("java.lcmlog");
-  HeartbeatWatch heartbeats(test_udpm_url());
-  ChildProcess logger = start_logger(log_path);
-  ChildProcess beacon(runtime_args(RGNAV_CONTRACT_SUBSCRIBER, "contract_subscriber.yaml"), logged("beacon"));
-  ASSERT_TRUE(heartbeats.wait_for("contract_subscriber", seconds(20), beacon.pid()));
-  ASSERT_TRUE(eventually(seconds(20), [&] { return !read_log(log_path).empty(); }));
-  auto sent = publish(1);
-  ASSERT_TRUE(eventually(seconds(20), [&] { return contract_events(read_log(log_path)).size() >= sent.size(); }));
-  logger.signal(SIGINT);
-  ASSERT_TRUE(logger.wait_for(seconds(10)).has_value());
+  std::vector<MessageRecord> sent;
+  ASSERT_NO_FATAL_FAILURE(log_published(log_path, 1, &sent));
 
   // Same bytes, one JSON digit changed: only the field-by-field comparison can notice.
   auto& json = sent[sent.size() / 2].json;
@@ -208,10 +213,7 @@ TEST_F(Contract, JavaCheckFailsOnACorruptedRecord)
     std::ofstream out(dir_.file("tampered.tsv"));
     for (const auto& r : sent) out << format_record(r) << '\n';
   }
-  const std::string classpath = std::string(RGNAV_LCM_JAR) + ":" + RGNAV_TYPES_JAR + ":" + RGNAV_CHECK_JAR;
-  const auto status = run_to_completion({RGNAV_JAVA, "-cp", classpath, "LogDecodeCheck", log_path,
-                                         dir_.file("tampered.tsv"), kPrefix},
-                                        seconds(120), logged("java"));
+  const auto status = java_check(log_path, dir_.file("tampered.tsv"));
   EXPECT_TRUE(status.exited && status.code == 1) << status.describe();
   EXPECT_NE(read_file(dir_.file("java.stderr")).find("field values differ"), std::string::npos)
       << read_file(dir_.file("java.stderr"));

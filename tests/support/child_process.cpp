@@ -1,5 +1,7 @@
 #include "child_process.h"
 
+#include <gtest/gtest.h>
+
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -220,6 +222,21 @@ ExitStatus run_to_completion(std::vector<std::string> argv, std::chrono::millise
   ChildProcess child(std::move(argv), std::move(options));
   if (auto s = child.wait_for(timeout)) return *s;
   return child.stop(std::chrono::milliseconds(1000));
+}
+
+void expect_clean_stop(ChildProcess& child, std::chrono::milliseconds grace)
+{
+  const ExitStatus s = child.stop(grace);
+  EXPECT_TRUE(s.clean()) << child.name() << ": " << s.describe() << "\n" << child.stderr_text();
+}
+
+std::string executable_dir()
+{
+  char buf[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) return ".";
+  std::string p(buf, static_cast<size_t>(n));
+  return p.substr(0, p.rfind('/'));
 }
 
 std::string read_file(const std::string& path)

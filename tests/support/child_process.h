@@ -93,12 +93,19 @@ class ProcessGroup
   std::vector<ChildProcess> children_;
 };
 
+// Stops the child (SIGTERM; SIGKILL after `grace`) and fails the test unless it exited 0; the
+// failure says how it ended and shows its stderr.
+void expect_clean_stop(ChildProcess& child, std::chrono::milliseconds grace = std::chrono::milliseconds(5000));
+
 // Runs argv to completion (at most `timeout`, then kills it). Returns its status.
 ExitStatus run_to_completion(std::vector<std::string> argv, std::chrono::milliseconds timeout,
                              ChildOptions options = {});
 
 // Reads a whole file ("" if it does not exist).
 std::string read_file(const std::string& path);
+
+// The folder of the running executable: build/bin, beside the processes a test starts.
+std::string executable_dir();
 
 // A fresh empty directory under $TMPDIR (or /tmp), removed with its contents on destruction.
 class TempDir

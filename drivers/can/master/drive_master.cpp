@@ -50,33 +50,26 @@ std::vector<DriveMaster::Step> DriveMaster::configuration_steps() const
   up(cia402::kSupportedDriveModes, 0, [](uint32_t v) {
     return (v & cia402::kSupportsProfileVelocity) ? "" : "drive does not support profile velocity mode";
   });
+  // A PDO with two mapped entries, by the CiA 301 procedure: invalidate, clear the mapping,
+  // write the entries, set their count, set the transmission type, validate.
+  auto map_pdo = [&down](uint16_t communication, uint16_t mapping, uint32_t cob_id, uint32_t first, uint32_t second,
+                         uint32_t type) {
+    down(communication, 1, canopen::kCobIdInvalid | cob_id, 4);
+    down(mapping, 0, 0, 1);
+    down(mapping, 1, first, 4);
+    down(mapping, 2, second, 4);
+    down(mapping, 0, 2, 1);
+    down(communication, 2, type, 1);
+    down(communication, 1, cob_id, 4);
+  };
   down(0x1017, 0, hb, 2);
   down(0x1016, 1, consumer, 4);
-  // RPDO1: controlword + target velocity, applied on reception (type 255). CiA 301 procedure:
-  // invalidate, clear the mapping, write entries, set the count, set type, validate.
-  down(0x1400, 1, canopen::kCobIdInvalid | (canopen::kRpdo1 + n), 4);
-  down(0x1600, 0, 0, 1);
-  down(0x1600, 1, 0x60400010, 4);
-  down(0x1600, 2, 0x60FF0020, 4);
-  down(0x1600, 0, 2, 1);
-  down(0x1400, 2, 0xFF, 1);
-  down(0x1400, 1, canopen::kRpdo1 + n, 4);
+  // RPDO1: controlword + target velocity, applied on reception (type 255).
+  map_pdo(0x1400, 0x1600, canopen::kRpdo1 + n, 0x60400010, 0x60FF0020, 0xFF);
   // TPDO1: statusword + position actual, on every SYNC.
-  down(0x1800, 1, canopen::kCobIdInvalid | (canopen::kTpdo1 + n), 4);
-  down(0x1A00, 0, 0, 1);
-  down(0x1A00, 1, 0x60410010, 4);
-  down(0x1A00, 2, 0x60640020, 4);
-  down(0x1A00, 0, 2, 1);
-  down(0x1800, 2, 1, 1);
-  down(0x1800, 1, canopen::kTpdo1 + n, 4);
+  map_pdo(0x1800, 0x1A00, canopen::kTpdo1 + n, 0x60410010, 0x60640020, 1);
   // TPDO2: velocity actual + modes of operation display, on every SYNC.
-  down(0x1801, 1, canopen::kCobIdInvalid | (canopen::kTpdo2 + n), 4);
-  down(0x1A01, 0, 0, 1);
-  down(0x1A01, 1, 0x606C0020, 4);
-  down(0x1A01, 2, 0x60610008, 4);
-  down(0x1A01, 0, 2, 1);
-  down(0x1801, 2, 1, 1);
-  down(0x1801, 1, canopen::kTpdo2 + n, 4);
+  map_pdo(0x1801, 0x1A01, canopen::kTpdo2 + n, 0x606C0020, 0x60610008, 1);
   // Profile velocity mode and its ramps.
   down(cia402::kProfileAcceleration, 0, options_.profile_acceleration, 4);
   down(cia402::kProfileDeceleration, 0, options_.profile_deceleration, 4);

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "base_driver/base_driver_node.h"
-#include "bus/fake_bus.h"
 #include "bus/typed.h"
 #include "canopen/emcy.h"
+#include "fake_bus_node.h"
 #include "realtime_rig.h"
 #include "rgnav/heartbeat_t.hpp"
 
@@ -53,12 +53,12 @@ TEST(BaseDriverConversions, RoundTrip)
 TEST(BaseDriverNode, CommandsInOdometryOutFaultsInTheHeartbeat)
 {
   testing::RealtimeRig rig("node");
-  auto fake = std::make_unique<bus::FakeBus>();
-  bus::FakeBus* fb = fake.get();
   runtime::NodeOptions no;
   no.name = "base_driver";
   no.input_stale_after = 0ms;
-  runtime::Node node(no, std::move(fake));
+  rgnav::testing::FakeBusNode n(no);
+  bus::FakeBus* fb = n.bus;
+  runtime::Node& node = *n.node;
   BaseDriverNodeOptions opts;
   auto driver = std::make_unique<BaseDriver>(rig.options(), make_can_interface(rig.options()));
   BaseDriverNode adapter(node, opts, std::move(driver));
@@ -109,13 +109,10 @@ TEST(BaseDriverNode, CommandsInOdometryOutFaultsInTheHeartbeat)
   // 50 Hz: about 25 messages in half a second; seq strictly increasing, utime never backwards.
   const size_t before = fb->published_on("ODOMETRY").size();
   rig.pump_for(500ms, drive);
-  const auto msgs = fb->published_on("ODOMETRY");
+  const auto msgs = rgnav::testing::decoded<odometry_t>(*fb, "ODOMETRY");
   EXPECT_NEAR(static_cast<double>(msgs.size() - before), 25.0, 6.0);
   int64_t prev_seq = 0, prev_utime = 0;
-  for (const auto& raw : msgs) {
-    odometry_t m;
-    std::string why;
-    ASSERT_TRUE(bus::decode(raw.data.data(), raw.data.size(), &m, &why)) << why;
+  for (const auto& m : msgs) {
     EXPECT_GT(m.seq, prev_seq);
     EXPECT_GE(m.utime, prev_utime);
     prev_seq = m.seq;

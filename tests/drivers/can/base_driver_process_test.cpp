@@ -26,23 +26,11 @@ namespace {
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-std::string bin_dir()
-{
-  char buf[4096];
-  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (n <= 0) return ".";
-  std::string p(buf, static_cast<size_t>(n));
-  return p.substr(0, p.rfind('/'));
-}
-
 // The shipped config with the bus socket moved into the test's directory.
 std::string write_config(const testing::TempDir& dir, const std::string& socket)
 {
-  std::ifstream in(std::string(RGNAV_SOURCE_DIR) + "/config/base_driver.yaml");
-  std::stringstream ss;
-  ss << in.rdbuf();
   const std::string text =
-      std::regex_replace(ss.str(), std::regex("virtual_bus_path: [^ \\n]+"), "virtual_bus_path: " + socket);
+      std::regex_replace(testing::read_file(std::string(RGNAV_SOURCE_DIR) + "/config/base_driver.yaml"), std::regex("virtual_bus_path: [^ \\n]+"), "virtual_bus_path: " + socket);
   const std::string path = dir.file("base_driver.yaml");
   std::ofstream(path) << text;
   return path;
@@ -73,7 +61,7 @@ TEST(BaseDriverProcesses, OdometryFollowsBaseCmdAndSigtermExitsCleanly)
   const std::string socket = dir.file("vcan.sock");
   const std::string config = write_config(dir, socket);
   const std::string url = testing::test_udpm_url();
-  const std::string bin = bin_dir();
+  const std::string bin = testing::executable_dir();
 
   testing::ChildOptions broker_out{dir.file("broker.out"), dir.file("broker.err"), {}, ""};
   testing::ChildOptions emu_out{dir.file("emu.out"), dir.file("emu.err"), {}, ""};
@@ -149,10 +137,8 @@ TEST(BaseDriverProcesses, OdometryFollowsBaseCmdAndSigtermExitsCleanly)
   }));
 
   // SIGTERM: clean exits.
-  const auto drv = driver.stop(5000ms);
-  EXPECT_TRUE(drv.clean()) << drv.describe() << "\n" << driver.stderr_text();
-  const auto brk = broker.stop(5000ms);
-  EXPECT_TRUE(brk.clean()) << brk.describe() << "\n" << broker.stderr_text();
+  testing::expect_clean_stop(driver);
+  testing::expect_clean_stop(broker);
   EXPECT_EQ(odo.drops.total(), 0);
 }
 
@@ -160,15 +146,13 @@ TEST(BaseDriverProcesses, DriveEmulatorExitsCleanlyOnSigterm)
 {
   testing::TempDir dir("rgnav_can_proc2");
   const std::string socket = dir.file("vcan.sock");
-  const std::string bin = bin_dir();
+  const std::string bin = testing::executable_dir();
   testing::ChildProcess broker({bin + "/vcan_broker", "--path", socket}, {dir.file("b.out"), dir.file("b.err"), {}, ""});
   testing::ChildProcess emulator({bin + "/drive_emulator", "--path", socket}, {dir.file("e.out"), dir.file("e.err"), {}, ""});
   std::this_thread::sleep_for(500ms);
   ASSERT_TRUE(emulator.running()) << emulator.stderr_text();
-  const auto e = emulator.stop(5000ms);
-  EXPECT_TRUE(e.clean()) << e.describe() << emulator.stderr_text();
-  const auto b = broker.stop(5000ms);
-  EXPECT_TRUE(b.clean()) << b.describe() << broker.stderr_text();
+  testing::expect_clean_stop(emulator);
+  testing::expect_clean_stop(broker);
   // A bad config refuses to start with exit code 2.
   std::ofstream(dir.file("bad.yaml")) << "drives: {translation: {node_id: 0}}\n";
   const auto bad = testing::run_to_completion({bin + "/base_driver", "--config", dir.file("bad.yaml"), "--check-config"},

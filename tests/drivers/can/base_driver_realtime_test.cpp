@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "canopen/cia402.h"
 #include "realtime_rig.h"
@@ -16,6 +17,18 @@ namespace {
 using namespace std::chrono_literals;
 using PowerState = canopen::cia402::PowerState;
 
+// A command source like lld's, for the rig's pump loops: sends `cmd` (valid 300 ms) to the
+// driver at most every 40 ms.
+std::function<void()> commanding(BaseDriver& driver, VelocityCommand cmd)
+{
+  auto last = std::chrono::steady_clock::now() - 1s;
+  return [&driver, cmd, last]() mutable {
+    if (std::chrono::steady_clock::now() - last < 40ms) return;
+    driver.command(cmd, 300ms);
+    last = std::chrono::steady_clock::now();
+  };
+}
+
 TEST(BaseDriverRealtime, FollowsCommandsAndStopsWhenANodeIsLost)
 {
   testing::RealtimeRig rig("rt-loss", 400ms);
@@ -24,12 +37,7 @@ TEST(BaseDriverRealtime, FollowsCommandsAndStopsWhenANodeIsLost)
   ASSERT_TRUE(up) << driver.snapshot().odometry.reason;
   std::printf("[ figures  ] real-time bring-up: %lld ms\n", static_cast<long long>(up->count()));
 
-  auto last_cmd = std::chrono::steady_clock::now() - 1s;
-  auto command = [&] {
-    if (std::chrono::steady_clock::now() - last_cmd < 40ms) return;
-    driver.command({0.4, 0.2}, 300ms);
-    last_cmd = std::chrono::steady_clock::now();
-  };
+  auto command = commanding(driver, {0.4, 0.2});
   const double cpm = rig.options().translation.counts_per_unit;
   // Moving steadily and reported so (checked right before the cut: a scheduling stall on a
   // loaded machine can look like a lost node, and the driver then stops and recovers).
@@ -87,12 +95,7 @@ TEST(BaseDriverRealtime, StopWaitsForStandstillThenReleasesTheDrives)
   rig.options().stop_timeout = 2000ms;
   BaseDriver& driver = rig.start_driver();
   ASSERT_TRUE(rig.pump_until([&] { return driver.snapshot().odometry.reason == "no command yet"; }, 5000ms));
-  auto last = std::chrono::steady_clock::now() - 1s;
-  auto command = [&] {
-    if (std::chrono::steady_clock::now() - last < 40ms) return;
-    driver.command({0.3, 0.0}, 300ms);
-    last = std::chrono::steady_clock::now();
-  };
+  auto command = commanding(driver, {0.3, 0.0});
   const double cpm = rig.options().translation.counts_per_unit;
   ASSERT_TRUE(rig.pump_until([&] { return rig.translation().actual_velocity() >= 0.3 * cpm - 1; }, 3000ms, command));
   // stop() blocks until standstill: keep the emulators running meanwhile.

@@ -69,6 +69,13 @@ class EmulatorFixture : public ::testing::Test
     controlword(0x0F);
     ASSERT_EQ(drive.power_state(), PowerState::kOperationEnabled);
   }
+  // Whether an EMCY with this error code was sent.
+  bool sent_emcy(uint16_t error_code) const
+  {
+    for (const auto& f : sent)
+      if (auto m = emcy::parse(f); m && m->error_code == error_code) return true;
+    return false;
+  }
   std::vector<can_frame> frames_with_id(canid_t id) const
   {
     std::vector<can_frame> out;
@@ -222,10 +229,7 @@ TEST_F(EmulatorFixture, InjectedFaultSendsEmcyAndNeedsResetAfterItClears)
   controlword(0x80);
   EXPECT_EQ(drive.power_state(), PowerState::kSwitchOnDisabled);
   EXPECT_EQ(drive.od().get(0x1001), 0u);
-  bool reset_emcy = false;
-  for (const auto& f : sent)
-    if (auto m = emcy::parse(f)) reset_emcy = reset_emcy || m->error_code == emcy::kNoError;
-  EXPECT_TRUE(reset_emcy);
+  EXPECT_TRUE(sent_emcy(emcy::kNoError));
 }
 
 TEST_F(EmulatorFixture, PdosAfterConfigurationAndNmtStart)
@@ -298,10 +302,7 @@ TEST_F(EmulatorFixture, PhysicsHookAndFollowingError)
     d.set_actual(0.0, pos);
   }
   EXPECT_NE(d.power_state(), PowerState::kOperationEnabled);
-  bool following = false;
-  for (const auto& f : sent)
-    if (auto m = emcy::parse(f)) following = following || m->error_code == emcy::kFollowingError;
-  EXPECT_TRUE(following);
+  EXPECT_TRUE(sent_emcy(emcy::kFollowingError));
 }
 
 TEST_F(EmulatorFixture, PowerOffIsSilence)

@@ -3,9 +3,9 @@
 // status carries the link state and error counters. Also the options loader.
 #include <gtest/gtest.h>
 
-#include "bus/fake_bus.h"
 #include "bus/typed.h"
 #include "driver_test_support.h"
+#include "fake_bus_node.h"
 #include "laser_driver_node.h"
 #include "lms2xx_emulator.h"
 #include "rgnav/heartbeat_t.hpp"
@@ -100,11 +100,9 @@ TEST(LaserDriverNode, PublishesValidScansAndReportsStatus)
   auto room = std::make_shared<SyntheticRoom>();
   Lms2xxEmulator emulator(eo, room);
 
-  auto fake = std::make_unique<bus::FakeBus>();
-  bus::FakeBus* bus = fake.get();
-  runtime::NodeOptions no;
-  no.name = "laser_driver";
-  runtime::Node node(no, std::move(fake));
+  rgnav::testing::FakeBusNode n("laser_driver");
+  bus::FakeBus* bus = n.bus;
+  runtime::Node& node = *n.node;
   LaserDriverOptions o;
   o.driver = testing::fast_options(emulator.port_path());
   o.channel = "LASER_TEST";
@@ -114,14 +112,11 @@ TEST(LaserDriverNode, PublishesValidScansAndReportsStatus)
   const auto end = std::chrono::steady_clock::now() + 10s;
   while (bus->published_on("LASER_TEST").size() < 20 && std::chrono::steady_clock::now() < end)
     node.spin_once(50ms);
-  const auto published = bus->published_on("LASER_TEST");
+  const auto published = rgnav::testing::decoded<laser_scan_t>(*bus, "LASER_TEST");
   ASSERT_GE(published.size(), 20u) << adapter.driver().status_text();
 
   int64_t last_id = 0, last_utime = 0;
-  for (const auto& p : published) {
-    laser_scan_t m;
-    std::string why;
-    ASSERT_TRUE(bus::decode(p.data.data(), p.data.size(), &m, &why)) << why;
+  for (const auto& m : published) {
     EXPECT_GT(m.scan_id, last_id);
     EXPECT_GT(m.utime, last_utime);
     last_id = m.scan_id;

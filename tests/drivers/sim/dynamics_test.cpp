@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "box_world.h"
 #include "sim/simulator.h"
 #include "sim/synchro_drive.h"
 
@@ -20,18 +21,7 @@ class Constant final : public DriveCommandSource
   DriveCommand c_;
 };
 
-World box_world(double half = 10.0)
-{
-  World w;
-  const Vec2 c[4] = {{-half, -half}, {half, -half}, {half, half}, {-half, half}};
-  for (int i = 0; i < 4; ++i) {
-    Wall wall;
-    wall.a = c[i];
-    wall.b = c[(i + 1) % 4];
-    w.walls.push_back(wall);
-  }
-  return w;
-}
+using rgnav::testing::box_world;
 
 SimulatorOptions quiet_options()
 {

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "bus/fake_bus.h"
 #include "bus/typed.h"
+#include "fake_bus_node.h"
 #include "rgnav/laser_scan_t.hpp"
 #include "rgnav/odometry_t.hpp"
 #include "rgnav/velocity_cmd_t.hpp"
@@ -11,26 +11,13 @@
 namespace rgnav::sim {
 namespace {
 
-template <class T>
-std::vector<T> decoded(const bus::FakeBus& bus, const std::string& channel)
-{
-  std::vector<T> out;
-  for (const auto& p : bus.published_on(channel)) {
-    T m;
-    std::string why;
-    EXPECT_TRUE(bus::decode(p.data.data(), p.data.size(), &m, &why)) << why;
-    out.push_back(m);
-  }
-  return out;
-}
+using rgnav::testing::decoded;
 
 TEST(SimNode, DirectModePublishesScansOdometryAndTruthAndHonoursDeadlines)
 {
-  auto bus_owned = std::make_unique<bus::FakeBus>();
-  bus::FakeBus& bus = *bus_owned;
-  runtime::NodeOptions node_options;
-  node_options.name = "rgnav_sim";
-  runtime::Node node(node_options, std::move(bus_owned));
+  rgnav::testing::FakeBusNode fake("rgnav_sim");
+  bus::FakeBus& bus = *fake.bus;
+  runtime::Node& node = *fake.node;
   SimulatorOptions options;
   auto sim = std::make_unique<Simulator>(load_world(std::string(RGNAV_SOURCE_DIR) + "/config/worlds/office.yaml"), options);
   const Pose2 start = sim->truth();

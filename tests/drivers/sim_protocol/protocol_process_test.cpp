@@ -36,25 +36,13 @@ namespace {
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-std::string bin_dir()
-{
-  char buf[4096];
-  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (n <= 0) return ".";
-  std::string p(buf, static_cast<size_t>(n));
-  return p.substr(0, p.rfind('/'));
-}
-
 std::string source_config(const std::string& name) { return std::string(RGNAV_SOURCE_DIR) + "/config/" + name; }
 
 // A shipped config with exact text replacements, written into the test's directory.
 std::string copy_config(const testing::TempDir& dir, const std::string& name,
                         const std::vector<std::pair<std::string, std::string>>& edits, std::string out = "")
 {
-  std::ifstream in(source_config(name));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
+  std::string text = testing::read_file(source_config(name));
   for (const auto& [from, to] : edits) {
     const size_t at = text.find(from);
     if (at == std::string::npos) throw std::runtime_error(name + ": '" + from + "' not found");
@@ -209,7 +197,7 @@ TEST(SimProtocolProcesses, RealDriversOnTheSimulatedB21r)
   testing::TempDir dir("rgnav_sim_protocol");
   const RunConfigs cfg = write_configs(dir, "internal");
   const std::string url = testing::test_udpm_url();
-  const std::string bin = bin_dir();
+  const std::string bin = testing::executable_dir();
   const std::string world = source_config("worlds/office.yaml");
 
   bus::LcmBus lcm(url);
@@ -317,12 +305,9 @@ TEST(SimProtocolProcesses, RealDriversOnTheSimulatedB21r)
   EXPECT_LT(match_fraction(scene, office, opts.laser, *in.last_scan, start, 0.05), 0.6);
 
   // --- SIGTERM: every process exits cleanly (drivers first, then the hardware they use).
-  const auto l = laser.stop(5000ms);
-  EXPECT_TRUE(l.clean()) << l.describe() << "\n" << laser.stderr_text();
-  const auto b = base.stop(5000ms);
-  EXPECT_TRUE(b.clean()) << b.describe() << "\n" << base.stderr_text();
-  const auto s = simulator.stop(5000ms);
-  EXPECT_TRUE(s.clean()) << s.describe() << "\n" << simulator.stderr_text();
+  testing::expect_clean_stop(laser);
+  testing::expect_clean_stop(base);
+  testing::expect_clean_stop(simulator);
   EXPECT_EQ(in.drops.total(), 0);
 }
 
@@ -332,7 +317,7 @@ TEST(SimProtocolProcesses, ExternalBrokerAndConfigChecks)
   testing::TempDir dir("rgnav_sim_protocol_ext");
   const RunConfigs cfg = write_configs(dir, "external");
   const std::string url = testing::test_udpm_url();
-  const std::string bin = bin_dir();
+  const std::string bin = testing::executable_dir();
   const std::string world = source_config("worlds/office.yaml");
 
   // Protocol mode refuses a clock the real drivers cannot follow: exit 2 naming the key.
@@ -369,12 +354,9 @@ TEST(SimProtocolProcesses, ExternalBrokerAndConfigChecks)
   EXPECT_GT(in.truth->odom_from_base.y - y0, 0.2) << "the office start pose faces +y";
   ASSERT_TRUE(in.pump_until([&] { return in.standstill(); }, 5000ms));
 
-  const auto b = base.stop(5000ms);
-  EXPECT_TRUE(b.clean()) << b.describe() << "\n" << base.stderr_text();
-  const auto s = simulator.stop(5000ms);
-  EXPECT_TRUE(s.clean()) << s.describe() << "\n" << simulator.stderr_text();
-  const auto k = broker.stop(5000ms);
-  EXPECT_TRUE(k.clean()) << k.describe() << "\n" << broker.stderr_text();
+  testing::expect_clean_stop(base);
+  testing::expect_clean_stop(simulator);
+  testing::expect_clean_stop(broker);
 }
 
 }  // namespace

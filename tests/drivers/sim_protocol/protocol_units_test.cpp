@@ -8,6 +8,7 @@
 #include <deque>
 #include <functional>
 
+#include "box_world.h"
 #include "can/base_driver/synchro_drive_controller.h"
 #include "config/config.h"
 #include "sim/protocol_drives.h"
@@ -32,20 +33,7 @@ DriveAxes shipped_axes()
   return {b.translation, b.rotation};
 }
 
-World box_world(double half)
-{
-  World w;
-  w.name = "box";
-  w.start = {0.0, 0.0, 0.0};
-  const Vec2 c[4] = {{-half, -half}, {half, -half}, {half, half}, {-half, half}};
-  for (int i = 0; i < 4; ++i) {
-    Wall wall;
-    wall.a = c[i];
-    wall.b = c[(i + 1) % 4];
-    w.walls.push_back(wall);
-  }
-  return w;
-}
+using rgnav::testing::box_world;
 
 // Odometry errors chosen so their effect is unmistakable and free of noise.
 SimulatorOptions systematic_error_options()

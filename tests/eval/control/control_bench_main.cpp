@@ -267,16 +267,7 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
           sent_correction = odom_from_world;
         }
       }
-      const auto& fs = f.status();
-      ca.on_drive_feedback({fs.trajectory_id, static_cast<int>(fs.state), fs.progress, fs.cross_track, fs.command.v});
-      if (auto t = ca.update(now)) {
-        if (t->id != last_id) {
-          f.replace(lld::make_plan(*t, lo.follower, f.last_command().v), now);
-          last_id = t->id;
-        } else {
-          f.refresh(t->id, now);
-        }
-      }
+      hand_over_trajectory(ca, f, lo.follower, now, &last_id);
       const auto& st = f.step(now, kPeriod, have ? &odi : nullptr);
       cmd.set(sim.now_utime(), {st.command.v, st.command.omega}, lo.loop.command_deadline_ms * 1000);
       cmd_v_before = st.command.v;

@@ -49,6 +49,21 @@ sim::SimulatorOptions control_sim_options(uint64_t seed, bool laser)
   return o;
 }
 
+void hand_over_trajectory(collision_avoidance::CollisionAvoidance& ca, lld::Follower& follower,
+                          const lld::FollowerOptions& options, time::Time now, int64_t* last_id)
+{
+  const auto& fs = follower.status();
+  ca.on_drive_feedback({fs.trajectory_id, static_cast<int>(fs.state), fs.progress, fs.cross_track, fs.command.v});
+  if (auto traj = ca.update(now)) {
+    if (traj->id != *last_id) {
+      follower.replace(lld::make_plan(*traj, options, follower.last_command().v), now);
+      *last_id = traj->id;
+    } else {
+      follower.refresh(traj->id, now);
+    }
+  }
+}
+
 bool feed_collision_avoidance(const sim::StepOutput& out, collision_avoidance::CollisionAvoidance& ca,
                               lld::OdometryInput* odometry)
 {
@@ -132,16 +147,7 @@ TourRunResult run_tour(const sim::World& world_in, const std::vector<Eigen::Vect
       ca.set_targets(t);
       last_sent_s = sim.time_s();
     }
-    const auto& fs = follower.status();
-    ca.on_drive_feedback({fs.trajectory_id, static_cast<int>(fs.state), fs.progress, fs.cross_track, fs.command.v});
-    if (auto traj = ca.update(now)) {
-      if (traj->id != last_id) {
-        follower.replace(lld::make_plan(*traj, lld_options.follower, follower.last_command().v), now);
-        last_id = traj->id;
-      } else {
-        follower.refresh(traj->id, now);
-      }
-    }
+    hand_over_trajectory(ca, follower, lld_options.follower, now, &last_id);
     const auto& st = follower.step(now, kPeriod, &odi);
     cmd.set(sim.now_utime(), {st.command.v, st.command.omega}, lld_options.loop.command_deadline_ms * 1000);
     if (options.trace && i % 20 == 0)

@@ -55,6 +55,12 @@ sim::SimulatorOptions control_sim_options(uint64_t seed, bool laser);
 bool feed_collision_avoidance(const sim::StepOutput& out, collision_avoidance::CollisionAvoidance& ca,
                               lld::OdometryInput* odometry);
 
+// Hands collision avoidance the follower's status, and the follower collision avoidance's
+// trajectory, as their nodes do over the bus: a new one (an id other than *last_id) replaces the
+// follower's plan, starting at its last commanded speed; the same one refreshes it.
+void hand_over_trajectory(collision_avoidance::CollisionAvoidance& ca, lld::Follower& follower,
+                          const lld::FollowerOptions& options, time::Time now, int64_t* last_id);
+
 // The world's tour as the demo has it: the world's own, or the one `rgnav demo` plans
 // (sim_tour with --margin 0.15, deploy/cli/demo.sh). Empty: no tour through the world.
 std::vector<Eigen::Vector2d> demo_tour(const sim::World& world);

@@ -18,10 +18,10 @@
 #include <filesystem>
 #include <random>
 
-#include "bus/fake_bus.h"
+#include "fake_bus_node.h"
+#include "kernel_messages.h"
 #include "procs/rg_kernel/rg_kernel_node.h"
 #include "rgmap/rgmap_json.h"
-#include "synthetic_world.h"
 
 using namespace rgnav;
 using namespace rgnav::rg_kernel;
@@ -48,49 +48,21 @@ std::vector<Input> synthetic_run(double minutes, double scan_period_s)
   int64_t t = 1'000'000, id = 1;
   const int64_t end = t + static_cast<int64_t>(minutes * 60e6), dt = static_cast<int64_t>(scan_period_s * 1e6);
   auto scan = [&](double x, double y, double th) {
-    aligned_scan_t m{};
-    m.utime = (t += dt);
-    m.scan_id = id++;
-    m.map_from_base.x = x + 0.02 * jitter(rng);
-    m.map_from_base.y = y + 0.02 * jitter(rng);
-    m.map_from_base.theta = th + 0.01 * jitter(rng);
-    m.odom_from_base = m.map_from_base;
-    laser_scan_t& s = m.scan;
-    s.utime = m.utime;
-    s.scan_id = m.scan_id;
-    s.sensor = "laser_front";
-    s.angle_min = static_cast<float>(-M_PI / 2);
-    s.angle_increment = static_cast<float>(M_PI / 180);
-    s.range_max = 8.0f;
-    s.nranges = 181;
-    s.ranges.assign(181, 8.0f);
-    const geometry::Pose2 pose(m.map_from_base.x, m.map_from_base.y, m.map_from_base.theta);
-    for (const auto& p : rg_kernel::testing::cast(walls, pose, 8.0, pillars)) {
-      const int beam = static_cast<int>(std::lround((std::atan2(p.y(), p.x()) + M_PI / 2) / (M_PI / 180)));
-      if (beam >= 0 && beam < 181) s.ranges[static_cast<size_t>(beam)] = static_cast<float>(p.norm() + 0.005 * jitter(rng));
-    }
+    t += dt;
+    pose2d_t pose;
+    pose.x = x + 0.02 * jitter(rng);
+    pose.y = y + 0.02 * jitter(rng);
+    pose.theta = th + 0.01 * jitter(rng);
+    const aligned_scan_t m =
+        rg_kernel::testing::aligned_scan_msg(walls, t, id++, pose, pillars, [&] { return 0.005 * jitter(rng); });
     std::vector<uint8_t> buf;
     std::string why;
     if (!bus::encode(m, &buf, &why)) throw std::runtime_error(why);
     out.push_back({"ALIGNED_SCAN", std::move(buf)});
   };
   auto door = [&](double x, double heading) {
-    gateway_event_t e{};
-    e.utime = (t += 1000);
-    e.scan_id = id - 1;
-    e.event = gateway_event_t::EVENT_TRAVERSED;
-    e.track_id = id;
-    e.gateway_class = gateway_event_t::CLASS_DOOR;
-    e.map_from_base.x = x;
-    e.map_from_base.y = 1.5;
-    e.map_from_base.theta = heading;
-    e.direction = heading;
-    e.npoints = 2;
-    e.gateway_points.resize(2);
-    e.gateway_points[0].x = 4;
-    e.gateway_points[0].y = 1;
-    e.gateway_points[1].x = 4;
-    e.gateway_points[1].y = 2;
+    t += 1000;
+    const gateway_event_t e = rg_kernel::testing::door_traversed_msg(t, id - 1, id, x, heading);
     std::vector<uint8_t> buf;
     std::string why;
     if (!bus::encode(e, &buf, &why)) throw std::runtime_error(why);
@@ -109,15 +81,10 @@ std::vector<Input> synthetic_run(double minutes, double scan_period_s)
   return out;
 }
 
-struct Process
+struct Process : rgnav::testing::FakeBusNode
 {
-  Process(const std::string& dir, int64_t snapshot_every, int sync_every)
+  Process(const std::string& dir, int64_t snapshot_every, int sync_every) : FakeBusNode("rg_kernel")
   {
-    auto b = std::make_unique<bus::FakeBus>();
-    bus = b.get();
-    runtime::NodeOptions o;
-    o.name = "rg_kernel";
-    node = std::make_unique<runtime::Node>(o, std::move(b));
     NodeConfig c;
     c.state_dir = dir;
     c.snapshot_every_inputs = snapshot_every;
@@ -125,8 +92,6 @@ struct Process
     kernel = std::make_unique<RgKernelNode>(*node, c);
   }
   std::string map_json() { return rgmap::to_json(const_cast<RgKernel&>(kernel->kernel()).refreshed_map()).dump(); }
-  bus::FakeBus* bus;
-  std::unique_ptr<runtime::Node> node;
   std::unique_ptr<RgKernelNode> kernel;
 };
 

@@ -12,14 +12,7 @@ namespace {
 LocalMap scanned(const Pose2& laser, const std::vector<testing::Wall>& walls)
 {
   LocalMap map(LocalMapOptions{});
-  ScanPoints s;
-  s.stamp = time::from_utime(1'000'000);
-  s.odom_from_base = laser;
-  for (const auto& r : testing::cast(laser, walls)) {
-    const Eigen::Vector2d p(r.range * std::cos(r.bearing), r.range * std::sin(r.bearing));
-    if (r.range < 8.0) s.points.push_back(p);
-    s.outline.push_back(p * (std::min(r.range, map.max_range()) / r.range));
-  }
+  const ScanPoints s = testing::scan_points(laser, walls, time::from_utime(1'000'000), map.max_range());
   map.add_scan(s);
   map.rebuild(s.stamp);
   return map;
@@ -105,14 +98,7 @@ TEST(ChainPlanner, NearMarginOnlyFromWhatMayBeMoving)
   ChainPlanner planner(o);
   LocalMap map(LocalMapOptions{});
   auto scan_at = [&](int64_t us, const std::vector<testing::Wall>& w) {
-    ScanPoints s;
-    s.stamp = time::from_utime(us);
-    s.odom_from_base = start;
-    for (const auto& r : testing::cast(start, w)) {
-      const Eigen::Vector2d p(r.range * std::cos(r.bearing), r.range * std::sin(r.bearing));
-      if (r.range < 8.0) s.points.push_back(p);
-      s.outline.push_back(p * (std::min(r.range, map.max_range()) / r.range));
-    }
+    const ScanPoints s = testing::scan_points(start, w, time::from_utime(us), map.max_range());
     map.add_scan(s);
     map.rebuild(s.stamp);
   };

@@ -1,19 +1,19 @@
-// Test-only: synthetic laser readings of segment obstacles (a tiny ray caster).
+// Test-only: synthetic laser readings of segment obstacles (the shared ray caster, wall_world.h).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <vector>
 
+#include "collision_avoidance/local_map.h"
 #include "collision_avoidance/reactive.h"
 #include "geometry/pose2.h"
+#include "wall_world.h"
 
 namespace rgnav::collision_avoidance::testing {
 
-struct Wall
-{
-  Eigen::Vector2d a, b;
-};
+using rgnav::testing::box;
+using rgnav::testing::Wall;
 
 // 181 beams over 180 deg from the laser pose (odom frame); no return = range_max.
 inline std::vector<PolarReading> cast(const geometry::Pose2& laser, const std::vector<Wall>& walls,
@@ -24,25 +24,25 @@ inline std::vector<PolarReading> cast(const geometry::Pose2& laser, const std::v
     const double bearing = -M_PI_2 + i * M_PI / 180.0;
     const double th = laser.theta() + bearing;
     const Eigen::Vector2d o = laser.translation(), d(std::cos(th), std::sin(th));
-    double best = range_max;
-    for (const auto& w : walls) {
-      const Eigen::Vector2d e = w.b - w.a;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::fabs(den) < 1e-12) continue;
-      const Eigen::Vector2d r = w.a - o;
-      const double t = (r.x() * e.y() - r.y() * e.x()) / den;
-      const double u = (r.x() * d.y() - r.y() * d.x()) / den;
-      if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
-    }
-    out.push_back({bearing, best});
+    out.push_back({bearing, std::min(range_max, rgnav::testing::nearest_wall(walls, o, d))});
   }
   return out;
 }
 
-// The four sides of an axis-aligned box.
-inline std::vector<Wall> box(double x0, double y0, double x1, double y1)
+// The same scan as the local map takes it, taken at `laser` at `stamp`: the hits as points, every
+// beam (cut at max_range) in the outline of the free space.
+inline ScanPoints scan_points(const geometry::Pose2& laser, const std::vector<Wall>& walls, time::Time stamp,
+                              double max_range)
 {
-  return {{{x0, y0}, {x1, y0}}, {{x1, y0}, {x1, y1}}, {{x1, y1}, {x0, y1}}, {{x0, y1}, {x0, y0}}};
+  ScanPoints s;
+  s.stamp = stamp;
+  s.odom_from_base = laser;
+  for (const auto& r : cast(laser, walls)) {
+    const Eigen::Vector2d p(r.range * std::cos(r.bearing), r.range * std::sin(r.bearing));
+    if (r.range < 8.0) s.points.push_back(p);
+    s.outline.push_back(p * (std::min(r.range, max_range) / r.range));
+  }
+  return s;
 }
 
 }  // namespace rgnav::collision_avoidance::testing

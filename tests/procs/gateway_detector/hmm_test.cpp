@@ -40,6 +40,17 @@ Sequence features_of(const TrainingSequence& s)
   return v;
 }
 
+// Training for the synthetic sequences: six states, clusters of at least five observations.
+HmmTrainingOptions six_state_training()
+{
+  HmmTrainingOptions o;
+  o.clusters = 6;
+  o.min_cluster_size = 5;
+  o.state_distance_gap = 1.0;
+  o.noise_sigma = 0.05;
+  return o;
+}
+
 TEST(Gaussian, LogPdfOfAStandardNormal)
 {
   const Gaussian g(Eigen::Vector2d::Zero(), Eigen::Matrix2d::Identity());
@@ -73,11 +84,7 @@ TEST(Hmm, BaumWelchIncreasesTheLikelihoodAndLearnsLeftRight)
   std::mt19937 rng(3);
   std::vector<TrainingSequence> train;
   for (int i = 0; i < 60; ++i) train.push_back(make_sequence(0, rng));
-  HmmTrainingOptions o;
-  o.clusters = 6;
-  o.min_cluster_size = 5;
-  o.state_distance_gap = 1.0;
-  o.noise_sigma = 0.05;
+  const HmmTrainingOptions o = six_state_training();
   std::vector<double> history;
   const Hmm h = train_hmm(train, o, &history);
   ASSERT_GE(history.size(), 3u);
@@ -97,11 +104,7 @@ TEST(Hmm, BaumWelchIncreasesTheLikelihoodAndLearnsLeftRight)
 TEST(Hmm, LeftRightModelsClassifyHeldOutSequences)
 {
   std::mt19937 rng(5);
-  HmmTrainingOptions o;
-  o.clusters = 6;
-  o.min_cluster_size = 5;
-  o.state_distance_gap = 1.0;
-  o.noise_sigma = 0.05;
+  const HmmTrainingOptions o = six_state_training();
   std::vector<Hmm> models;
   for (int k = 0; k < 3; ++k) {
     std::vector<TrainingSequence> train;

@@ -11,30 +11,39 @@
 namespace rgnav::gateway_detector {
 namespace {
 
+// Trains c's model of each of `classes` on `sequences` synthetic sequences of `length`
+// observations each, observation(cls, t) making the t-th (called in that order).
+template <class MakeObservation>
+void train_classes(HmmClassifier* c, std::initializer_list<int> classes, int sequences, int length, int clusters,
+                   MakeObservation observation)
+{
+  for (int cls : classes) {
+    std::vector<TrainingSequence> seqs;
+    for (int s = 0; s < sequences; ++s) {
+      TrainingSequence seq;
+      for (int t = 0; t < length; ++t) seq.push_back(observation(cls, t));
+      seqs.push_back(seq);
+    }
+    HmmTrainingOptions o;
+    o.clusters = clusters;
+    o.min_cluster_size = 5;
+    c->models()[static_cast<size_t>(cls)] = train_hmm(seqs, o);
+  }
+}
+
 HmmClassifier small_classifier()
 {
   std::mt19937 rng(1);
   std::normal_distribution<double> n(0, 0.05);
   HmmClassifier c;
-  for (int cls : {int{kT}, int{kX}}) {
-    std::vector<TrainingSequence> seqs;
-    for (int s = 0; s < 20; ++s) {
-      TrainingSequence seq;
-      for (int t = 0; t < 10; ++t) {
-        TrainingObservation o;
-        o.features = Eigen::VectorXd::Zero(kNumCrossingClasses);
-        for (int k = 0; k < kNumCrossingClasses; ++k) o.features[k] = 0.5 + n(rng);
-        o.features[cls] += 0.05 * t;
-        o.distance = 7.0 - 0.6 * t;
-        seq.push_back(o);
-      }
-      seqs.push_back(seq);
-    }
-    HmmTrainingOptions o;
-    o.clusters = 3;
-    o.min_cluster_size = 5;
-    c.models()[static_cast<size_t>(cls)] = train_hmm(seqs, o);
-  }
+  train_classes(&c, {int{kT}, int{kX}}, 20, 10, 3, [&](int cls, int t) {
+    TrainingObservation o;
+    o.features = Eigen::VectorXd::Zero(kNumCrossingClasses);
+    for (int k = 0; k < kNumCrossingClasses; ++k) o.features[k] = 0.5 + n(rng);
+    o.features[cls] += 0.05 * t;
+    o.distance = 7.0 - 0.6 * t;
+    return o;
+  });
   return c;
 }
 
@@ -112,26 +121,15 @@ TEST(GatewayModels, MeasureFeaturesRoundTripAndMismatchesAreNamed)
   std::mt19937 rng(2);
   std::normal_distribution<double> n(0, 0.03);
   HmmClassifier c(HmmFeatures::kMeasures);
-  for (int cls : {int{kLTurn}, int{kDeadEnd}}) {
-    std::vector<TrainingSequence> seqs;
-    for (int s = 0; s < 15; ++s) {
-      TrainingSequence seq;
-      for (int t = 0; t < 8; ++t) {
-        Observation ob;
-        ob.measures.on_line = {cls == kLTurn ? 0.1 + n(rng) : 0.9 + n(rng), 0.9 + n(rng), 0.9 + n(rng)};
-        ob.measures.over_line = {cls == kLTurn ? 0.8 + n(rng) : 0.05 + n(rng), 0.05 + n(rng), 0.05 + n(rng)};
-        ob.measures.occluded = {0.02 + n(rng), 0.02 + n(rng), 0.02 + n(rng)};
-        ob.measures.w_d = 0.9 + n(rng);
-        ob.measures.w_r = 0.95 + n(rng);
-        seq.push_back({feature_vector(ob, HmmFeatures::kMeasures), 6.0 - 0.6 * t});
-      }
-      seqs.push_back(seq);
-    }
-    HmmTrainingOptions o;
-    o.clusters = 2;
-    o.min_cluster_size = 5;
-    c.models()[static_cast<size_t>(cls)] = train_hmm(seqs, o);
-  }
+  train_classes(&c, {int{kLTurn}, int{kDeadEnd}}, 15, 8, 2, [&](int cls, int t) {
+    Observation ob;
+    ob.measures.on_line = {cls == kLTurn ? 0.1 + n(rng) : 0.9 + n(rng), 0.9 + n(rng), 0.9 + n(rng)};
+    ob.measures.over_line = {cls == kLTurn ? 0.8 + n(rng) : 0.05 + n(rng), 0.05 + n(rng), 0.05 + n(rng)};
+    ob.measures.occluded = {0.02 + n(rng), 0.02 + n(rng), 0.02 + n(rng)};
+    ob.measures.w_d = 0.9 + n(rng);
+    ob.measures.w_r = 0.95 + n(rng);
+    return TrainingObservation{feature_vector(ob, HmmFeatures::kMeasures), 6.0 - 0.6 * t};
+  });
   GatewayModels m;
   m.hallway_width = 2.5;
   m.f_vlm = 0.5;

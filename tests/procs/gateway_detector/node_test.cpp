@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "bus/fake_bus.h"
+#include "fake_bus_node.h"
 #include "gateway_detector/gateway_conversions.h"
 #include "gateway_detector/gateway_detector_node.h"
 #include "msg/conversions.h"
@@ -15,15 +15,10 @@ laser_scan_t laser_msg(sensors::LaserScan s)
   return msg::to_msg(s);
 }
 
-struct Fixture
+struct Fixture : rgnav::testing::FakeBusNode
 {
-  explicit Fixture(const std::string& input)
+  explicit Fixture(const std::string& input) : FakeBusNode("gateway_detector_test")
   {
-    auto bus = std::make_unique<bus::FakeBus>();
-    fake = bus.get();
-    runtime::NodeOptions no;
-    no.name = "gateway_detector_test";
-    node = std::make_unique<runtime::Node>(no, std::move(bus));
     NodeChannels ch;
     ch.input = input;
     DetectorOptions o;
@@ -32,17 +27,8 @@ struct Fixture
   template <class T>
   std::vector<T> decoded(const std::string& channel) const
   {
-    std::vector<T> out;
-    for (const auto& p : fake->published_on(channel)) {
-      T m;
-      std::string why;
-      EXPECT_TRUE(bus::decode(p.data.data(), p.data.size(), &m, &why)) << why;
-      out.push_back(m);
-    }
-    return out;
+    return rgnav::testing::decoded<T>(*bus, channel);
   }
-  bus::FakeBus* fake;
-  std::unique_ptr<runtime::Node> node;
   std::unique_ptr<GatewayDetectorNode> adapter;
 };
 
@@ -59,11 +45,11 @@ TEST(GatewayDetectorNode, LaserAndOdometryThroughADoor)
     odo.seq = id;
     odo.odom_from_base = msg::to_msg(base);
     odo.status = odometry_t::STATUS_SIMULATED;
-    ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo));
+    ASSERT_TRUE(bus::publish(*f.bus, "ODOMETRY", odo));
     sensors::LaserScan s = test::cast(walls, base * geometry::Pose2(0.12, 0, 0), 0.005, static_cast<unsigned>(id));
     s.utime = t;
     s.scan_id = id;
-    ASSERT_TRUE(bus::publish(*f.fake, "LASER_FRONT", laser_msg(s)));
+    ASSERT_TRUE(bus::publish(*f.bus, "LASER_FRONT", laser_msg(s)));
   }
   // A broken scan is dropped by the typed bus and changes nothing.
   laser_scan_t bad = laser_msg(test::cast(walls, geometry::Pose2()));
@@ -71,7 +57,7 @@ TEST(GatewayDetectorNode, LaserAndOdometryThroughADoor)
   bad.ranges[3] = -1.f;
   std::vector<uint8_t> raw(static_cast<size_t>(bad.getEncodedSize()));
   bad.encode(raw.data(), 0, static_cast<int>(raw.size()));
-  f.fake->publish("LASER_FRONT", raw.data(), raw.size());
+  f.bus->publish("LASER_FRONT", raw.data(), raw.size());
 
   const auto hyps = f.decoded<gateway_hypotheses_t>("GATEWAY_HYPOTHESES");
   EXPECT_EQ(static_cast<int64_t>(hyps.size()), id - 1);  // one message per good scan
@@ -112,10 +98,10 @@ TEST(GatewayDetectorNode, AlignedScansCarryTheirPose)
     s.utime = a.utime;
     s.scan_id = id;
     a.scan = laser_msg(s);
-    ASSERT_TRUE(bus::publish(*f.fake, "ALIGNED_SCAN", a));
+    ASSERT_TRUE(bus::publish(*f.bus, "ALIGNED_SCAN", a));
     if (id == 3) {  // a correction of an old scan is not a new observation
       a.revision = 1;
-      ASSERT_TRUE(bus::publish(*f.fake, "ALIGNED_SCAN", a));
+      ASSERT_TRUE(bus::publish(*f.bus, "ALIGNED_SCAN", a));
     }
   }
   const auto hyps = f.decoded<gateway_hypotheses_t>("GATEWAY_HYPOTHESES");

@@ -1,5 +1,5 @@
-// Analytic test scenes for the gateway detector: wall segments, an exact ray caster, and
-// hallway crossings of every class (the approach hallway runs along +x, the crossing square
+// Analytic test scenes for the gateway detector: scans from the shared ray caster (wall_world.h)
+// and hallway crossings of every class (the approach hallway runs along +x, the crossing square
 // is [0, w] x [-w/2, w/2]).
 #pragma once
 
@@ -11,14 +11,12 @@
 
 #include "gateway_detector/measures.h"
 #include "gateway_detector/scan.h"
+#include "wall_world.h"
 
 namespace rgnav::gateway_detector::test {
 
-struct Wall
-{
-  Vec2 a, b;
-};
-using Walls = std::vector<Wall>;
+using rgnav::testing::Wall;
+using rgnav::testing::Walls;
 
 inline sensors::LaserScan cast(const Walls& walls, const geometry::Pose2& world_from_laser, double noise = 0.0, unsigned seed = 1,
                  int beams = 181, double range_max = 8.183)
@@ -33,16 +31,7 @@ inline sensors::LaserScan cast(const Walls& walls, const geometry::Pose2& world_
   for (int i = 0; i < beams; ++i) {
     const double a = world_from_laser.theta() + s.bearing(static_cast<size_t>(i));
     const Vec2 d(std::cos(a), std::sin(a));
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& w : walls) {
-      const Vec2 e = w.b - w.a;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::fabs(den) < 1e-12) continue;
-      const Vec2 ao = w.a - o;
-      const double t = (ao.x() * e.y() - ao.y() * e.x()) / den;
-      const double u = (ao.x() * d.y() - ao.y() * d.x()) / den;
-      if (t > 1e-9 && u >= 0 && u <= 1) best = std::min(best, t);
-    }
+    const double best = rgnav::testing::nearest_wall(walls, o, d, 1e-9);
     double r = best + (noise > 0 ? n(rng) : 0.0);
     s.ranges.push_back(static_cast<float>(best < range_max ? std::max(0.01, r) : range_max));
   }

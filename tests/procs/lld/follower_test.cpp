@@ -85,6 +85,31 @@ FollowRun follow(const Chain& chain, const geometry::Pose2& start, double v_max 
   return r;
 }
 
+// A follower driving the lagged unicycle from the origin along a straight trajectory (id 1).
+struct LineDrive
+{
+  explicit LineDrive(double length)
+  {
+    f.replace(make_plan(make_trajectory(Chain({Segment::line({}, length)}), 1), o, 0.0), now);
+  }
+  OdometryInput odometry() const { return {plant.pose, plant.v, plant.omega, now}; }
+  // One 20 Hz period with the trajectory never refreshed: the follower steps on the plant's
+  // odometry, the plant follows the command (if `plant_moves`), the clock advances.
+  void unrefreshed_period(bool plant_moves = true)
+  {
+    const OdometryInput odo = odometry();
+    f.step(now, kDt, &odo);
+    if (plant_moves) plant.advance(f.last_command(), kDt);
+    tick();
+  }
+  void tick() { now += time::Duration(50'000); }
+
+  FollowerOptions o = options();
+  Follower f{o};
+  testing::UnicyclePlant plant;
+  time::Time now = time::from_utime(1'000'000'000);
+};
+
 TEST(Follower, ConvergesOnLineFromOffset)
 {
   const Chain line({Segment::line(geometry::Pose2(0, 0, 0), 4.0)});
@@ -143,51 +168,45 @@ TEST(Follower, TurnInPlaceThenDrive)
 
 TEST(Follower, ReplacementWithoutVelocityJump)
 {
-  FollowerOptions o = options();
-  Follower f(o);
-  testing::UnicyclePlant plant;
-  time::Time now = time::from_utime(1'000'000'000);
-  f.replace(make_plan(make_trajectory(Chain({Segment::line({}, 5.0)}), 1), o, 0.0), now);
+  LineDrive d(5.0);
   VelocityCommand prev;
   double max_dv = 0, max_dw = 0, v_at_switch = 0;
   for (int i = 0; i < 200; ++i) {
     if (i == 60) {
       // A new chain, veering left from where the robot is, at its current speed.
-      v_at_switch = f.last_command().v;
+      v_at_switch = d.f.last_command().v;
       Chain c;
-      c.push_back(Segment::arc(plant.pose, 0.8, 1.0));
+      c.push_back(Segment::arc(d.plant.pose, 0.8, 1.0));
       c.append_at_end(Segment::line({}, 1.0));
-      f.replace(make_plan(make_trajectory(c, 2), o, f.last_command().v), now);
+      d.f.replace(make_plan(make_trajectory(c, 2), d.o, d.f.last_command().v), d.now);
     }
-    OdometryInput odo{plant.pose, plant.v, plant.omega, now};
-    const FollowerStatus& st = f.step(now, kDt, &odo);
-    f.refresh(st.trajectory_id, now);
+    const OdometryInput odo = d.odometry();
+    const FollowerStatus& st = d.f.step(d.now, kDt, &odo);
+    d.f.refresh(st.trajectory_id, d.now);
     max_dv = std::max(max_dv, std::fabs(st.command.v - prev.v));
     max_dw = std::max(max_dw, std::fabs(st.command.omega - prev.omega));
     prev = st.command;
-    plant.advance(st.command, kDt);
-    now += time::Duration(50'000);
+    d.plant.advance(st.command, kDt);
+    d.tick();
   }
   EXPECT_GT(v_at_switch, 0.3);  // replaced while driving
-  EXPECT_EQ(f.status().trajectory_id, 2);
-  EXPECT_LE(max_dv, o.limits.a_max * kDt + 1e-9);
-  EXPECT_LE(max_dw, o.limits.alpha_max * kDt + 1e-9);
+  EXPECT_EQ(d.f.status().trajectory_id, 2);
+  EXPECT_LE(max_dv, d.o.limits.a_max * kDt + 1e-9);
+  EXPECT_LE(max_dw, d.o.limits.alpha_max * kDt + 1e-9);
 }
 
 TEST(Follower, StaleOdometryStopsWithinLimits)
 {
-  FollowerOptions o = options();
-  Follower f(o);
-  testing::UnicyclePlant plant;
-  time::Time now = time::from_utime(1'000'000'000);
-  f.replace(make_plan(make_trajectory(Chain({Segment::line({}, 8.0)}), 1), o, 0.0), now);
+  LineDrive d(8.0);
+  const FollowerOptions& o = d.o;
+  Follower& f = d.f;
   OdometryInput odo;
   for (int i = 0; i < 60; ++i) {
-    odo = {plant.pose, plant.v, plant.omega, now};
-    f.step(now, kDt, &odo);
-    f.refresh(1, now);
-    plant.advance(f.last_command(), kDt);
-    now += time::Duration(50'000);
+    odo = d.odometry();
+    f.step(d.now, kDt, &odo);
+    f.refresh(1, d.now);
+    d.plant.advance(f.last_command(), kDt);
+    d.tick();
   }
   const double v0 = f.last_command().v;
   ASSERT_GT(v0, 0.3);
@@ -195,11 +214,11 @@ TEST(Follower, StaleOdometryStopsWithinLimits)
   int steps = 0;
   double prev = v0;
   while (f.last_command().v > 0 && steps < 100) {
-    f.step(now, kDt, &odo);
-    f.refresh(1, now);
+    f.step(d.now, kDt, &odo);
+    f.refresh(1, d.now);
     EXPECT_LE(prev - f.last_command().v, o.stop_decel * kDt + 1e-9);
     prev = f.last_command().v;
-    now += time::Duration(50'000);
+    d.tick();
     ++steps;
   }
   EXPECT_EQ(f.last_command().v, 0.0);
@@ -211,45 +230,25 @@ TEST(Follower, StaleOdometryStopsWithinLimits)
 
 TEST(Follower, StaleTrajectoryStops)
 {
-  FollowerOptions o = options();
-  Follower f(o);
-  testing::UnicyclePlant plant;
-  time::Time now = time::from_utime(1'000'000'000);
-  f.replace(make_plan(make_trajectory(Chain({Segment::line({}, 20.0)}), 1), o, 0.0), now);
+  LineDrive d(20.0);
   bool stopped = false;
-  for (int i = 0; i < 200 && !stopped; ++i) {  // never refreshed
-    OdometryInput odo{plant.pose, plant.v, plant.omega, now};
-    f.step(now, kDt, &odo);
-    plant.advance(f.last_command(), kDt);
-    now += time::Duration(50'000);
-    stopped = f.status().stop_reason == StopReason::kStaleTrajectory && f.last_command().v == 0.0;
+  for (int i = 0; i < 200 && !stopped; ++i) {
+    d.unrefreshed_period();
+    stopped = d.f.status().stop_reason == StopReason::kStaleTrajectory && d.f.last_command().v == 0.0;
   }
   EXPECT_TRUE(stopped);
-  EXPECT_LT(plant.pose.x(), 20.0);
+  EXPECT_LT(d.plant.pose.x(), 20.0);
 }
 
 TEST(Follower, EmptyTrajectoryCancels)
 {
-  FollowerOptions o = options();
-  Follower f(o);
-  testing::UnicyclePlant plant;
-  time::Time now = time::from_utime(1'000'000'000);
-  f.replace(make_plan(make_trajectory(Chain({Segment::line({}, 20.0)}), 1), o, 0.0), now);
-  for (int i = 0; i < 40; ++i) {
-    OdometryInput odo{plant.pose, plant.v, plant.omega, now};
-    f.step(now, kDt, &odo);
-    plant.advance(f.last_command(), kDt);
-    now += time::Duration(50'000);
-  }
-  ASSERT_GT(f.last_command().v, 0.2);
-  f.replace(make_plan(make_trajectory(Chain(), 2), o, 0.0), now);
-  for (int i = 0; i < 40; ++i) {
-    OdometryInput odo{plant.pose, plant.v, plant.omega, now};
-    f.step(now, kDt, &odo);
-    now += time::Duration(50'000);
-  }
-  EXPECT_EQ(f.last_command().v, 0.0);
-  EXPECT_EQ(f.status().state, FollowerState::kIdle);
+  LineDrive d(20.0);
+  for (int i = 0; i < 40; ++i) d.unrefreshed_period();
+  ASSERT_GT(d.f.last_command().v, 0.2);
+  d.f.replace(make_plan(make_trajectory(Chain(), 2), d.o, 0.0), d.now);
+  for (int i = 0; i < 40; ++i) d.unrefreshed_period(/*plant_moves=*/false);
+  EXPECT_EQ(d.f.last_command().v, 0.0);
+  EXPECT_EQ(d.f.status().state, FollowerState::kIdle);
 }
 
 }  // namespace

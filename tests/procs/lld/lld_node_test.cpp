@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bus/fake_bus.h"
+#include "fake_bus_node.h"
 #include "msg/conversions.h"
 #include "trajectory/trajectory_conversions.h"
 
@@ -11,11 +11,9 @@ namespace {
 
 TEST(LldNode, TracksOverFakeBus)
 {
-  auto bus = std::make_unique<bus::FakeBus>();
-  bus::FakeBus* fake = bus.get();
-  runtime::NodeOptions no;
-  no.name = "lld";
-  runtime::Node node(no, std::move(bus));
+  rgnav::testing::FakeBusNode n("lld");
+  bus::FakeBus* fake = n.bus;
+  runtime::Node& node = *n.node;
   LldOptions options;
   LldNode lld(node, options, /*start_thread=*/false);
 
@@ -61,11 +59,9 @@ TEST(LldNode, TracksOverFakeBus)
 
 TEST(LldNode, RejectsBadTrajectory)
 {
-  auto bus = std::make_unique<bus::FakeBus>();
-  bus::FakeBus* fake = bus.get();
-  runtime::NodeOptions no;
-  no.name = "lld";
-  runtime::Node node(no, std::move(bus));
+  rgnav::testing::FakeBusNode n("lld");
+  bus::FakeBus* fake = n.bus;
+  runtime::Node& node = *n.node;
   LldNode lld(node, LldOptions{}, false);
   trajectory_t m{};
   m.utime = 1;

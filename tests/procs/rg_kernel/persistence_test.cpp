@@ -6,13 +6,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "bus/fake_bus.h"
+#include "fake_bus_node.h"
+#include "kernel_messages.h"
 #include "persist/atomic_file.h"
 #include "persist/journal.h"
 #include "procs/rg_kernel/rg_kernel_conversions.h"
 #include "procs/rg_kernel/rg_kernel_node.h"
 #include "rgmap/rgmap_json.h"
-#include "synthetic_world.h"
 
 namespace rgnav::rg_kernel {
 namespace {
@@ -28,15 +28,10 @@ std::string fresh_dir(const std::string& name)
   return d.string();
 }
 
-struct KernelProcess
+struct KernelProcess : rgnav::testing::FakeBusNode
 {
-  explicit KernelProcess(const std::string& dir, int64_t snapshot_every = 0)
+  explicit KernelProcess(const std::string& dir, int64_t snapshot_every = 0) : FakeBusNode("rg_kernel")
   {
-    auto b = std::make_unique<bus::FakeBus>();
-    bus = b.get();
-    runtime::NodeOptions o;
-    o.name = "rg_kernel";
-    node = std::make_unique<runtime::Node>(o, std::move(b));
     NodeConfig c;
     c.state_dir = dir;
     c.sync_every_inputs = 100000;  // the test cuts the files itself; fsync only slows it down
@@ -45,8 +40,6 @@ struct KernelProcess
     kernel = std::make_unique<RgKernelNode>(*node, c);
   }
   std::string map_json() { return rgmap::to_json(const_cast<RgKernel&>(kernel->kernel()).refreshed_map()).dump(); }
-  bus::FakeBus* bus;
-  std::unique_ptr<runtime::Node> node;
   std::unique_ptr<RgKernelNode> kernel;
 };
 
@@ -56,48 +49,16 @@ std::vector<std::pair<std::string, std::vector<uint8_t>>> inputs()
   const auto walls = testing::two_rooms();
   int64_t t = 1'000'000, id = 1;
   auto scan = [&](double x, double th) {
-    aligned_scan_t m{};
-    m.utime = (t += 200'000);
-    m.scan_id = id++;
-    m.map_from_base.x = x;
-    m.map_from_base.y = 1.5;
-    m.map_from_base.theta = th;
-    m.odom_from_base = m.map_from_base;
-    laser_scan_t& s = m.scan;
-    s.utime = m.utime;
-    s.scan_id = m.scan_id;
-    s.sensor = "laser_front";
-    s.angle_min = static_cast<float>(-M_PI / 2);
-    s.angle_increment = static_cast<float>(M_PI / 180);
-    s.range_max = 8.0f;
-    s.nranges = 181;
-    s.ranges.assign(181, 8.0f);
-    const auto pts = testing::cast(walls, geometry::Pose2(x, 1.5, th));
-    // cast() drops max-range beams; recover each beam's range from its bearing.
-    for (const auto& p : pts) {
-      const int beam = static_cast<int>(std::lround((std::atan2(p.y(), p.x()) + M_PI / 2) / (M_PI / 180)));
-      if (beam >= 0 && beam < 181) s.ranges[static_cast<size_t>(beam)] = static_cast<float>(p.norm());
-    }
+    t += 200'000;
+    const aligned_scan_t m = testing::aligned_scan_msg(walls, t, id++, pose2d_t{x, 1.5, th});
     std::vector<uint8_t> buf;
     std::string why;
     EXPECT_TRUE(bus::encode(m, &buf, &why)) << why;
     out.push_back({"ALIGNED_SCAN", buf});
   };
   for (double x = 1.0; x < 3.9; x += 0.3) scan(x, 0);
-  gateway_event_t e{};
-  e.utime = (t += 1000);
-  e.scan_id = id - 1;
-  e.event = gateway_event_t::EVENT_TRAVERSED;
-  e.track_id = 7;
-  e.gateway_class = gateway_event_t::CLASS_DOOR;
-  e.map_from_base.x = 4.3;
-  e.map_from_base.y = 1.5;
-  e.npoints = 2;
-  e.gateway_points.resize(2);
-  e.gateway_points[0].x = 4;
-  e.gateway_points[0].y = 1;
-  e.gateway_points[1].x = 4;
-  e.gateway_points[1].y = 2;
+  t += 1000;
+  const gateway_event_t e = testing::door_traversed_msg(t, id - 1, 7, 4.3, 0.0);
   std::vector<uint8_t> buf;
   std::string why;
   EXPECT_TRUE(bus::encode(e, &buf, &why)) << why;

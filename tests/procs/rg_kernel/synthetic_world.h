@@ -1,20 +1,20 @@
-// A tiny ray caster over wall segments, for RG kernel tests: two rooms joined by a door.
+// Worlds for RG kernel tests (two rooms joined by a door, hallways, furniture, pillars) and
+// laser end points cast in them with the shared ray caster (wall_world.h).
 #pragma once
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include "geometry/pose2.h"
+#include "wall_world.h"
 
 namespace rgnav::rg_kernel::testing {
 
-struct Wall
-{
-  Eigen::Vector2d a, b;
-};
+using rgnav::testing::box;
+using rgnav::testing::Wall;
 
 // Room A [0,4]x[0,3], room B [4,8]x[0,3], door in x = 4 between y = 1 and y = 2.
 inline std::vector<Wall> two_rooms()
@@ -50,13 +50,6 @@ struct Pillar
   double r;
 };
 
-// The four walls of an axis-aligned box [x0,x1]x[y0,y1] (furniture, seen from outside).
-inline std::vector<Wall> box(double x0, double y0, double x1, double y1)
-{
-  using V = Eigen::Vector2d;
-  return {{V(x0, y0), V(x1, y0)}, {V(x1, y0), V(x1, y1)}, {V(x1, y1), V(x0, y1)}, {V(x0, y1), V(x0, y0)}};
-}
-
 // 181 beams over 180 degrees, end points in the laser frame (= base frame here).
 inline std::vector<Eigen::Vector2d> cast(const std::vector<Wall>& walls, const geometry::Pose2& pose, double max_range = 8.0,
                                          const std::vector<Pillar>& pillars = {})
@@ -66,16 +59,7 @@ inline std::vector<Eigen::Vector2d> cast(const std::vector<Wall>& walls, const g
     const double a = -M_PI / 2 + i * M_PI / 180;
     const Eigen::Vector2d o = pose.translation();
     const Eigen::Vector2d d(std::cos(pose.theta() + a), std::sin(pose.theta() + a));
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& w : walls) {
-      const Eigen::Vector2d e = w.b - w.a;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::fabs(den) < 1e-12) continue;
-      const Eigen::Vector2d f = w.a - o;
-      const double t = (f.x() * e.y() - f.y() * e.x()) / den;
-      const double u = (f.x() * d.y() - f.y() * d.x()) / den;
-      if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
-    }
+    double best = rgnav::testing::nearest_wall(walls, o, d);
     for (const auto& p : pillars) {
       // |o + t d - c| = r, nearest t > 0.
       const Eigen::Vector2d f = o - p.c;

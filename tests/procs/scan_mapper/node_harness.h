@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "bus/fake_bus.h"
 #include "bus/typed.h"
+#include "fake_bus_node.h"
 #include "scan_mapper/scan_mapper_conversions.h"
 #include "scan_mapper/scan_mapper_node.h"
 #include "synthetic_world.h"
@@ -23,28 +23,17 @@ inline ScanMapperOptions node_test_options()
   return o;
 }
 
-struct NodeHarness
+struct NodeHarness : rgnav::testing::FakeBusNode
 {
   explicit NodeHarness(const PersistenceOptions& p, const ScanMapperOptions& o = node_test_options())
+      : FakeBusNode("scan_mapper_test")
   {
-    auto bus = std::make_unique<bus::FakeBus>();
-    fake = bus.get();
-    runtime::NodeOptions no;
-    no.name = "scan_mapper_test";
-    node = std::make_unique<runtime::Node>(no, std::move(bus));
     adapter = std::make_unique<ScanMapperNode>(*node, o, ScanMapperChannels{}, p);
   }
   template <class T>
   std::vector<T> published(const std::string& channel) const
   {
-    std::vector<T> out;
-    for (const auto& m : fake->published_on(channel)) {
-      T msg;
-      std::string why;
-      EXPECT_TRUE(bus::decode(m.data.data(), m.data.size(), &msg, &why)) << why;
-      out.push_back(msg);
-    }
-    return out;
+    return rgnav::testing::decoded<T>(*bus, channel);
   }
   // Lets a running pose graph optimisation finish and be adopted (it runs on a worker thread).
   void settle()
@@ -57,10 +46,8 @@ struct NodeHarness
   {
     std::vector<uint8_t> buf(static_cast<size_t>(msg.getEncodedSize()));
     ASSERT_GE(msg.encode(buf.data(), 0, static_cast<int>(buf.size())), 0);
-    fake->publish(channel, buf.data(), buf.size());
+    bus->publish(channel, buf.data(), buf.size());
   }
-  bus::FakeBus* fake = nullptr;
-  std::unique_ptr<runtime::Node> node;
   std::unique_ptr<ScanMapperNode> adapter;
 };
 

@@ -27,6 +27,14 @@ sm::Points points_of(const rgnav::sensors::LaserScan& s)
   return sm::scan_to_points(s, sm::Pose2{}, o);
 }
 
+// The default laser with 1 cm range noise.
+LaserModel noisy_laser()
+{
+  LaserModel m;
+  m.noise_m = 0.01;
+  return m;
+}
+
 double trans_err(const sm::Pose2& a, const sm::Pose2& b) { return std::hypot(a.x() - b.x(), a.y() - b.y()); }
 double rot_err(const sm::Pose2& a, const sm::Pose2& b) { return std::fabs(sm::normalize_angle(a.theta() - b.theta())); }
 
@@ -36,8 +44,7 @@ TEST(Icp, RecoversSmallMotionWithNoiseAndOutliers)
 {
   std::mt19937 rng(7);
   const auto world = sm::testing::office_world();
-  LaserModel m;
-  m.noise_m = 0.01;
+  LaserModel m = noisy_laser();
   m.outlier_share = 0.05;
   const std::vector<Case> cases = {
       {{1.0, 1.0, 0.3}, {0.25, 0.05, 0.08}},
@@ -67,8 +74,7 @@ TEST(Icp, PartialOverlapRegistersWithCorrelativeSeed)
 {
   std::mt19937 rng(11);
   const auto world = sm::testing::office_world();
-  LaserModel m;
-  m.noise_m = 0.01;
+  LaserModel m = noisy_laser();
   // Current scan sees only the left 100 deg of what the reference saw, after a turn.
   const sm::Pose2 ref_pose{1.0, 1.0, 0.5};
   const sm::Pose2 motion{0.3, 0.1, 0.6};
@@ -90,8 +96,7 @@ TEST(Correlative, FindsLargeOffsetsIcpCannot)
 {
   std::mt19937 rng(3);
   const auto world = sm::testing::office_world();
-  LaserModel m;
-  m.noise_m = 0.01;
+  LaserModel m = noisy_laser();
   m.outlier_share = 0.05;
   const sm::Pose2 ref_pose{5.0, 4.0, 0.0};
   const sm::Pose2 motion{0.9, -0.7, 0.35};  // 1.1 m and 20 deg away from the guess
@@ -151,8 +156,7 @@ std::vector<sm::testing::Segment> hallway_with_gaps()
 TEST(Correlative, RunnerUpTellsAHallwaysAmbiguityFromAPlaceWithStructure)
 {
   std::mt19937 rng(7);
-  LaserModel m;
-  m.noise_m = 0.01;
+  LaserModel m = noisy_laser();
   m.max_range = 8.0;   // the hallway's ends out of sight
   sm::CorrelativeOptions co;
   co.resolution_m = 0.1;
@@ -194,8 +198,7 @@ TEST(Icp, CorridorAxisIsTheWeakDirectionAndLeftToOdometry)
   // surface normal remain.
   const std::vector<sm::testing::Segment> corridor = {{{-50, -1}, {50, -1}}, {{-50, 1}, {50, 1}}};
   std::mt19937 rng(3);
-  LaserModel m;
-  m.noise_m = 0.01;
+  LaserModel m = noisy_laser();
   m.max_range = 8.0;
   const auto ref = cast_scan(corridor, sm::Pose2{}, m, &rng);
   const sm::Pose2 motion{0.2, 0.05, 0.03};

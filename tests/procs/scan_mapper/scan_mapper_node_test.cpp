@@ -53,7 +53,7 @@ TEST(ScanMapperNode, InvalidMessagesAreDroppedNotFatal)
   bad.angle_increment = 0.01f;
   bad.range_max = 10.f;
   const std::vector<uint8_t> junk = {1, 2, 3};
-  h.fake->publish("LASER_FRONT", junk.data(), junk.size());
+  h.bus->publish("LASER_FRONT", junk.data(), junk.size());
   EXPECT_TRUE(h.published<aligned_scan_t>("ALIGNED_SCAN").empty());
   EXPECT_GE(h.node->drops().total(), 1);
 }

@@ -1,39 +1,34 @@
-// A polygonal test world and a laser ray caster over it, for registration and mapping tests.
+// A polygonal test world and laser scans of it (the shared ray caster, wall_world.h), for
+// registration and mapping tests.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <random>
 #include <vector>
 
 #include "scan_mapper/scan_types.h"
+#include "wall_world.h"
 
 namespace rgnav::scan_mapper::testing {
 
-struct Segment
-{
-  Eigen::Vector2d a, b;
-};
+using Segment = rgnav::testing::Wall;
 
 // An L-shaped corridor system with rooms, pillars and a doorway: enough structure to
 // constrain x, y and theta everywhere.
 inline std::vector<Segment> office_world()
 {
+  using rgnav::testing::add;
+  using rgnav::testing::box;
   std::vector<Segment> w;
-  auto box = [&](double x0, double y0, double x1, double y1) {
-    w.push_back({{x0, y0}, {x1, y0}});
-    w.push_back({{x1, y0}, {x1, y1}});
-    w.push_back({{x1, y1}, {x0, y1}});
-    w.push_back({{x0, y1}, {x0, y0}});
-  };
-  box(-2, -2, 12, 10);                 // outer walls
+  add(&w, box(-2, -2, 12, 10));        // outer walls
   w.push_back({{3, -2}, {3, 4}});      // inner walls with gaps (doorways)
   w.push_back({{3, 5}, {3, 10}});
   w.push_back({{3, 6}, {8, 6}});
   w.push_back({{9, 6}, {12, 6}});
-  box(6, 1, 7, 2);                     // pillars and furniture
-  box(0, 7, 0.6, 7.6);
-  box(9.5, 8, 10.5, 8.5);
+  add(&w, box(6, 1, 7, 2));            // pillars and furniture
+  add(&w, box(0, 7, 0.6, 7.6));
+  add(&w, box(9.5, 8, 10.5, 8.5));
   w.push_back({{-2, 3}, {0, 3.5}});    // a slanted wall
   return w;
 }
@@ -63,16 +58,7 @@ inline sensors::LaserScan cast_scan(const std::vector<Segment>& world, const Pos
   for (int i = 0; i < m.beams; ++i) {
     const double a = map_from_laser.theta() + s.angle_min + i * static_cast<double>(s.angle_increment);
     const Eigen::Vector2d o(map_from_laser.x(), map_from_laser.y()), d(std::cos(a), std::sin(a));
-    double best = m.max_range;
-    for (const auto& seg : world) {
-      const Eigen::Vector2d e = seg.b - seg.a;
-      const double den = d.x() * (-e.y()) - d.y() * (-e.x());
-      if (std::fabs(den) < 1e-12) continue;
-      const Eigen::Vector2d r = seg.a - o;
-      const double t = (r.x() * (-e.y()) - r.y() * (-e.x())) / den;
-      const double u = (d.x() * r.y() - d.y() * r.x()) / den;
-      if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
-    }
+    const double best = std::min(m.max_range, rgnav::testing::nearest_wall(world, o, d));
     double r = best;
     if (rng && best < m.max_range) r += noise(*rng);
     if (rng && m.outlier_share > 0 && uni(*rng) < m.outlier_share) r = 0.3 + uni(*rng) * 3.0;

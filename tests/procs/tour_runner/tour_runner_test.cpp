@@ -3,7 +3,8 @@
 #include <cstdio>
 #include <fstream>
 
-#include "bus/fake_bus.h"
+#include "fake_bus_node.h"
+#include "laser_scan_msg.h"
 #include "procs/tour_runner/pure_pursuit.h"
 #include "procs/tour_runner/tour.h"
 #include "procs/tour_runner/tour_runner_node.h"
@@ -110,15 +111,10 @@ TEST(PurePursuit, StopsForObstacleAheadAndSteersTowardTarget)
   EXPECT_TRUE(escape(o, 0.0, wall_right).blocked);
 }
 
-struct NodeHarness
+struct NodeHarness : rgnav::testing::FakeBusNode
 {
-  explicit NodeHarness(TourRunnerOptions::Output output)
+  explicit NodeHarness(TourRunnerOptions::Output output) : FakeBusNode("tour_runner")
   {
-    auto b = std::make_unique<bus::FakeBus>();
-    bus = b.get();
-    runtime::NodeOptions no;
-    no.name = "tour_runner";
-    node = std::make_unique<runtime::Node>(no, std::move(b));
     TourRunnerOptions o;
     o.tour_file = write_tour("start: [10, 0, 1.5707963267948966]\ntour: [[10, 2]]\n");
     o.output = output;
@@ -138,31 +134,13 @@ struct NodeHarness
   }
   void scan(int64_t utime)
   {
-    laser_scan_t s{};
-    s.utime = utime;
-    s.scan_id = utime;
-    s.sensor = "laser_front";
-    s.angle_min = static_cast<float>(-M_PI / 2);
-    s.angle_increment = static_cast<float>(M_PI / 180);
-    s.range_max = 8.183f;
-    s.nranges = 181;
-    s.ranges.assign(181, 8.183f);
-    bus::publish(*bus, "LASER_FRONT", s);
+    bus::publish(*bus, "LASER_FRONT", rgnav::testing::laser_scan_msg(utime, utime, 8.183f, 8.183f));
   }
   template <class T>
   std::vector<T> received(const std::string& ch)
   {
-    std::vector<T> out;
-    for (const auto& p : bus->published_on(ch)) {
-      T m;
-      std::string why;
-      EXPECT_TRUE(bus::decode(p.data.data(), p.data.size(), &m, &why)) << why;
-      out.push_back(m);
-    }
-    return out;
+    return rgnav::testing::decoded<T>(*bus, ch);
   }
-  bus::FakeBus* bus;
-  std::unique_ptr<runtime::Node> node;
   std::unique_ptr<TourRunnerNode> runner;
 };
 
