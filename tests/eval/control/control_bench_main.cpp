@@ -267,7 +267,7 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
           sent_correction = odom_from_world;
         }
       }
-      hand_over_trajectory(ca, f, lo.follower, now, &last_id);
+      rgnav::bench::hand_over_trajectory(ca, f, lo.follower, now, &last_id);
       const auto& st = f.step(now, kPeriod, have ? &odi : nullptr);
       cmd.set(sim.now_utime(), {st.command.v, st.command.omega}, lo.loop.command_deadline_ms * 1000);
       cmd_v_before = st.command.v;
