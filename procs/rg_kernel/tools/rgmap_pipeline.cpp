@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "gateway_detector/gateway_conversions.h"
-#include "procs/rg_kernel/rg_kernel_conversions.h"
+#include "procs/rg_kernel/laser_points.h"
 
 namespace rgnav::rgmap_pipeline {
 namespace {

@@ -109,7 +109,7 @@ int main(int argc, char** argv)
     if (!sims.empty()) {
       const auto sim_cfg = rgnav::config::Config::load(sim_config);
       const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg, loaded.robot);
-      rgnav::config::finish_except(sim_cfg, {"node", "channels", "protocol"});
+      rgnav::config::finish_except(sim_cfg, {"node", "channels", "sim", "protocol"});  // the process's own run settings
       for (const auto& spec : sims) {
         const auto [name, path] = split_spec(spec);
         // The headline on the scan mapper's poses; on request again on the true poses.

@@ -288,7 +288,7 @@ int main(int argc, char** argv)
     if (!sims.empty() || !sims_with_people.empty()) {
       const auto sim_cfg = rgnav::config::Config::load(sim_config);
       const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg, robot);
-      rgnav::config::finish_except(sim_cfg, {"node", "channels", "protocol"});
+      rgnav::config::finish_except(sim_cfg, {"node", "channels", "sim", "protocol"});  // the process's own run settings
       const auto& e = sim_options.odometry;
       out["sim_config"] = sim_config;
       out["sim_odometry_error"] = {{"scale_translation", e.scale_translation},
