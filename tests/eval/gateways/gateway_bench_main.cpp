@@ -127,12 +127,8 @@ int main(int argc, char** argv)
 
     for (const auto& env : training.environments) {
       if (!only.empty() && std::find(only.begin(), only.end(), env.world) == only.end()) continue;
-      const double w = tools::width_of_environment(env.world);
-      DetectorOptions o = base;
-      o.vlm.hallway_width = o.measures.hallway_width = w;
-      const auto world = sim::load_world(sim::resolve_world_path(env.world, config_dir + "/worlds"));
       tools::RecordStats stats;
-      const auto seqs = tools::record_sequences(world, o, training.record, &stats);
+      const auto seqs = tools::record_environment(env.world, base, training.record, config_dir + "/worlds", nullptr, &stats);
       scan_ms.insert(scan_ms.end(), stats.scan_ms.begin(), stats.scan_ms.end());
       std::vector<tools::LabelledSequence> train, test;
       for (const auto& s : seqs) {

@@ -4,6 +4,7 @@
 
 #include "config/finish_except.h"
 #include "gateway_detector/options.h"
+#include "sim/world_yaml.h"
 
 namespace rgnav::gateway_detector::tools {
 
@@ -41,6 +42,18 @@ TrainingConfig load_training_config(const std::string& path)
   t.hmm = load_training_options(cfg.section("hmm"));
   cfg.finish();
   return t;
+}
+
+std::vector<LabelledSequence> record_environment(const std::string& world_name, const DetectorOptions& base,
+                                                 const RecordOptions& record, const std::string& worlds_dir,
+                                                 double* width, RecordStats* stats)
+{
+  const double w = width_of_environment(world_name);
+  if (width) *width = w;
+  DetectorOptions o = base;
+  o.vlm.hallway_width = o.measures.hallway_width = w;
+  const auto world = sim::load_world(sim::resolve_world_path(world_name, worlds_dir));
+  return record_sequences(world, o, record, stats);
 }
 
 double width_of_environment(const std::string& name)

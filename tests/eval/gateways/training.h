@@ -36,6 +36,12 @@ DetectorOptions load_detector_config(const std::string& config_dir);
 // Hallway width of a hallway world from its name (hallways_2.5m_... -> 2.5); throws otherwise.
 double width_of_environment(const std::string& name);
 
+// The labelled sequences of one hallway environment (a world under `worlds_dir`), recorded with
+// `base` tuned to the environment's hallway width, which is returned in `width` (unless null).
+std::vector<LabelledSequence> record_environment(const std::string& world_name, const DetectorOptions& base,
+                                                 const RecordOptions& record, const std::string& worlds_dir,
+                                                 double* width, RecordStats* stats);
+
 // One HMM per sequence class that has at least two sequences.
 HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, const HmmTrainingOptions& options,
                                HmmFeatures features);
