@@ -116,7 +116,7 @@ int main(int argc, char** argv)
   app.add_flag("-v,--verbose", verbose, "debug log");
   CLI11_PARSE(app, argc, argv);
   if (verbose) spdlog::set_level(spdlog::level::debug);
-  try {
+  return tools::run_tool([&] {
     auto training = tools::load_training_config(config_dir + "/gateway_models/training.yaml");
     if (repetitions > 0) training.record.repetitions = repetitions;
     const DetectorOptions base = tools::load_detector_config(config_dir);
@@ -281,11 +281,5 @@ int main(int argc, char** argv)
     if (!f) throw std::runtime_error("cannot write " + out_path);
     spdlog::info("wrote {}", out_path);
     return 0;
-  } catch (const config::ConfigError& e) {
-    spdlog::critical("{}", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    spdlog::critical("{}", e.what());
-    return 1;
-  }
+  });
 }

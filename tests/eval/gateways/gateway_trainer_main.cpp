@@ -26,7 +26,7 @@ int main(int argc, char** argv)
   app.add_option("--repetitions", repetitions, "runs per approach (default: training.yaml)");
   app.add_option("--only", only, "train only these environments");
   CLI11_PARSE(app, argc, argv);
-  try {
+  return tools::run_tool([&] {
     const std::string models_dir = config_dir + "/gateway_models";
     auto training = tools::load_training_config(models_dir + "/training.yaml");
     if (repetitions > 0) training.record.repetitions = repetitions;
@@ -64,11 +64,5 @@ int main(int argc, char** argv)
       }
     }
     return 0;
-  } catch (const config::ConfigError& e) {
-    spdlog::critical("{}", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    spdlog::critical("{}", e.what());
-    return 1;
-  }
+  });
 }

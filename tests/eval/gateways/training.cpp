@@ -1,5 +1,7 @@
 #include "training.h"
 
+#include <spdlog/spdlog.h>
+
 #include <stdexcept>
 
 #include "config/finish_except.h"
@@ -88,6 +90,19 @@ DetectorOptions load_detector_config(const std::string& config_dir)
   const DetectorOptions options = load_detector_options(cfg, config::load_robot_description_file(config_dir + "/robot.yaml"));
   config::finish_except(cfg, {"node", "channels", "classifier"});
   return options;
+}
+
+int run_tool(const std::function<int()>& body)
+{
+  try {
+    return body();
+  } catch (const config::ConfigError& e) {
+    spdlog::critical("{}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::critical("{}", e.what());
+    return 1;
+  }
 }
 
 }  // namespace rgnav::gateway_detector::tools

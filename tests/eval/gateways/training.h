@@ -2,6 +2,7 @@
 // recording and HMM options) and training one HMM per class from labelled sequences.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,5 +46,9 @@ std::vector<LabelledSequence> record_environment(const std::string& world_name, 
 // One HMM per sequence class that has at least two sequences.
 HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, const HmmTrainingOptions& options,
                                HmmFeatures features);
+
+// Runs the body of a tool's main(): its exit code, or, logged, 2 on a configuration error and 1
+// on any other error.
+int run_tool(const std::function<int()>& body);
 
 }  // namespace rgnav::gateway_detector::tools
