@@ -157,11 +157,7 @@ ImportedLog read_carmen(const std::string& path, const CarmenOptions& options)
     why.clear();
     if (!parse_carmen_line(line, options, &log, &why)) log.issues.push_back({reader.line_number(), why});
   }
-  log.lines = reader.line_number();
-  if (!reader.error().empty()) {
-    log.truncated = true;
-    log.issues.push_back({reader.line_number() + 1, reader.error()});
-  }
+  record_end_of_input(reader, &log);
   return log;
 }
 

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "importers/log_records.h"
+
 namespace rgnav::importers {
 
 LineReader::LineReader(const std::string& path)
@@ -44,6 +46,15 @@ bool LineReader::next(std::string* line)
   while (!line->empty() && (line->back() == '\n' || line->back() == '\r')) line->pop_back();
   ++line_number_;
   return true;
+}
+
+void record_end_of_input(const LineReader& reader, ImportedLog* log)
+{
+  log->lines = reader.line_number();
+  if (!reader.error().empty()) {
+    log->truncated = true;
+    log->issues.push_back({reader.line_number() + 1, reader.error()});
+  }
 }
 
 }  // namespace rgnav::importers

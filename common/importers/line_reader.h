@@ -29,4 +29,10 @@ class LineReader
   std::string error_;
 };
 
+struct ImportedLog;
+
+// Records how reading a text log ended: the number of lines read and, when the stream was
+// damaged, the log is marked truncated with an issue on the line after the last good one.
+void record_end_of_input(const LineReader& reader, ImportedLog* log);
+
 }  // namespace rgnav::importers

@@ -88,11 +88,7 @@ ImportedLog read_mines(const std::string& path, const MinesOptions& o)
     log.add_odometry(pose);
     log.add_scan(std::move(s));
   }
-  log.lines = reader.line_number();
-  if (!reader.error().empty()) {
-    log.truncated = true;
-    log.issues.push_back({reader.line_number() + 1, reader.error()});
-  }
+  record_end_of_input(reader, &log);
   return log;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "config/string_fields.h"
 #include "msg/conversions.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "runtime/realtime.h"
@@ -15,10 +16,8 @@ namespace rgnav::sim {
 SimChannels load_channels(const config::Config& c)
 {
   SimChannels ch;
-  ch.laser = c.string("laser", ch.laser);
-  ch.odometry = c.string("odometry", ch.odometry);
-  ch.truth = c.string("truth", ch.truth);
-  ch.command = c.string("command", ch.command);
+  config::read_strings(c, {{"laser", &ch.laser}, {"odometry", &ch.odometry}, {"truth", &ch.truth},
+                           {"command", &ch.command}});
   return ch;
 }
 

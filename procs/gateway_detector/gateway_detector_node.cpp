@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "config/string_fields.h"
 #include "gateway_detector/gateway_conversions.h"
 #include "msg/conversions.h"
 #include "rgnav/heartbeat_t.hpp"
@@ -17,12 +18,8 @@ NodeChannels load_node_channels(const config::Config& c)
 {
   NodeChannels n;
   n.input = c.choice("input", n.input, {"laser", "aligned"});
-  n.laser = c.string("laser", n.laser);
-  n.odometry = c.string("odometry", n.odometry);
-  n.aligned_scan = c.string("aligned_scan", n.aligned_scan);
-  n.objects = c.string("objects", n.objects);
-  n.hypotheses = c.string("hypotheses", n.hypotheses);
-  n.events = c.string("events", n.events);
+  config::read_strings(c, {{"laser", &n.laser}, {"odometry", &n.odometry}, {"aligned_scan", &n.aligned_scan},
+                           {"objects", &n.objects}, {"hypotheses", &n.hypotheses}, {"events", &n.events}});
   return n;
 }
 

@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "config/string_fields.h"
 #include "persist/atomic_file.h"
 #include "persist/byte_codec.h"
 #include "procs/rg_kernel/rg_kernel_conversions.h"
@@ -27,11 +28,8 @@ NodeConfig load_node_config(const config::Config& cfg, const config::RobotDescri
   c.export_period_s = p.number("export_period_s", c.export_period_s, 0.0, 3600.0);
   c.publish_period_s = cfg.section("publish").number("period_s", c.publish_period_s, 0.05, 60.0);
   const auto ch = cfg.section("channels");
-  c.aligned_scan = ch.string("aligned_scan", c.aligned_scan);
-  c.gateway_events = ch.string("gateway_events", c.gateway_events);
-  c.rg_map = ch.string("rg_map", c.rg_map);
-  c.rg_region = ch.string("rg_region", c.rg_region);
-  c.rg_graph = ch.string("rg_graph", c.rg_graph);
+  config::read_strings(ch, {{"aligned_scan", &c.aligned_scan}, {"gateway_events", &c.gateway_events},
+                            {"rg_map", &c.rg_map}, {"rg_region", &c.rg_region}, {"rg_graph", &c.rg_graph}});
   return c;
 }
 

@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "config/string_fields.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "scan_mapper/scan_mapper_conversions.h"
 
@@ -12,11 +13,8 @@ namespace rgnav::scan_mapper {
 ScanMapperChannels load_scan_mapper_channels(const config::Config& c)
 {
   ScanMapperChannels ch;
-  ch.laser = c.string("laser", ch.laser);
-  ch.odometry = c.string("odometry", ch.odometry);
-  ch.aligned_scan = c.string("aligned_scan", ch.aligned_scan);
-  ch.slam_pose = c.string("slam_pose", ch.slam_pose);
-  ch.sensor = c.string("sensor", ch.sensor);
+  config::read_strings(c, {{"laser", &ch.laser}, {"odometry", &ch.odometry}, {"aligned_scan", &ch.aligned_scan},
+                           {"slam_pose", &ch.slam_pose}, {"sensor", &ch.sensor}});
   return ch;
 }
 

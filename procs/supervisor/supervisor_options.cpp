@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "config/string_fields.h"
+
 namespace rgnav::supervisor {
 
 namespace {
@@ -53,10 +55,8 @@ SupervisorOptions load_supervisor_options(const config::Config& s)
 SupervisorChannels load_supervisor_channels(const config::Config& c)
 {
   SupervisorChannels ch;
-  ch.heartbeat = c.string("heartbeat", ch.heartbeat);
-  ch.status = c.string("status", ch.status);
-  ch.orders = c.string("orders", ch.orders);
-  ch.base_cmd = c.string("base_cmd", ch.base_cmd);
+  config::read_strings(c, {{"heartbeat", &ch.heartbeat}, {"status", &ch.status}, {"orders", &ch.orders},
+                           {"base_cmd", &ch.base_cmd}});
   return ch;
 }
 

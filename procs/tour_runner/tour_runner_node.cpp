@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "config/string_fields.h"
 #include "msg/conversions.h"
 #include "rgnav/target_list_t.hpp"
 #include "rgnav/velocity_cmd_t.hpp"
@@ -13,11 +14,8 @@ namespace rgnav::tour_runner {
 Channels load_channels(const config::Config& c)
 {
   Channels ch;
-  ch.odometry = c.string("odometry", ch.odometry);
-  ch.laser = c.string("laser", ch.laser);
-  ch.slam_pose = c.string("slam_pose", ch.slam_pose);
-  ch.targets = c.string("targets", ch.targets);
-  ch.base_cmd = c.string("base_cmd", ch.base_cmd);
+  config::read_strings(c, {{"odometry", &ch.odometry}, {"laser", &ch.laser}, {"slam_pose", &ch.slam_pose},
+                           {"targets", &ch.targets}, {"base_cmd", &ch.base_cmd}});
   return ch;
 }
 

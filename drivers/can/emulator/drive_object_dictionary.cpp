@@ -6,6 +6,31 @@ namespace {
 
 constexpr bool kSigned = true, kUnsigned = false, kMap = true, kNoMap = false;
 
+// One PDO's EDS defaults: COB-ID, transmission type, and its mapping (count, then the objects).
+struct PdoDefaults
+{
+  uint32_t cob_id;
+  uint8_t transmission_type;
+  uint8_t mapped_count;
+  uint32_t mapped[3];
+};
+
+// The communication record at `comm_index` and the mapping record at `map_index` of one PDO, in
+// the order the EDS lists them. Transmit PDOs carry three more communication entries.
+void add_pdo(ObjectDictionary& od, uint16_t comm_index, uint16_t map_index, const PdoDefaults& pdo, bool transmit)
+{
+  od.add(comm_index, 0, 1, kUnsigned, Access::kRo, kNoMap, transmit ? 5 : 2);  // highest sub-index
+  od.add(comm_index, 1, 4, kUnsigned, Access::kRw, kNoMap, pdo.cob_id);
+  od.add(comm_index, 2, 1, kUnsigned, Access::kRw, kNoMap, pdo.transmission_type);
+  if (transmit) {
+    od.add(comm_index, 3, 2, kUnsigned, Access::kRw, kNoMap, 0);  // inhibit time [100 us]
+    od.add(comm_index, 4, 1, kUnsigned, Access::kRo, kNoMap, 0);  // compatibility entry
+    od.add(comm_index, 5, 2, kUnsigned, Access::kRw, kNoMap, 0);  // event timer [ms]
+  }
+  od.add(map_index, 0, 1, kUnsigned, Access::kRw, kNoMap, pdo.mapped_count);
+  for (uint8_t s = 0; s < 3; ++s) od.add(map_index, s + 1, 4, kUnsigned, Access::kRw, kNoMap, pdo.mapped[s]);
+}
+
 }  // namespace
 
 ObjectDictionary make_drive_object_dictionary(uint8_t node_id, const DriveIdentity& id, const DriveDefaults& d)
@@ -32,38 +57,17 @@ ObjectDictionary make_drive_object_dictionary(uint8_t node_id, const DriveIdenti
   od.add(0x1029, 1, 1, kUnsigned, Access::kRw, kNoMap, 0);               //   comm error: 0 = pre-op
   od.add(0x1029, 2, 1, kUnsigned, Access::kRw, kNoMap, 1);
   // RPDO communication (0x1400-0x1403) and mapping (0x1600-0x1603), defaults from the EDS.
-  const uint32_t rpdo_cob[4] = {0x40000200 + n, 0x40000300 + n, 0x40000400 + n, 0xC0000500 + n};
-  const uint8_t rpdo_type[4] = {0xFF, 0xFF, 0xFF, 0xFE};
-  const uint32_t rpdo_map[4][3] = {{0x60400010, 0, 0},
-                                   {0x60400010, 0x60600008, 0},
-                                   {0x60400010, 0x607A0020, 0},
-                                   {0x60400010, 0x60FF0020, 0}};
-  const uint8_t rpdo_count[4] = {1, 2, 2, 2};
-  for (uint16_t i = 0; i < 4; ++i) {
-    od.add(0x1400 + i, 0, 1, kUnsigned, Access::kRo, kNoMap, 2);
-    od.add(0x1400 + i, 1, 4, kUnsigned, Access::kRw, kNoMap, rpdo_cob[i]);
-    od.add(0x1400 + i, 2, 1, kUnsigned, Access::kRw, kNoMap, rpdo_type[i]);
-    od.add(0x1600 + i, 0, 1, kUnsigned, Access::kRw, kNoMap, rpdo_count[i]);
-    for (uint8_t s = 0; s < 3; ++s) od.add(0x1600 + i, s + 1, 4, kUnsigned, Access::kRw, kNoMap, rpdo_map[i][s]);
-  }
+  const PdoDefaults rpdo[4] = {{0x40000200 + n, 0xFF, 1, {0x60400010, 0, 0}},
+                               {0x40000300 + n, 0xFF, 2, {0x60400010, 0x60600008, 0}},
+                               {0x40000400 + n, 0xFF, 2, {0x60400010, 0x607A0020, 0}},
+                               {0xC0000500 + n, 0xFE, 2, {0x60400010, 0x60FF0020, 0}}};
+  for (uint16_t i = 0; i < 4; ++i) add_pdo(od, 0x1400 + i, 0x1600 + i, rpdo[i], false);
   // TPDO communication (0x1800-0x1803) and mapping (0x1A00-0x1A03).
-  const uint32_t tpdo_cob[4] = {0x40000180 + n, 0x40000280 + n, 0x40000380 + n, 0xC0000480 + n};
-  const uint8_t tpdo_type[4] = {0x01, 0x01, 0x01, 0xFE};
-  const uint32_t tpdo_map[4][3] = {{0x60410010, 0, 0},
-                                   {0x60410010, 0x60610008, 0},
-                                   {0x60410010, 0x60640020, 0},
-                                   {0x60410010, 0x606C0020, 0}};
-  const uint8_t tpdo_count[4] = {1, 2, 2, 2};
-  for (uint16_t i = 0; i < 4; ++i) {
-    od.add(0x1800 + i, 0, 1, kUnsigned, Access::kRo, kNoMap, 5);
-    od.add(0x1800 + i, 1, 4, kUnsigned, Access::kRw, kNoMap, tpdo_cob[i]);
-    od.add(0x1800 + i, 2, 1, kUnsigned, Access::kRw, kNoMap, tpdo_type[i]);
-    od.add(0x1800 + i, 3, 2, kUnsigned, Access::kRw, kNoMap, 0);  // inhibit time [100 us]
-    od.add(0x1800 + i, 4, 1, kUnsigned, Access::kRo, kNoMap, 0);  // compatibility entry
-    od.add(0x1800 + i, 5, 2, kUnsigned, Access::kRw, kNoMap, 0);  // event timer [ms]
-    od.add(0x1A00 + i, 0, 1, kUnsigned, Access::kRw, kNoMap, tpdo_count[i]);
-    for (uint8_t s = 0; s < 3; ++s) od.add(0x1A00 + i, s + 1, 4, kUnsigned, Access::kRw, kNoMap, tpdo_map[i][s]);
-  }
+  const PdoDefaults tpdo[4] = {{0x40000180 + n, 0x01, 1, {0x60410010, 0, 0}},
+                               {0x40000280 + n, 0x01, 2, {0x60410010, 0x60610008, 0}},
+                               {0x40000380 + n, 0x01, 2, {0x60410010, 0x60640020, 0}},
+                               {0xC0000480 + n, 0xFE, 2, {0x60410010, 0x606C0020, 0}}};
+  for (uint16_t i = 0; i < 4; ++i) add_pdo(od, 0x1800 + i, 0x1A00 + i, tpdo[i], true);
   // --- CiA 402 drive profile ---
   od.add(0x6007, 0, 2, kSigned, Access::kRw, kNoMap, 3);      // abort connection: 3 = quick stop
   od.add(0x6040, 0, 2, kUnsigned, Access::kRw, kMap, 0);      // controlword

@@ -22,23 +22,16 @@ std::string object_name(uint8_t node, uint16_t index, uint8_t sub)
 
 void SdoClient::upload(uint8_t node, uint16_t index, uint8_t sub, Callback done)
 {
-  Request r;
-  r.upload = true;
-  r.index = index;
-  r.sub = sub;
-  r.done = std::move(done);
-  channels_[node].queue.push_back(std::move(r));
-  if (now_) start(node, channels_[node], *now_);
+  enqueue(node, Request{true, index, sub, 0, 4, std::move(done)});
 }
 
 void SdoClient::download(uint8_t node, uint16_t index, uint8_t sub, uint32_t value, uint8_t size, Callback done)
 {
-  Request r;
-  r.index = index;
-  r.sub = sub;
-  r.value = value;
-  r.size = size;
-  r.done = std::move(done);
+  enqueue(node, Request{false, index, sub, value, size, std::move(done)});
+}
+
+void SdoClient::enqueue(uint8_t node, Request r)
+{
   channels_[node].queue.push_back(std::move(r));
   if (now_) start(node, channels_[node], *now_);
 }

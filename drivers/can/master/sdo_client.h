@@ -70,6 +70,9 @@ class SdoClient
     int attempts = 0;
     Clock::time_point deadline{};
   };
+  // Queues `r` behind the node's other transfers; once the client knows the time (ticked), it
+  // starts the queue right away rather than at the next tick.
+  void enqueue(uint8_t node, Request r);
   void start(uint8_t node, Channel& ch, Clock::time_point now);
   void finish(uint8_t node, SdoResult result);
   can_frame request_frame(uint8_t node, const Request& r) const;

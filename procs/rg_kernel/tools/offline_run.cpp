@@ -13,13 +13,6 @@
 
 namespace rgnav::rgmap_pipeline {
 
-double thread_cpu_seconds()
-{
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 OfflineRun finish_run(const RgMapPipeline& p)
 {
   OfflineRun r;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "importers/log_records.h"
+#include "offline_mapping.h"
 #include "rgmap_metrics.h"
 #include "rgmap_pipeline.h"
 
@@ -26,7 +27,7 @@ struct OfflineRun
   double log_seconds = 0;                      // message time from the first to the last scan
 };
 
-double thread_cpu_seconds();
+using scan_mapper::thread_cpu_seconds;
 
 // Feeds the log's scans and odometry in file order (odometry first where a log interleaves them
 // by time, as the bus would deliver them).

@@ -14,7 +14,6 @@
 #include "scan_mapper/scan_mapper_conversions.h"
 
 namespace rgnav::scan_mapper {
-namespace {
 
 double thread_cpu_seconds()
 {
@@ -22,6 +21,8 @@ double thread_cpu_seconds()
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
+
+namespace {
 
 // A log scan with its id: the log's, or `id` for logs without ids.
 sensors::LaserScan with_id(sensors::LaserScan s, int64_t id)

@@ -28,6 +28,9 @@ struct OfflineResult
   double log_seconds = 0.0;         // message time from the first to the last scan
 };
 
+// CPU time this thread has used [s] (mapping costs are timed per thread).
+double thread_cpu_seconds();
+
 OfflineResult run_offline(const importers::ImportedLog& log, const ScanMapperOptions& options);
 
 // trajectory.txt (scan_id utime x y theta for every accepted scan), aligned_scans.lcmlog

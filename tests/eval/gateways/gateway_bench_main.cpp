@@ -116,7 +116,7 @@ int main(int argc, char** argv)
   app.add_flag("-v,--verbose", verbose, "debug log");
   CLI11_PARSE(app, argc, argv);
   if (verbose) spdlog::set_level(spdlog::level::debug);
-  try {
+  return tools::run_tool([&] {
     auto training = tools::load_training_config(config_dir + "/gateway_models/training.yaml");
     if (repetitions > 0) training.record.repetitions = repetitions;
     const DetectorOptions base = tools::load_detector_config(config_dir);
@@ -127,12 +127,8 @@ int main(int argc, char** argv)
 
     for (const auto& env : training.environments) {
       if (!only.empty() && std::find(only.begin(), only.end(), env.world) == only.end()) continue;
-      const double w = tools::width_of_environment(env.world);
-      DetectorOptions o = base;
-      o.vlm.hallway_width = o.measures.hallway_width = w;
-      const auto world = sim::load_world(sim::resolve_world_path(env.world, config_dir + "/worlds"));
       tools::RecordStats stats;
-      const auto seqs = tools::record_sequences(world, o, training.record, &stats);
+      const auto seqs = tools::record_environment(env.world, base, training.record, config_dir + "/worlds", nullptr, &stats);
       scan_ms.insert(scan_ms.end(), stats.scan_ms.begin(), stats.scan_ms.end());
       std::vector<tools::LabelledSequence> train, test;
       for (const auto& s : seqs) {
@@ -285,11 +281,5 @@ int main(int argc, char** argv)
     if (!f) throw std::runtime_error("cannot write " + out_path);
     spdlog::info("wrote {}", out_path);
     return 0;
-  } catch (const config::ConfigError& e) {
-    spdlog::critical("{}", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    spdlog::critical("{}", e.what());
-    return 1;
-  }
+  });
 }

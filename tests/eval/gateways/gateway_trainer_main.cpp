@@ -11,7 +11,6 @@
 #include "gateway_detector/gateway_models.h"
 #include "gateway_detector/options.h"
 #include "runtime/process_main.h"
-#include "sim/world_yaml.h"
 #include "training.h"
 
 using namespace rgnav;
@@ -27,7 +26,7 @@ int main(int argc, char** argv)
   app.add_option("--repetitions", repetitions, "runs per approach (default: training.yaml)");
   app.add_option("--only", only, "train only these environments");
   CLI11_PARSE(app, argc, argv);
-  try {
+  return tools::run_tool([&] {
     const std::string models_dir = config_dir + "/gateway_models";
     auto training = tools::load_training_config(models_dir + "/training.yaml");
     if (repetitions > 0) training.record.repetitions = repetitions;
@@ -36,12 +35,9 @@ int main(int argc, char** argv)
     std::map<double, std::vector<tools::LabelledSequence>> by_width;
     for (const auto& env : training.environments) {
       if (!only.empty() && std::find(only.begin(), only.end(), env.world) == only.end()) continue;
-      const double w = tools::width_of_environment(env.world);
-      DetectorOptions o = base;
-      o.vlm.hallway_width = o.measures.hallway_width = w;
-      const auto world = sim::load_world(sim::resolve_world_path(env.world, config_dir + "/worlds"));
+      double w = 0.0;
       tools::RecordStats stats;
-      auto seqs = tools::record_sequences(world, o, training.record, &stats);
+      auto seqs = tools::record_environment(env.world, base, training.record, config_dir + "/worlds", &w, &stats);
       spdlog::info("{}: {} runs, {} labelled sequences ({} unmatched)", env.world, stats.runs, seqs.size(), stats.sequences_unmatched);
       auto& all = by_width[w];
       all.insert(all.end(), std::make_move_iterator(seqs.begin()), std::make_move_iterator(seqs.end()));
@@ -68,11 +64,5 @@ int main(int argc, char** argv)
       }
     }
     return 0;
-  } catch (const config::ConfigError& e) {
-    spdlog::critical("{}", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    spdlog::critical("{}", e.what());
-    return 1;
-  }
+  });
 }

@@ -1,9 +1,12 @@
 #include "training.h"
 
+#include <spdlog/spdlog.h>
+
 #include <stdexcept>
 
 #include "config/finish_except.h"
 #include "gateway_detector/options.h"
+#include "sim/world_yaml.h"
 
 namespace rgnav::gateway_detector::tools {
 
@@ -43,6 +46,18 @@ TrainingConfig load_training_config(const std::string& path)
   return t;
 }
 
+std::vector<LabelledSequence> record_environment(const std::string& world_name, const DetectorOptions& base,
+                                                 const RecordOptions& record, const std::string& worlds_dir,
+                                                 double* width, RecordStats* stats)
+{
+  const double w = width_of_environment(world_name);
+  if (width) *width = w;
+  DetectorOptions o = base;
+  o.vlm.hallway_width = o.measures.hallway_width = w;
+  const auto world = sim::load_world(sim::resolve_world_path(world_name, worlds_dir));
+  return record_sequences(world, o, record, stats);
+}
+
 double width_of_environment(const std::string& name)
 {
   const std::string prefix = "hallways_";
@@ -75,6 +90,19 @@ DetectorOptions load_detector_config(const std::string& config_dir)
   const DetectorOptions options = load_detector_options(cfg, config::load_robot_description_file(config_dir + "/robot.yaml"));
   config::finish_except(cfg, {"node", "channels", "classifier"});
   return options;
+}
+
+int run_tool(const std::function<int()>& body)
+{
+  try {
+    return body();
+  } catch (const config::ConfigError& e) {
+    spdlog::critical("{}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::critical("{}", e.what());
+    return 1;
+  }
 }
 
 }  // namespace rgnav::gateway_detector::tools

@@ -2,6 +2,7 @@
 // recording and HMM options) and training one HMM per class from labelled sequences.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,8 +37,18 @@ DetectorOptions load_detector_config(const std::string& config_dir);
 // Hallway width of a hallway world from its name (hallways_2.5m_... -> 2.5); throws otherwise.
 double width_of_environment(const std::string& name);
 
+// The labelled sequences of one hallway environment (a world under `worlds_dir`), recorded with
+// `base` tuned to the environment's hallway width, which is returned in `width` (unless null).
+std::vector<LabelledSequence> record_environment(const std::string& world_name, const DetectorOptions& base,
+                                                 const RecordOptions& record, const std::string& worlds_dir,
+                                                 double* width, RecordStats* stats);
+
 // One HMM per sequence class that has at least two sequences.
 HmmClassifier train_classifier(const std::vector<LabelledSequence>& sequences, const HmmTrainingOptions& options,
                                HmmFeatures features);
+
+// Runs the body of a tool's main(): its exit code, or, logged, 2 on a configuration error and 1
+// on any other error.
+int run_tool(const std::function<int()>& body);
 
 }  // namespace rgnav::gateway_detector::tools

@@ -244,26 +244,22 @@ int run(const RunOptions& o, const std::string& self)
     std::this_thread::sleep_until(next);
   };
   auto next = Clock::now();
-  for (int i = 0; i < o.lasers; ++i) {
-    ++scan.scan_id;
-    scan.utime = mono_ns();
-    node.publish(kRtLaser, scan);
-    pace(next, o.laser_gap_us / 2);
-    ++scan.scan_id;
-    scan.utime = mono_ns();
-    raw.publish(kRawLaser, &scan);
-    pace(next, o.laser_gap_us / 2);
-  }
-  for (int i = 0; i < o.images; ++i) {
-    ++stereo.frame_id;
-    stereo.utime = mono_ns();
-    node.publish(kRtImage, stereo);
-    pace(next, o.image_gap_us / 2);
-    ++stereo.frame_id;
-    stereo.utime = mono_ns();
-    raw.publish(kRawImage, &stereo);
-    pace(next, o.image_gap_us / 2);
-  }
+  // Every message goes out twice, through the runtime node and through raw LCM, so both paths
+  // carry the same load at the same pace; `id` is the message's own counter.
+  auto send_both = [&](auto& m, auto& id, int count, int gap_us, const char* rt_channel, const char* raw_channel) {
+    for (int i = 0; i < count; ++i) {
+      ++id;
+      m.utime = mono_ns();
+      node.publish(rt_channel, m);
+      pace(next, gap_us / 2);
+      ++id;
+      m.utime = mono_ns();
+      raw.publish(raw_channel, &m);
+      pace(next, gap_us / 2);
+    }
+  };
+  send_both(scan, scan.scan_id, o.lasers, o.laser_gap_us, kRtLaser, kRawLaser);
+  send_both(stereo, stereo.frame_id, o.images, o.image_gap_us, kRtImage, kRawImage);
 
   // Receivers exit once they have everything; what was lost they wait for until their timeout,
   // so give them a moment and then ask them to finish.

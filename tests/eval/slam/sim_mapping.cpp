@@ -5,19 +5,13 @@
 #include <ctime>
 #include <stdexcept>
 
+#include "offline_mapping.h"
 #include "sim/tour_planner.h"
 #include "sim/waypoint_follower.h"
 #include "sim/world_yaml.h"
 
 namespace rgnav::scan_mapper {
 namespace {
-
-double thread_cpu_seconds()
-{
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 Pose2 to_pose(const sim::Pose2& p) { return Pose2{p.x, p.y, normalize_angle(p.theta)}; }
 

@@ -36,6 +36,25 @@ namespace sm = rgnav::scan_mapper;
 
 namespace {
 
+// The scan mapper's counters that the real logs and the simulated worlds both report (a JSON
+// object's keys are sorted, so where they are added does not change the output).
+void add_mapper_stats(const sm::MapperStats& s, nlohmann::json* j)
+{
+  auto& o = *j;
+  o["accepted_scans"] = s.accepted;
+  o["loop_closures"] = s.loop_closures;
+  o["loop_attempts"] = s.loop_attempts;
+  o["loop_rejected_after_optimisation"] = s.loop_rejected_after_opt;
+  o["loop_rejected_strain"] = s.loop_rejected_strain;
+  o["loop_ambiguous"] = s.loop_ambiguous;
+  o["loop_pruned"] = s.loop_pruned;
+  o["correlative_retries"] = s.correlative_retries;
+  o["turns_held"] = s.turns_held;
+  o["axes_held"] = s.axes_held;
+  o["odometry_trans_scale"] = s.odometry_trans_scale;
+  o["odometry_scale"] = s.odometry_scale;
+}
+
 struct RealLog
 {
   std::string name, path;
@@ -87,20 +106,9 @@ nlohmann::json evaluate_real(const RealLog& spec, sm::ScanMapperOptions options,
   }
   j["cpu_seconds"] = r.cpu_seconds;
   j["scans"] = r.stats.scans_in;
-  j["accepted_scans"] = r.stats.accepted;
   j["matched_scans"] = r.stats.matched;
-  j["loop_closures"] = r.stats.loop_closures;
-  j["loop_attempts"] = r.stats.loop_attempts;
-  j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
-  j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
-  j["loop_ambiguous"] = r.stats.loop_ambiguous;
-  j["loop_pruned"] = r.stats.loop_pruned;
-  j["correlative_retries"] = r.stats.correlative_retries;
   j["match_rejected"] = r.stats.match_rejected;
-  j["turns_held"] = r.stats.turns_held;
-  j["axes_held"] = r.stats.axes_held;
-  j["odometry_trans_scale"] = r.stats.odometry_trans_scale;
-  j["odometry_scale"] = r.stats.odometry_scale;
+  add_mapper_stats(r.stats, &j);
   j["map_png"] = maps_dir + "/" + spec.name + "/map.png";
   if (!log.reference.empty()) {
     std::map<int64_t, const sm::ScanEstimate*> by_id;
@@ -182,20 +190,9 @@ nlohmann::json evaluate_sim(const std::string& spec, const rgnav::sim::Simulator
   j["people_walking"] = r.people_walking;
   if (r.capped) j["cap_sim_seconds"] = sim_mapping.max_sim_s;
   j["collisions"] = r.collisions;
-  j["accepted_scans"] = r.stats.accepted;
-  j["loop_closures"] = r.stats.loop_closures;
-  j["loop_rejected_after_optimisation"] = r.stats.loop_rejected_after_opt;
-  j["loop_rejected_strain"] = r.stats.loop_rejected_strain;
   j["loop_closures_wrong"] = r.loop_closures_wrong;
   j["loop_closures_inconsistent"] = r.loop_closures_inconsistent;
-  j["loop_ambiguous"] = r.stats.loop_ambiguous;
-  j["loop_pruned"] = r.stats.loop_pruned;
-  j["correlative_retries"] = r.stats.correlative_retries;
-  j["turns_held"] = r.stats.turns_held;
-  j["axes_held"] = r.stats.axes_held;
-  j["odometry_trans_scale"] = r.stats.odometry_trans_scale;
-  j["odometry_scale"] = r.stats.odometry_scale;
-  j["loop_attempts"] = r.stats.loop_attempts;
+  add_mapper_stats(r.stats, &j);
   return j;
 }
 
