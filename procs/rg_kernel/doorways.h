@@ -29,9 +29,9 @@ struct DoorwayOptions
   double max_offset = 0.10;        // [m] ... and the gap ends this near the other piece's line
   // Wall-end gaps: from the free end of a wall at least wall_end_min_wall_length long, along its
   // line, to the first wall it runs into at wall_end_min_angle or more, min_width to
-  // wall_end_max_width away. The ground truth of the IPA buildings divides rooms there (issue 8:
-  // Freiburg52's 2.65 m opening beside a partition's end, lab_c's rooms open onto the hallway
-  // between their partitions); the collinear rule sees neither. The wall must be long: the short
+  // wall_end_max_width away. Building plans divide rooms there: a wide opening beside the end of
+  // a partition that stops short, rooms open onto a hallway between their partitions; the
+  // collinear rule sees neither. The wall must be long: the short
   // faces of door frames, extended across a hallway, would cut it at every door. 0: off.
   double wall_end_max_width = 0.0;        // [m]
   double wall_end_min_wall_length = 1.0;  // [m]
