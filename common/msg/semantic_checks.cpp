@@ -114,4 +114,25 @@ bool semantically_valid(const aligned_scan_t& m, std::string* why)
   return semantically_valid(m.scan, why);
 }
 
+bool semantically_valid(const localize_request_t& m, std::string* why)
+{
+  if (!(m.sigma_xy >= 0) || m.sigma_xy > 100.0) return no(why, "localize_request_t: sigma_xy outside [0, 100] m");
+  if (!(m.sigma_theta >= 0) || m.sigma_theta > 2 * M_PI) return no(why, "localize_request_t: sigma_theta outside [0, 2 pi] rad");
+  if (m.mode == localize_request_t::MODE_POSE) {
+    if (m.region_id < 0) return no(why, "localize_request_t: region_id must be >= 0");
+    if (m.region_id == 0 && m.region_name.empty()) return no(why, "localize_request_t: needs region_id or region_name");
+    if (std::fabs(m.region_from_base.x) > 1e4 || std::fabs(m.region_from_base.y) > 1e4 || std::fabs(m.region_from_base.theta) > 100.0)
+      return no(why, "localize_request_t: pose beyond 10 km or |theta| > 100 rad");
+  }
+  return true;
+}
+
+bool semantically_valid(const gateway_passed_t& m, std::string* why)
+{
+  if (m.gateway_id <= 0 || m.from_region <= 0 || m.to_region <= 0)
+    return no(why, "gateway_passed_t: gateway and region ids must be > 0");
+  if (!(m.distance_past >= 0)) return no(why, "gateway_passed_t: distance_past must be >= 0");
+  return true;
+}
+
 }  // namespace rgnav::msg

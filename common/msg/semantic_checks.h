@@ -26,5 +26,7 @@ bool semantically_valid(const trajectory_t& m, std::string* why);
 bool semantically_valid(const nav_goal_t& m, std::string* why);
 bool semantically_valid(const target_list_t& m, std::string* why);
 bool semantically_valid(const aligned_scan_t& m, std::string* why);
+bool semantically_valid(const localize_request_t& m, std::string* why);
+bool semantically_valid(const gateway_passed_t& m, std::string* why);
 
 }  // namespace rgnav::msg

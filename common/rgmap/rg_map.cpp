@@ -4,6 +4,17 @@
 
 namespace rgnav::rgmap {
 
+std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> gateway_edges(const std::vector<Eigen::Vector2d>& points)
+{
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> edges;
+  if (points.size() == 4) {
+    for (size_t k = 0; k < 4; ++k) edges.emplace_back(points[k], points[(k + 1) % 4]);
+    return edges;
+  }
+  for (size_t k = 0; k + 1 < points.size(); k += 2) edges.emplace_back(points[k], points[k + 1]);
+  return edges;
+}
+
 const char* to_string(GatewayClass c)
 {
   switch (c) {

@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/pose2.h"
@@ -35,6 +36,10 @@ enum class GatewayClass : int8_t
   kOpening = 11,
 };
 const char* to_string(GatewayClass c);
+
+// The boundary lines of a gateway from its points: four points are a closed outline (a
+// crossing's four sides, diss. fig. 4.1), otherwise consecutive point pairs are lines.
+std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> gateway_edges(const std::vector<Eigen::Vector2d>& points);
 
 struct LineSegment
 {

@@ -15,16 +15,7 @@ constexpr double kSideMargin = 0.5;
 
 }  // namespace
 
-std::vector<Line> gateway_edges(const std::vector<Vector2d>& points)
-{
-  std::vector<Line> edges;
-  if (points.size() == 4) {
-    for (size_t k = 0; k < 4; ++k) edges.push_back({points[k], points[(k + 1) % 4]});
-    return edges;
-  }
-  for (size_t k = 0; k + 1 < points.size(); k += 2) edges.push_back({points[k], points[k + 1]});
-  return edges;
-}
+std::vector<Line> gateway_edges(const std::vector<Vector2d>& points) { return rgmap::gateway_edges(points); }
 
 bool EdgeFrame::just_beyond(const Vector2d& p, double reach, double min_depth) const
 {

@@ -16,6 +16,13 @@ mkdir -p "$out"
   persistence.state_file="$s/scan_mapper.state"
 "$ov" "$c/rg_kernel.yaml" "$out/rg_kernel.yaml" channels.aligned_scan=ALIGNED_SCAN_RELAYED \
   persistence.state_dir="$s/rg_kernel"
+# The localizer on a saved map (the two-room map of its tests), not on the kernel's RG_MAP,
+# its laser and odometry behind relays of its own.
+"$ov" "$c/localizer.yaml" "$out/localizer.yaml" channels.laser=LASER_FRONT_LOCALIZER \
+  channels.odometry=ODOMETRY_LOCALIZER channels.rg_map=LOCALIZER_RG_MAP_UNUSED
+if [ -x "$RGNAV_BUILD/bin/two_room_map" ]; then
+  "$RGNAV_BUILD/bin/two_room_map" "$s/localizer_map" || { echo "sim_stack_configs: two_room_map failed" >&2; exit 2; }
+fi
 # The drive chain: the real base_driver on a virtual CAN bus of its own with two emulated
 # CiA 402 drives; it follows the same (relayed) BASE_CMD as the simulated robot and reports
 # on DRIVE_ODOMETRY, so the simulator's ODOMETRY stays the only one.
@@ -25,7 +32,7 @@ check() {
   "$RGNAV_BUILD/bin/$1" --config "$out/$2.yaml" --check-config >/dev/null || { echo "sim_stack_configs: $2.yaml rejected" >&2; exit 2; }
 }
 # (tour_runner is checked at launch: its tour file is planned by the stack's tour_plan job.)
-for p in rgnav_sim:sim scan_mapper:scan_mapper rg_kernel:rg_kernel base_driver:base_driver; do
+for p in rgnav_sim:sim scan_mapper:scan_mapper rg_kernel:rg_kernel base_driver:base_driver localizer:localizer; do
   bin=${p%%:*}; cfg=${p#*:}
   [ -x "$RGNAV_BUILD/bin/$bin" ] && check "$bin" "$cfg"
 done

@@ -634,6 +634,36 @@ nav_goal_t sample<nav_goal_t>(uint32_t variant)
 }
 
 template <>
+localize_request_t sample<localize_request_t>(uint32_t variant)
+{
+  Gen g(variant, kSalt + 44);
+  localize_request_t m;
+  m.utime = utime(g);
+  m.mode = variant % 4 == 3 ? localize_request_t::MODE_GLOBAL : localize_request_t::MODE_POSE;
+  const bool by_name = variant % 2 == 1;
+  m.region_id = by_name ? 0 : g.count(1, 50);
+  m.region_name = by_name ? g.word("room") : "";
+  m.region_from_base = pose(g);
+  m.sigma_xy = variant % 3 == 0 ? 0.0 : g.uniform(0.05, 1.0);
+  m.sigma_theta = variant % 3 == 0 ? 0.0 : g.uniform(0.02, 0.5);
+  return m;
+}
+
+template <>
+gateway_passed_t sample<gateway_passed_t>(uint32_t variant)
+{
+  Gen g(variant, kSalt + 45);
+  gateway_passed_t m;
+  m.utime = utime(g);
+  m.gateway_id = g.count(1, 80);
+  m.from_region = g.count(1, 50);
+  m.to_region = g.count(1, 50);
+  m.region_from_base = pose(g);
+  m.distance_past = g.uniform(0.5, 2.0);
+  return m;
+}
+
+template <>
 target_list_t sample<target_list_t>(uint32_t variant)
 {
   Gen g(variant, kSalt + 40);

@@ -1,0 +1,72 @@
+#include "localizer/global_search.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rgnav::localizer {
+
+Hypothesis refine(const RegionModel& region, Hypothesis h, const std::vector<Eigen::Vector2d>& base_points,
+                  const BeamScorer& scorer, double step_xy, double step_theta)
+{
+  h.score = scorer.score(region.field, h.region_from_base, base_points);
+  for (double sxy = step_xy, sth = step_theta; sxy > 0.1 * step_xy; sxy *= 0.5, sth *= 0.5) {
+    bool moved = true;
+    for (int guard = 0; moved && guard < 20; ++guard) {
+      moved = false;
+      const geometry::Pose2 c = h.region_from_base;
+      for (const auto& d : {Eigen::Vector3d(sxy, 0, 0), Eigen::Vector3d(-sxy, 0, 0), Eigen::Vector3d(0, sxy, 0),
+                            Eigen::Vector3d(0, -sxy, 0), Eigen::Vector3d(0, 0, sth), Eigen::Vector3d(0, 0, -sth)}) {
+        const geometry::Pose2 p(c.x() + d.x(), c.y() + d.y(), c.theta() + d.z());
+        const double sc = scorer.score(region.field, p, base_points);
+        if (sc > h.score) {
+          h.score = sc;
+          h.region_from_base = p;
+          moved = true;
+        }
+      }
+    }
+  }
+  return h;
+}
+
+std::vector<Hypothesis> global_search(const RegionMaps& maps, const std::vector<Eigen::Vector2d>& base_points,
+                                      const GlobalOptions& options, const ScanModel& scan)
+{
+  std::vector<Hypothesis> found;
+  if (base_points.empty()) return found;
+  // A coarse grid of candidates needs a broad hit noise to see the true place at all.
+  const BeamScorer scorer(options.sigma, scan.z_hit, scan.z_rand, scan.max_distance);
+  std::vector<Eigen::Vector2d> pts;
+  const double step = std::max(1.0, static_cast<double>(base_points.size()) / options.beams);
+  for (double k = 0; k < static_cast<double>(base_points.size()); k += step) pts.push_back(base_points[static_cast<size_t>(k)]);
+  // The points rotated once per heading.
+  const int nh = std::max(1, options.headings);
+  std::vector<std::vector<Eigen::Vector2d>> rotated(static_cast<size_t>(nh));
+  for (int h = 0; h < nh; ++h) {
+    const Eigen::Matrix2d r = geometry::Pose2(0, 0, 2 * M_PI * h / nh).rotation();
+    for (const auto& p : pts) rotated[static_cast<size_t>(h)].push_back(r * p);
+  }
+  for (const auto& [id, region] : maps.regions()) {
+    if (region->field.empty()) continue;
+    for (const auto& pos : region->free_positions) {
+      double best = -1e300;
+      int best_h = 0;
+      for (int h = 0; h < nh; ++h) {
+        double s = 0;
+        for (const auto& p : rotated[static_cast<size_t>(h)]) s += scorer.log_p(region->field.distance(pos + p));
+        if (s > best) {
+          best = s;
+          best_h = h;
+        }
+      }
+      found.push_back({id, geometry::Pose2(pos, 2 * M_PI * best_h / nh), best});
+    }
+  }
+  const size_t keep = std::min(found.size(), static_cast<size_t>(std::max(1, options.hypotheses)));
+  std::partial_sort(found.begin(), found.begin() + static_cast<long>(keep), found.end(),
+                    [](const Hypothesis& a, const Hypothesis& b) { return a.score > b.score; });
+  found.resize(keep);
+  return found;
+}
+
+}  // namespace rgnav::localizer

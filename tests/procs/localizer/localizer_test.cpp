@@ -1,0 +1,200 @@
+// The localizer's algorithm library (procs/localizer, no LCM) on the hand-made two-room map:
+// distance field, resampling, tracking across the door with the hand-over and its
+// gateway-passed event, global localization, kidnap detection and recovery, a map merge.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "geometry/pose_track.h"
+#include "localizer/likelihood_field.h"
+#include "localizer/localizer.h"
+#include "localizer/resampling.h"
+#include "two_room_map.h"
+
+namespace rgnav::localizer {
+namespace {
+
+using Eigen::Vector2d;
+using geometry::Pose2;
+
+const Pose2 kLaser(0.12, 0, 0);
+
+LocalizerOptions options()
+{
+  LocalizerOptions o;
+  o.base_from_laser = kLaser;
+  o.seed = 3;
+  o.global.min_travel = 0.5;
+  return o;
+}
+
+// A drive along straight legs between the given map-frame poses, one scan every 5 cm / 2 deg,
+// with perfect odometry (odom frame = map frame shifted, so nothing relies on them being equal).
+struct Drive
+{
+  const testing::TwoRoomWorld& world;
+  Localizer& loc;
+  Pose2 odom_from_map{1.0, -2.0, 0.3};
+  int64_t utime = 1'000'000;
+  int64_t scan_id = 1;
+  Pose2 truth;
+  bool updated = false;   // the last scan updated the filter
+
+  void to(const Pose2& goal, const std::function<void()>& after_scan = nullptr)
+  {
+    const Pose2 start = truth;
+    const double d = (goal.translation() - start.translation()).norm();
+    const double turn = std::fabs(geometry::normalize_angle(goal.theta() - start.theta()));
+    const int steps = std::max(1, static_cast<int>(std::ceil(std::max(d / 0.05, turn / (2 * M_PI / 180)))));
+    for (int k = 1; k <= steps; ++k) {
+      truth = geometry::interpolate(start, goal, static_cast<double>(k) / steps);
+      utime += 40'000;
+      updated = loc.update(testing::cast_scan(world.walls, truth, kLaser, utime, scan_id++), odom_from_map * truth);
+      if (after_scan) after_scan();
+    }
+  }
+};
+
+Pose2 in_region(const testing::TwoRoomWorld& w, int64_t region, const Pose2& map_pose)
+{
+  return w.map.region(region)->map_from_region.inverse() * map_pose;
+}
+
+double error_m(const testing::TwoRoomWorld& w, const Estimate& e, const Pose2& truth)
+{
+  return (e.region_from_base.translation() - in_region(w, e.region, truth).translation()).norm();
+}
+
+TEST(LikelihoodField, DistanceToTheNearestLine)
+{
+  rgmap::LineSegment s;
+  s.a = {0, 0};
+  s.b = {2, 0};
+  const LikelihoodField f({s}, 0.02, 1.0, 1.0);
+  EXPECT_LT(f.distance({1.0, 0.0}), 0.03);
+  EXPECT_NEAR(f.distance({1.0, 0.5}), 0.5, 0.03);
+  EXPECT_NEAR(f.distance({-0.3, -0.4}), 0.5, 0.03);   // beyond the end: to the end point
+  EXPECT_FLOAT_EQ(f.distance({50, 50}), 1.0f);        // off the field: saturated
+}
+
+TEST(Resampling, KldCountGrowsWithTheBinsAndIsClamped)
+{
+  ParticleCount o;
+  o.min = 100;
+  o.max = 5000;
+  EXPECT_EQ(kld_sample_count(1, o), 100);
+  EXPECT_LT(kld_sample_count(10, o), kld_sample_count(100, o));
+  EXPECT_EQ(kld_sample_count(100000, o), 5000);
+}
+
+TEST(Resampling, LowVarianceDrawsInProportionToTheWeights)
+{
+  std::mt19937_64 rng(1);
+  const auto idx = low_variance_resample({1.0, 3.0, 0.0}, 400, rng);
+  ASSERT_EQ(idx.size(), 400u);
+  const auto ones = std::count(idx.begin(), idx.end(), 1u);
+  EXPECT_NEAR(static_cast<double>(ones), 300.0, 1.0);
+  EXPECT_EQ(std::count(idx.begin(), idx.end(), 2u), 0);
+}
+
+TEST(Localizer, TracksThroughTheDoorAndReportsTheGatewayPassed)
+{
+  const auto w = testing::two_room_world();
+  Localizer loc(options());
+  loc.set_map(w.map);
+  Drive drive{w, loc};
+  drive.truth = Pose2(2.0, 1.5, 0.0);
+  ASSERT_TRUE(loc.set_pose(w.room_a, in_region(w, w.room_a, drive.truth), 0.05, 0.03));
+  double worst = 0;
+  std::vector<GatewayPassed> passed;
+  drive.to(Pose2(6.5, 1.5, 0.0), [&] {
+    // Measured at the filter's updates: between them the estimate stands still (travel gate).
+    if (drive.updated) worst = std::max(worst, error_m(w, loc.estimate(), drive.truth));
+    for (const auto& e : loc.take_gateway_events()) passed.push_back(e);
+  });
+  EXPECT_EQ(loc.mode(), Mode::kTracking);
+  EXPECT_EQ(loc.estimate().region, w.room_b);
+  EXPECT_LT(worst, 0.03);
+  EXPECT_GE(loc.stats().handovers, 1);
+  ASSERT_EQ(passed.size(), 1u);
+  EXPECT_EQ(passed[0].gateway, w.door);
+  EXPECT_EQ(passed[0].from_region, w.room_a);
+  EXPECT_EQ(passed[0].to_region, w.room_b);
+  EXPECT_GE(passed[0].distance_past, options().gateway_passed_distance);
+  // map_from_base is the region pose placed by the region's frame.
+  const auto& e = loc.estimate();
+  EXPECT_LT((e.map_from_base.translation() - drive.truth.translation()).norm(), 0.11);   // up to one gate of travel behind
+  EXPECT_GT(e.confidence, 0.5);
+}
+
+TEST(Localizer, FindsItselfFromAnUnknownPoseWhileDriving)
+{
+  const auto w = testing::two_room_world();
+  Localizer loc(options());
+  loc.set_map(w.map);
+  EXPECT_EQ(loc.mode(), Mode::kUnknown);
+  Drive drive{w, loc};
+  drive.truth = Pose2(7.0, 0.0, 2.0);
+  drive.to(Pose2(7.0, 0.0, 2.0));   // one scan: candidates everywhere, not yet sure
+  EXPECT_EQ(loc.mode(), Mode::kGlobal);
+  drive.to(Pose2(6.5, 1.2, 2.0));
+  drive.to(Pose2(6.5, 1.2, 3.0));
+  EXPECT_EQ(loc.mode(), Mode::kTracking);
+  EXPECT_EQ(loc.estimate().region, w.room_b);
+  EXPECT_LT(error_m(w, loc.estimate(), drive.truth), 0.05);
+}
+
+TEST(Localizer, FlagsAKidnapAndRelocalizes)
+{
+  const auto w = testing::two_room_world();
+  Localizer loc(options());
+  loc.set_map(w.map);
+  Drive drive{w, loc};
+  drive.truth = Pose2(1.5, 1.0, 0.5);
+  ASSERT_TRUE(loc.set_pose(w.room_a, in_region(w, w.room_a, drive.truth), 0.05, 0.03));
+  drive.to(Pose2(2.5, 1.5, 0.5));
+  ASSERT_LT(error_m(w, loc.estimate(), drive.truth), 0.05);
+  EXPECT_FALSE(loc.take_kidnap_flag());
+  // Carried into the other room; the odometry knows nothing of it.
+  const Pose2 odom_before = drive.odom_from_map * drive.truth;
+  drive.odom_from_map = odom_before * Pose2(7.5, 2.0, -2.5).inverse();
+  drive.truth = Pose2(7.5, 2.0, -2.5);
+  bool flagged = false;
+  int scans_to_flag = 0;
+  drive.to(Pose2(6.5, 0.5, -2.5), [&] {
+    if (!flagged) ++scans_to_flag;
+    flagged = flagged || loc.take_kidnap_flag();
+
+  });
+  EXPECT_TRUE(flagged);
+  EXPECT_LE(scans_to_flag * 0.04, options().recovery.kidnap_after_s + 0.2);
+  drive.to(Pose2(6.0, 1.5, -1.0));
+  EXPECT_EQ(loc.mode(), Mode::kTracking);
+  EXPECT_EQ(loc.estimate().region, w.room_b);
+  EXPECT_LT(error_m(w, loc.estimate(), drive.truth), 0.05);
+}
+
+TEST(Localizer, ANewMapVersionDoesNotMoveThePose)
+{
+  auto w = testing::two_room_world();
+  Localizer loc(options());
+  loc.set_map(w.map);
+  Drive drive{w, loc};
+  drive.truth = Pose2(6.0, 1.0, 1.0);
+  ASSERT_TRUE(loc.set_pose(w.room_b, in_region(w, w.room_b, drive.truth), 0.05, 0.03));
+  drive.to(Pose2(6.5, 1.0, 1.0));
+  const Pose2 before = loc.estimate().map_from_base;
+  // room_b merged into room_a (the same place seen twice): its particles go to room_a's frame.
+  auto merged = w.map;
+  const Pose2 a_from_b = merged.region(w.room_a)->map_from_region.inverse() * merged.region(w.room_b)->map_from_region;
+  merged.merge(w.room_b, w.room_a, a_from_b, drive.utime);
+  ++merged.version;
+  loc.set_map(merged);
+  EXPECT_EQ(loc.estimate().region, w.room_a);
+  EXPECT_LT((loc.estimate().map_from_base.translation() - before.translation()).norm(), 1e-6);
+  for (const auto& p : loc.particles()) EXPECT_EQ(p.region, w.room_a);
+}
+
+}  // namespace
+}  // namespace rgnav::localizer
