@@ -28,3 +28,20 @@ if(RGNAV_CCACHE AND NOT CMAKE_CXX_COMPILER_LAUNCHER)
   set(CMAKE_C_COMPILER_LAUNCHER ${RGNAV_CCACHE})
   set(CMAKE_CXX_COMPILER_LAUNCHER ${RGNAV_CCACHE})
 endif()
+
+# Benchmarks are not tests: their executables (and the libraries only they use) are left out of
+# the default build, which CI and `./rgnav test` run, and built by the `benchmarks` target, which
+# `./rgnav bench` builds first. rgnav_benchmark(target...) marks them.
+function(rgnav_benchmark)
+  set_target_properties(${ARGN} PROPERTIES EXCLUDE_FROM_ALL TRUE)
+  set_property(GLOBAL APPEND PROPERTY RGNAV_BENCHMARKS ${ARGN})
+endfunction()
+
+# After every folder is added: the `benchmarks` target builds all the marked executables.
+function(rgnav_add_benchmarks_target)
+  get_property(benchmarks GLOBAL PROPERTY RGNAV_BENCHMARKS)
+  add_custom_target(benchmarks)
+  if(benchmarks)
+    add_dependencies(benchmarks ${benchmarks})
+  endif()
+endfunction()
