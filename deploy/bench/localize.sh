@@ -56,7 +56,17 @@ done
 mkdir -p "$WORK"
 # shellcheck disable=SC2086
 "$bin" --json "$JSON.rgnav" --out "$WORK" "${sims[@]}" ${LOCALIZE_ARGS:-}
+mrpt_ok=0
 if [ "${LOCALIZE_MRPT:-1}" != 0 ] && command -v pf-localization >/dev/null; then
+  # The MRPT pipeline checked first on a synthetic world with exact truth (frames, laser mount,
+  # map origin, rawlog time stamps): a broken pipeline gives no MRPT figures at all.
+  if python3 "$ROOT/tests/eval/localize/mrpt_selftest/run_selftest.py" >"$WORK/mrpt_selftest.log" 2>&1; then
+    mrpt_ok=1
+  else
+    echo "bench localize: the MRPT self-test failed ($WORK/mrpt_selftest.log): no MRPT figures" >&2
+  fi
+fi
+if [ "$mrpt_ok" = 1 ]; then
   for spec in "${specs[@]}"; do
     name="${spec%%=*}"
     wanted "$name" || continue

@@ -1,14 +1,16 @@
 // Region-based Monte Carlo localization in an RG map (diss. 5.3), no LCM.
 //
-// Every particle lives in one region's frame and is weighed against that region's line map.
-// A particle that leaves its region's freespace near a gateway is moved into the neighbouring
-// region's frame (through the transform the gateway measured) and weighed there; the estimate
-// crossing a gateway and lying far enough past it is evidence that the robot traversed it.
-// Updates are gated by travelled distance / angle. The particle count adapts by KLD sampling;
-// resampling is low-variance. When the measurement likelihood falls (augmented MCL) particles
-// are replaced by candidates of a global scan-to-region search on the current scan (sensor
-// resetting). The same search starts global localization from an unknown pose; a kidnap is
-// flagged when the estimate stops explaining the scans.
+// Every particle lives in one region's frame and is weighed against that region's line map
+// (with its neighbours' lines stacked beyond it, region_maps.h). A particle that leaves its
+// region (its freespace or the rectangle of its measurements) near a gateway is moved into the
+// neighbouring region's frame through the transform the gateway measured and weighed there; the
+// estimate crossing a gateway and lying far enough past it is evidence that the robot traversed
+// it. Updates are gated by travelled distance / angle. The particle count adapts by KLD
+// sampling; resampling is low-variance, when the weights have become uneven. When the
+// measurement likelihood falls (augmented MCL) particles are replaced by candidates of a global
+// scan-to-region search on the current scan (sensor resetting). The same search starts global
+// localization from an unknown pose; a kidnap is flagged when the estimate stops explaining the
+// scans or jumps.
 #pragma once
 
 #include <Eigen/Core>

@@ -204,6 +204,8 @@ int main(int argc, char** argv)
       w.frames = le::fit_truth_frames(run.run, run.truth_at_node, base_from_laser);
       w.frames.map = &w.map;
       w.grid_from_region = rgnav::render::compose_region_frames(w.map);
+      // A fresh folder: MRPT's runner takes every drive folder it finds there.
+      std::filesystem::remove_all(w.dir + "/mrpt");
       std::filesystem::create_directories(w.dir + "/mrpt");
       rgnav::render::write_map_server(rgnav::render::compose_global_grid(w.map, 0.05), w.dir + "/mrpt/map");
       add_walkers(&w.world, w.tour, walkers);
