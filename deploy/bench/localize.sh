@@ -32,7 +32,9 @@
 #     way (deploy/bench/mrpt/README.md): mrpt_tracking_rmse_m, mrpt_global_success_ratio
 #     (on the first 10 global trials per world) and its per-world figures under mrpt.<world>.
 # Env: LOCALIZE_ONLY (space-separated world names) runs only those; LOCALIZE_ARGS adds bench
-#   flags (e.g. "--global-trials 10 --kidnaps 3"); LOCALIZE_MRPT=0 skips MRPT.
+#   flags (e.g. "--global-trials 10 --kidnaps 3"); LOCALIZE_MRPT=0 skips MRPT; LOCALIZE_TRACE=1
+#   writes every tracking update (estimate, truth, error, cluster share, inliers) to
+#   <world>/tracking_trace.txt and a line per global trial and gateway link to stderr.
 # The benchmark itself: tests/eval/localize (rgnav_localize_bench).
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
