@@ -20,7 +20,7 @@ struct CarmenOptions
   // FLASER/RLASER beams span the 180 deg field of view inclusive of both ends (increment
   // fov / (n - 1)) whatever n is, as MRPT's CObservation2DRangeScan spreads them. CARMEN's own
   // convention for 180 beams is [-90, 89] deg at 1 deg, and logs that came from CARMEN keep it
-  // even when decoded from an MRPT rawlog (the raw Intel log: deploy/bench/slam.sh).
+  // even when decoded from an MRPT rawlog (deploy/bench/slam.sh's raw log).
   bool fov_inclusive = false;
 };
 

@@ -1,7 +1,7 @@
 // Re-pairs a log's odometry with its scans when the two are out of step by whole scans.
 //
-// Some logs pair each scan with the wrong odometry reading: the raw Intel log decoded from an
-// MRPT rawlog gives every scan the pose *after* the movement that follows it (one scan ahead;
+// Some logs pair each scan with the wrong odometry reading: a raw log decoded from an MRPT
+// rawlog can give every scan the pose *after* the movement that follows it (one scan ahead;
 // its odometry increments correlate best with the scan-matched ones one scan later, see
 // deploy/bench/slam.sh). Delaying the odometry by that many scans gives each scan the pose it
 // was taken at. Timestamps are kept; only the poses move.

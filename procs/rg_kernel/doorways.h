@@ -40,8 +40,8 @@ struct DoorwayOptions
   double wall_end_corner_tolerance = 0.3; // [m] the line may run into the wall this far past its end (a corner)
   // An end in line with another wall across it (that wall's line this near the end, its nearer
   // end at most max_width away) is a jamb of an opening in that wall's line: the opening lies
-  // along that line, not along the wall's (lab_intel: partitions between rooms open onto a
-  // hallway end flush with the rooms' front walls, and their lines run on across the hallway).
+  // along that line, not along the wall's (partitions between rooms that open onto a hallway end
+  // flush with the rooms' front walls, and their lines run on across the hallway).
   double wall_end_in_line_offset = 0.3;   // [m]
 };
 

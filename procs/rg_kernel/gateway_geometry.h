@@ -48,8 +48,8 @@ struct EdgeFrame
 
 // When a region lies beyond a side of a crossing's outline: one of its robot positions is
 // just_beyond the side with these. A position a few cm past the line is on it (pose noise, the
-// scan before the detector's late report, a turn on the line; lab_a: a hallway region opened
-// every cubicle's stem side to its beams by one such position).
+// scan before the detector's late report, a turn on the line; along a row of cubicles, one such
+// position opened every cubicle's stem side to a hallway region's beams).
 struct SideReach
 {
   double reach = 2.0;       // [m]
@@ -104,7 +104,7 @@ struct StemSide
 
 // Which sides of a crossing's outline are stems: both sides beside open in the line map (a
 // hallway runs past), and for a T the side opposite walled too; for an X the side opposite may be
-// open (another branch: lab_a's cubicles facing each other across a narrow hallway).
+// open (another branch: cubicles facing each other across a narrow hallway).
 enum class StemKind { kT, kTOrX };
 
 // The sides of a crossing's outline (four points) that a region whose robot stood at `origins`

@@ -53,8 +53,8 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
   // crosses it as the detector would have reported it.
   // - A known door (a line gateway) of the current region, to its far side: the detector reports
   //   a door it has crossed before only if it recognises it again, and often does not as the
-  //   robot leaves a room (office_g: rooms' regions ran on along the hallway for tens of metres,
-  //   up to the next gateway). The kernel knows the door and which side is whose.
+  //   robot leaves a room (rooms' regions then run on along the hallway for tens of metres, up to
+  //   the next gateway). The kernel knows the door and which side is whose.
   // - A doorway of the current region's line map that no gateway stands in yet: a door the
   //   detector missed altogether (issue 8: missed gateways merge rooms).
   const int64_t rid = map_.current_region;
@@ -92,8 +92,8 @@ void RgKernel::walk_through_door(const Vector2d& from, const ScanInput& s)
     // - The stem side of a T-junction the current region lies beyond, into the junction: the
     //   region ends at that side (stem_ends_branch), so the robot has left it for the hallway's
     //   square, though a robot leaving a shallow room or bay cuts the junction's corner and the
-    //   detector reports nothing (lab_a's cubicles: their regions ran on along the hallway up
-    //   to the next cubicle). Like a door, a stem has two sides and no choice of branch: the
+    //   detector reports nothing (a row of cubicles: their regions then run on along the hallway
+    //   up to the next cubicle). Like a door, a stem has two sides and no choice of branch: the
     //   crossing leads back into the region the gateway joins the current one to.
     // Per scan: the stems (line map, every robot position) are worked out only for a junction
     // of this region whose outline the step crosses.

@@ -127,7 +127,7 @@ BeamLimits RgKernel::beam_limits(int64_t region_id, const Vector2d* robot) const
         options_.x_branches_end && region_id != junction_owner(g) ? StemKind::kTOrX : StemKind::kT;
     // A stem side the region lies beyond (clip_lines opened it) ends its beams after all, lengthened
     // as a door is (the outline's side ends at the opening's measured edges, and beams grazing
-    // past them carved wedges of hallway into lab_a's cubicles), and its scans inside the
+    // past them carved wedges of hallway into cubicles along it), and its scans inside the
     // junction (as deep as the sides beside the stem are long) carve nothing.
     for (const StemSide& stem : stems_entered(points, origins, side_reach(), *walls, opening, stem_kind)) {
       out.lines.push_back(lengthened(stem.side.line, options_.gateway_line_extension));

@@ -50,13 +50,13 @@ struct KernelOptions
   int merge_recent_scans = 20;           // ... and of its last this many positions (all, if fewer) ...
   double merge_recent_ratio = 0.9;       // ... at least this share: the robot is in that place now. A branch or
                                          // room entered at a junction has its first positions in the junction,
-                                         // which the region before saw (lab_c: 7 of 8, merged into the hallway)
+                                         // which the region before saw (rooms off a junction: most were merged into the hallway)
   // A region whose robot, after merge_min_scans positions in a new place, has this many positions
   // in a row (the newest) in one known region's place, with no gateway between, walked into it
   // through a gateway nobody saw: the kernel crosses one there, a line across the step into the
   // known place reaching to the line map's walls (at most entry_max_half_width each side), and the
-  // positions from the step on are the known region's (lab_ipa: a corridor's region ran on across
-  // the octagon hall it opens into, the hall's region known). Not merged: the new place stays a
+  // positions from the step on are the known region's (a corridor's region otherwise runs on across
+  // the hall it opens into, though the hall's region is known). Not merged: the new place stays a
   // region of its own. 0: off.
   int entry_min_scans = 8;
   // [m] ... and the farthest of them at least this far from the step in: a junction's square is
@@ -82,7 +82,7 @@ struct KernelOptions
   // So does a region beyond a side of an X-crossing with a hallway open past it (the side opposite
   // open too: another branch), but the region the robot first came into the junction from
   // (junction_owner), which keeps the square: a room's square across a narrow hallway from
-  // another room's (lab_a: cubicles facing each other) is the hallway's.
+  // another room's (cubicles facing each other) is the hallway's.
   bool x_branches_end = true;
   bool doorway_gateways = true;          // a doorway of the line map (build.doorways) the robot goes through is a gateway
   bool door_exits = true;                // a known door of the current region the robot goes through unreported is crossed

@@ -1,8 +1,8 @@
 // A crossing traversal between walls (part of RgKernel, rg_kernel.h): the gateway detector's
 // junction hypotheses (diss. 4.1) take a door in a hallway wall for a branch, and a room's wall
 // seen through a door for the junction's far side. Gone straight through, such a "junction"
-// cut the hallway in two at a place no wall narrows (office world: three false crossings in
-// hall_a_west). A real branch opens its side about as wide as a hallway; a door, at most 1.3 m.
+// cut the hallway in two at a place no wall narrows (false crossings along a hallway lined with
+// open doors). A real branch opens its side about as wide as a hallway; a door, at most 1.3 m.
 #include <cmath>
 #include <vector>
 

@@ -5,7 +5,7 @@
 // normals oriented toward its sensor (and the model's likewise), a scan point only pairs with
 // model points seen from the same side: the two faces of a thin wall, one seen from a room
 // and one from the corridor, are otherwise matched onto each other, which shifts the fit by
-// the wall's thickness (observed on loop closures in the simulated Freiburg79 building).
+// the wall's thickness (observed on loop closures between a room and the corridor beside it).
 #pragma once
 
 #include <Eigen/Core>

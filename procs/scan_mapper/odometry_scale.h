@@ -1,7 +1,7 @@
 // Odometry's translation scale, learned from scan matches (online calibration). A wheel radius
 // a percent off makes odometry a percent long or short on every metre; where the scans fix both
 // translation directions that is seen and averaged out, but along a hallway the scans leave the
-// axis to odometry (icp.degenerate_min_points), and there the error adds up: office_c's 70 m
+// axis to odometry (icp.degenerate_min_points), and there the error adds up: a 70 m
 // hallway, beyond the LMS's 8 m, came out 0.5-0.7 m stretched on the simulator's 1 % scale
 // error, and every lap the same, so no loop closure could take it out (bench slam). Kümmerle
 // et al. 2011 calibrate odometry inside the SLAM problem; this keeps to the one parameter that

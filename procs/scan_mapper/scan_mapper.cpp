@@ -494,7 +494,7 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
   if (u.reached() && u.sigma_xy() <= l.direct_max_sigma_m) {
     const Eigen::Vector3d r = edge_error(graph_.pose(anchor), graph_.pose(n), h.anchor_from_node);
     // The fit's own precision, not the degeneracy terms: along a hallway those let a match slide
-    // to the look-alike door 2-4 m on and still "agree" (office_c).
+    // to the look-alike door 2-4 m on and still "agree" (a hallway of identical doors).
     Eigen::Matrix3d S = l.covariance_scale * rot3(-h.anchor_from_node.theta()) * icp.fit_covariance *
                         rot3(-h.anchor_from_node.theta()).transpose();
     S.diagonal() += Eigen::Vector3d(u.sigma_xy() * u.sigma_xy(), u.sigma_xy() * u.sigma_xy(), u.var_rot);

@@ -30,9 +30,9 @@ struct OdometryNoise
   // translation variance, between 1 and max_scale^2. A too loose model lets loop closures slide
   // the graph along a hallway: such a closure holds only across the hallway, and where the two
   // passes' hallway directions differ by a fraction of a degree, the optimiser eases that
-  // tension by sliding the loosely held chain along the axis (office_c, 0.01 m + 0.1 m/m for an
+  // tension by sliding the loosely held chain along the axis (a 70 m hallway, 0.01 m + 0.1 m/m for an
   // odometry good to ~1 %: 0.1-0.9 m per closure, 8 m over a 40 m drive that odometry alone got
-  // within 0.4 m). A too tight model trusts a poor odometry over the scans (Intel: learned 2.3).
+  // within 0.4 m). A too tight model trusts a poor odometry over the scans (a real log's poor odometry: learned 2.3).
   // Not persisted: after a restart it is learned again. 0: off.
   int adapt_window_scans = 0;
   double adapt_max_scale = 4.0;
@@ -41,7 +41,7 @@ struct OdometryNoise
   // registration and loop closures alike. The count stands for the fit's information along that
   // direction, and odometry's there is 1 / (s sigma)^2: against an odometry s times poorer, a
   // fit held by s^2 times fewer points is worth as much. The sims' odometry learns s = 1 and
-  // keeps the threshold; the raw Intel log's learns 2.5, where the fixed count of 60 left 42 %
+  // keeps the threshold; a real log with poor odometry learns 2.5, where the fixed count of 60 left 42 %
   // of its steps, ordinary rooms among them, to an odometry that poor: agreement with the
   // reference 0.074 -> 0.049 m. It needs ScanNormalOptions' beam normals: without them, sparse
   // wall samples pairing point-to-point gave a hallway's fits a few dozen points of false hold
@@ -93,19 +93,19 @@ struct LoopClosureOptions
   // Variance [m^2] (before covariance_scale) a loop closure's match gets along a direction held
   // by fewer than icp.degenerate_min_points surface points. Larger than the sequential matches'
   // icp.degenerate_variance_m2: along a hallway every scan of a long drive "closes" to the same
-  // stretch, and 20 such edges, however weak each, add up to a pull of metres (lab_a).
+  // stretch, and 20 such edges, however weak each, add up to a pull of metres (a long hallway of cubicles).
   double degenerate_variance_m2 = 1.0;
   // Along that direction the fit measures nothing: where it ends up there is where the search
   // happened to stop. Such a closure then keeps the graph's relative pose along the direction and
-  // corrects only across it and the heading (find_closure). With the variance alone, office_c's
-  // return pass down its 70 m hallway was pushed on at closure after closure, 4 m in all
+  // corrects only across it and the heading (find_closure). With the variance alone, the
+  // return pass down a 70 m hallway was pushed on at closure after closure, 4 m in all
   // (one lap; bench slam's truth_pairs.txt, online estimate); with the axis kept, 1.9 m; with
   // the scale below too, 0.06 m (relation error 1.43 -> 0.045 m).
   bool degenerate_keeps_graph_axis = false;
   // ... and its covariance is scaled by this on top of covariance_scale. Along a hallway the
   // closures come every few scans against the same two walls, so their errors across the axis
   // and in heading are one error repeated, not independent ones; weighed as independent they
-  // still bent the chain. Both together: office_c 0.099 -> 0.019 m relation error over three
+  // still bent the chain. Both together, on a building with a 70 m hallway: 0.099 -> 0.019 m relation error over three
   // seeds. Alone, each did less (the test HallwayClosuresKeepTheGraphsAxisAndCountAsOneWitness:
   // 1.56 m as measured, 2.08 axis kept, 0.61 scaled, 0.52 both).
   double degenerate_covariance_scale = 1.0;
@@ -135,10 +135,10 @@ struct ScanMapperOptions
   // least turn_min_inlier_gain (inlier ratio), else the heading is odometry's. A round bay seen
   // from its door is an arc that fits any heading; turning it to where the local map's arc ends
   // gains a few inliers, and the Hessian, held by the jambs, claimed 0.25 deg for fits 15-20 deg
-  // off (issue 6: office_c). 0: off.
+  // off (issue 6: a room entered from a long hallway). 0: off.
   // Such a turned fit must also fit the surfaces about as precisely as odometry's heading does:
   // surface rms at most turn_max_rms_ratio x the held fit's. A turn bought with inliers at the
-  // 10 cm scale fits the arc at twice the range noise (office_c: 20 deg turns passed the inlier
+  // 10 cm scale fits the arc at twice the range noise (20 deg turns passed the inlier
   // test with 0.022 m against 0.010 m at odometry's heading). 0: off.
   double turn_check_sigmas = 3.0;
   double turn_min_inlier_gain = 0.05;
