@@ -100,7 +100,6 @@ void RegionMaps::set_map(const rgmap::RgMap& map)
     if (old != regions_.end() && old->second->stack_key == m->stack_key) {
       m->field = old->second->field;
       m->free_positions = old->second->free_positions;
-      m->free_area = old->second->free_area;
       continue;
     }
     // Inside its bounding rectangle (its in-region measurements) a region's own lines are the
@@ -121,7 +120,6 @@ void RegionMaps::set_map(const rgmap::RgMap& map)
       }
     m->field = LikelihoodField(stacked, scan_.field_resolution, scan_.max_distance, scan_.field_margin, field_extent(*m));
     m->free_positions = seed_positions(m->freespace, seed_spacing_);
-    m->free_area = m->freespace.free_cells() * m->freespace.resolution() * m->freespace.resolution();
   }
   regions_.clear();
   for (auto& [id, m] : next) regions_[id] = std::move(m);

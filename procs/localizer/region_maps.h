@@ -41,7 +41,6 @@ struct RegionModel
   rgmap::FreespaceBitmap freespace;
   std::vector<RegionLink> links;
   std::vector<Eigen::Vector2d> free_positions;  // cell centres for particle seeding, region frame
-  double free_area = 0;                // [m^2]
   Eigen::Vector2d bbox_min{0, 0}, bbox_max{0, 0};   // bounding rectangle of its in-region measurements
 
   bool is_free(const Eigen::Vector2d& p) const { return freespace.is_free(p); }

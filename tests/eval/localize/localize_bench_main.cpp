@@ -21,6 +21,7 @@
 #include "localize_trials.h"
 #include "localizer/localizer.h"
 #include "localizer/localizer_options.h"
+#include "name_path_spec.h"
 #include "runtime/process_main.h"
 #include "sim/sim_options.h"
 
@@ -30,17 +31,6 @@ namespace lo = rgnav::localizer;
 using le::number_or_null;
 using le::percentile;
 using rgnav::geometry::Pose2;
-
-namespace {
-
-std::pair<std::string, std::string> split_spec(const std::string& spec)
-{
-  const auto eq = spec.find('=');
-  if (eq == std::string::npos || eq == 0) throw std::runtime_error("expected NAME=PATH, got '" + spec + "'");
-  return {spec.substr(0, eq), spec.substr(eq + 1)};
-}
-
-}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -87,7 +77,7 @@ int main(int argc, char** argv)
     le::Totals totals;
     double max_bytes = 0;
     for (const auto& spec : sims) {
-      const auto [name, path] = split_spec(spec);
+      const auto [name, path] = rp::split_spec(spec);
       const le::BenchWorld w = le::map_world(name, path, out_dir, sim_options, loaded, base_from_laser, walkers);
       nlohmann::json wj = le::map_quality(w);
       wj["world"] = path;

@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "bench_summary.h"
+#include "name_path_spec.h"
 #include "config/finish_except.h"
 #include "importers/lcm_log_io.h"
 #include "offline_mapping.h"
@@ -21,13 +22,6 @@
 namespace rp = rgnav::rgmap_pipeline;
 
 namespace {
-
-std::pair<std::string, std::string> split_spec(const std::string& spec)
-{
-  const auto eq = spec.find('=');
-  if (eq == std::string::npos || eq == 0) throw std::runtime_error("expected NAME=PATH, got '" + spec + "'");
-  return {spec.substr(0, eq), spec.substr(eq + 1)};
-}
 
 // --diagnose: the ground-truth gateways missed and the false ones, and the room centres, all in
 // the world frame, to find them on the pictures.
@@ -111,7 +105,7 @@ int main(int argc, char** argv)
       const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg, loaded.robot);
       rgnav::config::finish_except(sim_cfg, {"node", "channels", "sim", "protocol"});  // the process's own run settings
       for (const auto& spec : sims) {
-        const auto [name, path] = split_spec(spec);
+        const auto [name, path] = rp::split_spec(spec);
         // The headline on the scan mapper's poses; on request again on the true poses.
         for (const bool on_truth : {false, true}) {
           if (on_truth && !true_poses) break;
@@ -151,7 +145,7 @@ int main(int argc, char** argv)
     for (const char* section : {"worlds", "worlds_true_poses"})
       if (j.contains(section)) j["summary"][section] = rp::summarize_ipa_worlds(j[section]);
     for (const auto& spec : reals) {
-      const auto [name, path] = split_spec(spec);
+      const auto [name, path] = rp::split_spec(spec);
       auto given = loaded;
       given.options.poses_as_given = true;
       given.options.mapper.base_from_laser = rgnav::geometry::Pose2();   // the corrected logs' scans are in the robot frame

@@ -28,7 +28,9 @@ struct TimedTruth
   sim::Pose2 pose;
 };
 
-// True pose at utime, interpolated between the simulator's odometry samples (which carry it).
+// True pose at utime, interpolated between the simulator's odometry samples (which carry it);
+// after the last sample extrapolated along the last two (a scan of the newest chunk can be
+// newer than its odometry), where geometry::PoseTrack holds the last sample.
 geometry::Pose2 truth_at(const std::vector<TimedTruth>& track, int64_t utime)
 {
   auto it = std::lower_bound(track.begin(), track.end(), utime, [](const TimedTruth& t, int64_t u) { return t.utime < u; });

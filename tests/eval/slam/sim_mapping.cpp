@@ -5,6 +5,7 @@
 #include <ctime>
 #include <stdexcept>
 
+#include "geometry/pose_track.h"
 #include "offline_mapping.h"
 #include "sim/tour_planner.h"
 #include "sim/waypoint_follower.h"
@@ -22,29 +23,6 @@ sensors::LaserScan to_scan(const sensors::LaserScan& s)
   out.scan_id = s.scan_id + 1;  // ids start at 1 like LASER_FRONT's
   return out;
 }
-
-// True pose at `utime` from the simulator's odometry samples (which carry the truth),
-// interpolated between the two around it.
-class TruthTrack
-{
- public:
-  void add(int64_t utime, const Pose2& p) { samples_.push_back({utime, p}); }
-  std::optional<Pose2> at(int64_t utime) const
-  {
-    for (size_t k = samples_.size(); k-- > 0;) {
-      if (samples_[k].utime > utime) continue;
-      if (samples_[k].utime == utime || k + 1 == samples_.size()) return samples_[k].pose;
-      const auto& a = samples_[k];
-      const auto& b = samples_[k + 1];
-      const double s = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
-      return interpolate(a.pose, b.pose, s);
-    }
-    return std::nullopt;
-  }
-
- private:
-  std::vector<TimedPose> samples_;
-};
 
 }  // namespace
 
@@ -80,7 +58,7 @@ SimMappingResult run_sim_mapping(const std::string& world_path, const sim::Simul
   sim::WaypointFollower follower(route, [&simulator] { return simulator.truth(); });
   simulator.set_command_source(&follower);
 
-  TruthTrack truth;
+  geometry::PoseTrack truth;   // from the simulator's odometry samples, which carry the truth
   std::vector<Pose2> truth_at_node, odom_at_node;
   const std::chrono::microseconds chunk(static_cast<int64_t>(1e6 / l.rate_hz()));
   double last_truth_distance = 0.0;
