@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "rgmap/region_name.h"
+
 namespace rgnav::msg {
 namespace {
 
@@ -97,8 +99,13 @@ bool semantically_valid(const nav_goal_t& m, std::string* why)
 {
   if (!(m.position_tolerance > 0) || !(m.heading_tolerance > 0))
     return no(why, "nav_goal_t: tolerances must be > 0");
+  if (m.region_id < 0) return no(why, "nav_goal_t: region_id must be >= 0");
   if (!m.cancel && m.region_id == 0 && m.region_name.empty())
     return no(why, "nav_goal_t: needs region_id or region_name");
+  // No region has a longer name: an oversized one is refused before anyone looks it up.
+  if (m.region_name.size() > rgmap::kMaxRegionNameLength) return no(why, "nav_goal_t: region_name longer than 64 characters");
+  if (std::fabs(m.region_from_goal.x) > 1e4 || std::fabs(m.region_from_goal.y) > 1e4 || std::fabs(m.region_from_goal.theta) > 100.0)
+    return no(why, "nav_goal_t: goal beyond 10 km or |theta| > 100 rad");
   return true;
 }
 
@@ -132,6 +139,31 @@ bool semantically_valid(const gateway_passed_t& m, std::string* why)
   if (m.gateway_id <= 0 || m.from_region <= 0 || m.to_region <= 0)
     return no(why, "gateway_passed_t: gateway and region ids must be > 0");
   if (!(m.distance_past >= 0)) return no(why, "gateway_passed_t: distance_past must be >= 0");
+  return true;
+}
+
+bool semantically_valid(const region_name_t& m, std::string* why)
+{
+  if (m.region_id <= 0) return no(why, "region_name_t: region_id must be > 0");
+  std::string bad;
+  if (!rgmap::valid_region_name(m.name, &bad)) return no(why, "region_name_t: " + bad);
+  return true;
+}
+
+bool semantically_valid(const ca_status_t& m, std::string* why)
+{
+  if (!(m.blocked_s >= 0)) return no(why, "ca_status_t: blocked_s must be >= 0");
+  if (m.next_target < 0) return no(why, "ca_status_t: next_target must be >= 0");
+  if (m.status.size() > 256) return no(why, "ca_status_t: status longer than 256 characters");
+  return true;
+}
+
+bool semantically_valid(const global_path_t& m, std::string* why)
+{
+  if (!(m.cost >= 0)) return no(why, "global_path_t: cost must be >= 0");
+  if (m.reason.size() > 1000) return no(why, "global_path_t: reason longer than 1000 characters");
+  for (const auto& w : m.waypoints)
+    if (w.region_id <= 0 || w.gateway_id < 0) return no(why, "global_path_t: waypoint region_id must be > 0, gateway_id >= 0");
   return true;
 }
 

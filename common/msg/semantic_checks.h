@@ -28,5 +28,8 @@ bool semantically_valid(const target_list_t& m, std::string* why);
 bool semantically_valid(const aligned_scan_t& m, std::string* why);
 bool semantically_valid(const localize_request_t& m, std::string* why);
 bool semantically_valid(const gateway_passed_t& m, std::string* why);
+bool semantically_valid(const region_name_t& m, std::string* why);
+bool semantically_valid(const ca_status_t& m, std::string* why);
+bool semantically_valid(const global_path_t& m, std::string* why);
 
 }  // namespace rgnav::msg

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "rgmap/region_name.h"
+
 namespace rgnav::rgmap {
 
 std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> gateway_edges(const std::vector<Eigen::Vector2d>& points)
@@ -140,6 +142,8 @@ int RgMap::merge(int64_t from, int64_t into, const geometry::Pose2& into_from_fr
   }
   dst->nscans += src->nscans;
   dst->utime = t;
+  // An operator's name outlives the merge: it named this place.
+  if (dst->name.empty()) dst->name = src->name;
   src->state = Region::State::kMerged;
   src->merged_into = into;
   src->utime = t;
@@ -196,6 +200,24 @@ void RgMap::set_next_ids(int64_t region_id, int64_t gateway_id)
   for (const auto& kv : gateways_) max_g = std::max(max_g, kv.first);
   next_region_id_ = std::max(region_id, max_r + 1);
   next_gateway_id_ = std::max(gateway_id, max_g + 1);
+}
+
+int64_t region_to_name(const RgMap& map, int64_t id, const std::string& name, std::string* why)
+{
+  std::string bad;
+  const auto no = [&](const std::string& text) {
+    if (why) *why = text;
+    return int64_t{0};
+  };
+  if (!valid_region_name(name, &bad)) return no(bad);
+  const int64_t live = map.region(id) ? map.resolve(id) : 0;
+  const Region* r = live ? map.region(live) : nullptr;
+  if (!r || r->state == Region::State::kMerged) return no("no region " + std::to_string(id) + " in the map");
+  for (const auto& [other, o] : map.regions())
+    if (other != live && o.state != Region::State::kMerged && same_region_name(o.name, name))
+      return no("region " + std::to_string(other) + " is named '" + o.name + "' already");
+  if (why) why->clear();
+  return live;
 }
 
 }  // namespace rgnav::rgmap

@@ -146,4 +146,9 @@ class RgMap
   int64_t next_gateway_id_ = 1;
 };
 
+// The live region an operator's name for region `id` goes to (a region merged away: the one it
+// was merged into); 0 with *why set when it cannot be named so: no such live region, not a valid
+// name (region_name.h), or the name of another live region (names pick one region).
+int64_t region_to_name(const RgMap& map, int64_t id, const std::string& name, std::string* why);
+
 }  // namespace rgnav::rgmap

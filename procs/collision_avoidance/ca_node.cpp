@@ -2,7 +2,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <climits>
+
 #include "msg/conversions.h"
+#include "rgnav/ca_status_t.hpp"
 #include "rgnav/heartbeat_t.hpp"
 #include "rgnav/laser_scan_t.hpp"
 #include "rgnav/lld_status_t.hpp"
@@ -24,12 +28,14 @@ CaNode::CaNode(runtime::Node& node, const CaNodeOptions& options)
     t.max_speed = m.max_speed;
     t.final_is_goal = m.final_is_goal;
     for (const auto& p : m.odom_from_target) t.poses.push_back(msg::to_pose2(p));
+    goal_id_ = m.goal_id;
     ca_.set_targets(t);
     decide(node_.clock().now());
   });
   node_.subscribe<nav_goal_t>(ch.nav_goal, [this](const nav_goal_t& m) {
     if (!m.cancel) return;  // goals reach collision avoidance as TARGETS from the planner
     ca_.cancel();
+    goal_id_ = 0;
     decide(node_.clock().now());
   });
   node_.subscribe<odometry_t>(ch.odometry, [this](const odometry_t& m) {
@@ -84,6 +90,49 @@ void CaNode::decide(time::Time now)
       node_.set_status(heartbeat_t::STATE_RUNNING, reported_text_);
     }
   }
+  publish_status(now);
+}
+
+namespace {
+
+int8_t to_msg_mode(Mode m)
+{
+  switch (m) {
+    case Mode::kIdle: return ca_status_t::MODE_IDLE;
+    case Mode::kPlanned: return ca_status_t::MODE_PLANNED;
+    case Mode::kReactive: return ca_status_t::MODE_REACTIVE;
+    case Mode::kBlocked: return ca_status_t::MODE_BLOCKED;
+    case Mode::kStaleStop: return ca_status_t::MODE_STALE_STOP;
+    case Mode::kArrived: return ca_status_t::MODE_ARRIVED;
+  }
+  return ca_status_t::MODE_IDLE;
+}
+
+}  // namespace
+
+void CaNode::publish_status(time::Time now)
+{
+  const Mode mode = ca_.mode();
+  // Stuck: no chain to the targets (reactive fallbacks, or standing blocked). The span runs
+  // until a chain is planned again, whatever the fallbacks do meanwhile (backing off, turning
+  // and yielding move the robot, but not toward its targets).
+  const bool stuck = mode == Mode::kReactive || mode == Mode::kBlocked;
+  if (!stuck) stuck_since_.reset();
+  else if (!stuck_since_) stuck_since_ = now;
+  if (options_.channels.status.empty()) return;
+  constexpr time::Duration kPeriod = std::chrono::milliseconds(500);
+  if (status_sent_ && mode == status_mode_ && now < status_sent_at_ + kPeriod && now >= status_sent_at_) return;
+  ca_status_t m;
+  m.utime = time::to_utime(now);
+  m.goal_id = goal_id_;
+  m.mode = to_msg_mode(mode);
+  m.blocked_s = stuck_since_ ? std::max(0.0, time::to_seconds(now - *stuck_since_)) : 0.0;
+  m.next_target = static_cast<int32_t>(std::min<size_t>(ca_.next_target(), INT32_MAX));
+  m.status = ca_.status().substr(0, 256);
+  node_.publish(options_.channels.status, m);
+  status_sent_ = true;
+  status_mode_ = mode;
+  status_sent_at_ = now;
 }
 
 }  // namespace rgnav::collision_avoidance

@@ -15,6 +15,7 @@ CaNodeOptions load_ca_options(const config::Config& root, const config::RobotDes
   o.channels.obstacles = ch.string("obstacles", o.channels.obstacles);
   o.channels.lld_status = ch.string("lld_status", o.channels.lld_status);
   o.channels.trajectory = ch.string("trajectory", o.channels.trajectory);
+  o.channels.status = ch.string("status", o.channels.status);
 
   auto& c = o.ca;
   c.planner.robot_radius = robot.radius;

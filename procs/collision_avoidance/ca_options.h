@@ -19,6 +19,7 @@ struct CaChannels
   std::string obstacles = "OBSTACLES_3D";
   std::string lld_status = "LLD_STATUS";
   std::string trajectory = "TRAJECTORY";
+  std::string status = "CA_STATUS";   // mode and blocked time, for the planner ("" = not published)
 };
 
 struct CaNodeOptions

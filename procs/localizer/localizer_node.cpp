@@ -11,9 +11,8 @@
 #include "config/config.h"
 #include "geometry/pose_track.h"
 #include "msg/conversions.h"
-#include "persist/atomic_file.h"
 #include "rgmap/rgmap_conversions.h"
-#include "rgmap/rgmap_json.h"
+#include "rgmap/saved_map.h"
 #include "rgnav/gateway_passed_t.hpp"
 #include "rgnav/heartbeat_t.hpp"
 #include "rgnav/region_pose_t.hpp"
@@ -39,23 +38,6 @@ double ms_since(std::chrono::steady_clock::time_point t0)
 
 }  // namespace
 
-rgmap::RgMap load_saved_map(const std::string& path)
-{
-  const std::string file = std::filesystem::is_directory(path) ? path + "/rgmap.json" : path;
-  std::optional<std::string> text;
-  try {
-    text = persist::read_checked(file);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(e.what());   // CorruptFile names the file and the defect
-  }
-  if (!text) throw std::runtime_error(file + ": no such file");
-  try {
-    return rgmap::from_json(nlohmann::json::parse(*text));
-  } catch (const std::exception& e) {
-    throw std::runtime_error(file + ": not an RG map: " + e.what());
-  }
-}
-
 LocalizerNode::LocalizerNode(runtime::Node& node, const LocalizerNodeOptions& options, LocalizerFiles files)
     : node_(node),
       options_(options),
@@ -80,7 +62,7 @@ LocalizerNode::LocalizerNode(runtime::Node& node, const LocalizerNodeOptions& op
   if (!files_.map.empty()) {
     rgmap::RgMap map;
     try {
-      map = load_saved_map(files_.map);
+      map = rgmap::load_saved_map(files_.map);
     } catch (const std::exception& e) {
       throw config::ConfigError(std::string("--map: ") + e.what());
     }

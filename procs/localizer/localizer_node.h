@@ -36,10 +36,6 @@ struct LocalizerFiles
   std::string state_file;   // --state-file: the estimate saved while converged, resumed at start; "" = none
 };
 
-// The saved map at `path`: an rgmap.json as the RG kernel and ./rgnav map write it, or a folder
-// holding one. Throws std::runtime_error naming the file and what is wrong with it.
-rgmap::RgMap load_saved_map(const std::string& path);
-
 class LocalizerNode
 {
  public:

@@ -86,6 +86,18 @@ bool RgKernel::add_scan(const ScanInput& s)
   return true;
 }
 
+bool RgKernel::name_region(int64_t region_id, const std::string& name, std::string* why)
+{
+  const int64_t id = rgmap::region_to_name(map_, region_id, name, why);
+  if (id == 0) return false;
+  Region* r = map_.region(id);
+  if (r->name == name) return false;
+  spdlog::info("region {} named '{}'{}", id, name, r->name.empty() ? "" : " (was '" + r->name + "')");
+  r->name = name;
+  ++map_.version;
+  return true;
+}
+
 Vector2d RgKernel::crossing_in_map(const Gateway& g) const
 {
   const Region* a = map_.region(g.region_a);

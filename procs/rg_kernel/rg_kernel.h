@@ -136,6 +136,11 @@ class RgKernel
   // Both return true when the map changed.
   bool add_scan(const ScanInput& scan);
   bool add_gateway_event(const GatewayEventInput& event);
+  // The operator's name for a region (a region merged away names the one it was merged into).
+  // True when the map changed (its version goes up); false with *why set when refused (no such
+  // live region, not a valid name, another live region's name: rgmap::region_to_name), false
+  // with *why empty when the region has that name already.
+  bool name_region(int64_t region_id, const std::string& name, std::string* why);
 
   const rgmap::RgMap& map() const { return map_; }
   // The map with the description (segments, bbox, freespace) of every region that changed

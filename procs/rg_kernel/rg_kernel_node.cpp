@@ -29,7 +29,8 @@ NodeConfig load_node_config(const config::Config& cfg, const config::RobotDescri
   c.publish_period_s = cfg.section("publish").number("period_s", c.publish_period_s, 0.05, 60.0);
   const auto ch = cfg.section("channels");
   config::read_strings(ch, {{"aligned_scan", &c.aligned_scan}, {"gateway_events", &c.gateway_events},
-                            {"rg_map", &c.rg_map}, {"rg_region", &c.rg_region}, {"rg_graph", &c.rg_graph}});
+                            {"rg_map", &c.rg_map}, {"rg_region", &c.rg_region}, {"rg_graph", &c.rg_graph},
+                            {"region_name", &c.region_name}});
   return c;
 }
 
@@ -40,6 +41,8 @@ RgKernelNode::RgKernelNode(runtime::Node& node, NodeConfig config)
   if (!config_.state_dir.empty()) restore();
   node_.subscribe<aligned_scan_t>(config_.aligned_scan, [this](const aligned_scan_t& m) { on_scan(m, true); });
   node_.subscribe<gateway_event_t>(config_.gateway_events, [this](const gateway_event_t& m) { on_event(m, true); });
+  if (!config_.region_name.empty())
+    node_.subscribe<region_name_t>(config_.region_name, [this](const region_name_t& m) { on_region_name(m, true); });
   node_.every(std::chrono::seconds(1), [this] {
     if (kernel_.map().current_region != 0) publish();
   });
@@ -119,6 +122,9 @@ void RgKernelNode::restore()
     } else if (rec.tag == kGatewayEvent) {
       gateway_event_t m;
       if (bus::decode(data, rec.bytes.size(), &m, &why)) on_event(m, false);
+    } else if (rec.tag == kRegionName) {
+      region_name_t m;
+      if (bus::decode(data, rec.bytes.size(), &m, &why)) on_region_name(m, false);
     }
     if (!why.empty()) spdlog::warn("journal record skipped: {}", why);
     ++inputs_;
@@ -195,6 +201,28 @@ void RgKernelNode::on_event(const gateway_event_t& m, bool write_journal)
 {
   if (write_journal) journal(kGatewayEvent, m);
   if (kernel_.add_gateway_event(to_input(m))) changed(m.utime);
+  if (write_journal) maybe_snapshot();
+}
+
+void RgKernelNode::on_region_name(const region_name_t& m, bool write_journal)
+{
+  std::string why;
+  if (write_journal) {
+    // Checked before it is journaled: a refused name leaves no trace in the state, and a name
+    // said again changes nothing and is not journaled twice.
+    const int64_t id = rgmap::region_to_name(kernel_.map(), m.region_id, m.name, &why);
+    if (id == 0) return node_.drops().drop(config_.region_name, "region name refused: " + why);
+    if (kernel_.map().region(id)->name == m.name) return;
+    journal(kRegionName, m);
+  }
+  if (!kernel_.name_region(m.region_id, m.name, &why)) {
+    if (!why.empty()) spdlog::warn("journaled region name not applied: {}", why);
+    return;
+  }
+  unpublished_change_ = true;
+  // Published at once, not on the scan schedule: the operator waits for it, and its wall-time
+  // stamp must not move the schedule of message time.
+  if (!replaying_) publish();
   if (write_journal) maybe_snapshot();
 }
 

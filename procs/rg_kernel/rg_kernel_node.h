@@ -1,6 +1,7 @@
-// Node adapter of the RG kernel: ALIGNED_SCAN and GATEWAY_EVENTS in (each written to the
-// write-ahead journal before it is applied, so a restart after SIGKILL rebuilds the same
-// map); RG_REGION, RG_MAP and RG_GRAPH out on change (at most every publish_period of message
+// Node adapter of the RG kernel: ALIGNED_SCAN, GATEWAY_EVENTS and the operator's REGION_NAME in
+// (each written to the write-ahead journal before it is applied, so a restart after SIGKILL
+// rebuilds the same map; a name for an unknown region, or an invalid one, is dropped and
+// counted, never journaled); RG_REGION, RG_MAP and RG_GRAPH out on change (at most every publish_period of message
 // time) and at 1 Hz; rgmap.json exported atomically with publications (at most every
 // export_period of wall time, and on a clean stop). Every snapshot_every_inputs journal
 // records (200: ~100 s at the scan mapper's rate) the kernel's complete state is snapshotted
@@ -20,6 +21,7 @@
 #include "rgnav/aligned_scan_t.hpp"
 #include "rgnav/gateway_event_t.hpp"
 #include "rgnav/rg_graph_t.hpp"
+#include "rgnav/region_name_t.hpp"
 #include "rgnav/rg_map_t.hpp"
 #include "runtime/node.h"
 
@@ -40,6 +42,7 @@ struct NodeConfig
   std::string rg_map = "RG_MAP";
   std::string rg_region = "RG_REGION";
   std::string rg_graph = "RG_GRAPH";
+  std::string region_name = "REGION_NAME";   // the operator's region names ("" = not subscribed)
 };
 
 // The kernel's options (rg_kernel_options.h, with the robot description's radius) and the
@@ -65,9 +68,10 @@ class RgKernelNode
   StateStore* store() { return store_.get(); }
 
  private:
-  enum Tag : uint32_t { kAlignedScan = 1, kGatewayEvent = 2 };
+  enum Tag : uint32_t { kAlignedScan = 1, kGatewayEvent = 2, kRegionName = 3 };
   void on_scan(const aligned_scan_t& m, bool journal);
   void on_event(const gateway_event_t& m, bool journal);
+  void on_region_name(const region_name_t& m, bool journal);
   void changed(int64_t utime);
   template <class T>
   void journal(Tag tag, const T& m);

@@ -5,6 +5,7 @@
 #include "bus/typed.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "rgnav/aligned_scan_t.hpp"
+#include "rgnav/global_path_t.hpp"
 #include "rgnav/odometry_t.hpp"
 #include "rgnav/rg_map_t.hpp"
 #include "rgnav/velocity_cmd_t.hpp"
@@ -78,6 +79,10 @@ BusObserver::BusObserver(const std::string& url, const std::string& host, const 
   bus::subscribe<aligned_scan_t>(
       bus_, channels.aligned_scan,
       [this](const aligned_scan_t& m, const bus::RawMessage&) { aligned_log_.push_back({Clock::now(), m.scan_id, m.revision}); },
+      &drops_);
+  bus::subscribe<global_path_t>(
+      bus_, channels.global_path,
+      [this](const global_path_t& m, const bus::RawMessage&) { path_log_.push_back({Clock::now(), m.goal_id, m.status}); },
       &drops_);
 }
 

@@ -1,7 +1,8 @@
 // What the fault harness sees on the bus: every HEARTBEAT (per process: newest pid, gaps
 // between heartbeats, dropped-input counts), every SUPERVISOR_STATUS (a timeline of process
 // states), the state counters probes publish, raw copies of each process's inputs (to
-// flood them with), and the drive chain (BASE_CMD, ODOMETRY).
+// flood them with), the drive chain (BASE_CMD, ODOMETRY), and the stateful processes' published
+// state (RG_MAP, ALIGNED_SCAN, the planner's GLOBAL_PATH).
 #pragma once
 
 #include <chrono>
@@ -45,6 +46,7 @@ class BusObserver
     std::string drive_odometry = "ODOMETRY";
     std::string rg_map = "RG_MAP";
     std::string aligned_scan = "ALIGNED_SCAN";
+    std::string global_path = "GLOBAL_PATH";   // the planner's goal and status
   };
   BusObserver(const std::string& url, const std::string& host, const std::vector<std::string>& input_channels,
               const std::map<std::string, std::string>& state_channels, const Channels& channels);
@@ -106,8 +108,16 @@ class BusObserver
     int64_t scan_id = 0;
     int32_t revision = 0;
   };
+  // The planner's published goal state: GLOBAL_PATH (goal id, status).
+  struct PathSample
+  {
+    Clock::time_point when;
+    int64_t goal_id = 0;
+    int8_t status = 0;
+  };
   const std::vector<MapSample>& rg_maps() const { return map_log_; }
   const std::vector<AlignedSample>& aligned_scans() const { return aligned_log_; }
+  const std::vector<PathSample>& paths() const { return path_log_; }
 
  private:
   bus::LcmBus bus_;
@@ -133,6 +143,7 @@ class BusObserver
   std::vector<VelocitySample> drive_log_;
   std::vector<MapSample> map_log_;
   std::vector<AlignedSample> aligned_log_;
+  std::vector<PathSample> path_log_;
 };
 
 }  // namespace rgnav::fault

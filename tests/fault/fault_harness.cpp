@@ -23,6 +23,7 @@
 #include "launch_plan.h"
 #include "proc_info.h"
 #include "recording.h"
+#include "rgnav/global_path_t.hpp"
 #include "rgnav/supervisor_order_t.hpp"
 #include "time/message_time.h"
 
@@ -186,7 +187,8 @@ class Harness
  private:
   // What a process is, from its real config: the RG map keeper (persistence.state_dir +
   // channels.rg_map), the scan mapper (persistence.state_file + channels.aligned_scan), the
-  // base driver (drives.*), so the checks follow the configs rather than names.
+  // base driver (drives.*), the planner (channels.nav_goal + channels.global_path, and a
+  // --state-file), so the checks follow the configs rather than names.
   void learn_role(const sup::PlannedCommand& c, BusObserver::Channels& channels)
   {
     const std::string path = arg_after(c.argv, "--config");
@@ -220,6 +222,12 @@ class Harness
     }
     const auto chs = y["channels"];
     if (chs && chs.IsMap() && chs["base_cmd"]) channels.base_cmd = "BASE_CMD";  // the hold's channel
+    // The planner: goals in, their state out, kept across restarts with --state-file.
+    if (!str("channels", "nav_goal").empty() && !str("channels", "global_path").empty() &&
+        !arg_after(c.argv, "--state-file").empty()) {
+      planner_proc_ = c.spec.name;
+      channels.global_path = str("channels", "global_path");
+    }
   }
 
   // A oneshot job that finished (exit 0) is done, not down.
@@ -565,6 +573,29 @@ class Harness
                   std::to_string(restored->version) + " (" + std::to_string(restored->region_ids.size()) + " regions)";
       if (differs) row.note += " with other regions/gateways";
       if (stale > 0) row.note += "; " + std::to_string(stale) + " older RG_MAP versions republished during the journal replay";
+    } else if (name == planner_proc_) {
+      // The goal it pursued before the fault (OK or waiting for a path) is pursued after it: the
+      // new instance's first GLOBAL_PATH names the same goal, neither cancelled nor forgotten.
+      const BusObserver::PathSample* before = nullptr;
+      for (const auto& p : obs_->paths())
+        if (p.when < t0) before = &p;
+      if (!before || (before->status != global_path_t::STATUS_OK && before->status != global_path_t::STATUS_NO_PATH)) {
+        row.note += "; no goal pursued before the fault";
+        return;
+      }
+      const int64_t goal = before->goal_id;
+      std::optional<BusObserver::PathSample> after;
+      obs_->wait_until([&] {
+        for (const auto& p : obs_->paths())
+          if (p.when >= t_new) return (after = p).has_value();
+        return false;
+      }, std::chrono::seconds(5));
+      const bool kept = after && after->goal_id == goal &&
+                        (after->status == global_path_t::STATUS_OK || after->status == global_path_t::STATUS_NO_PATH);
+      row.state_lost = !kept;
+      row.note += "; goal " + std::to_string(goal) + " before, " +
+                  (after ? "goal " + std::to_string(after->goal_id) + " status " + std::to_string(after->status) + " after"
+                         : std::string("no GLOBAL_PATH within 5 s of the restart"));
     } else if (name == mapper_proc_) {
       std::set<int64_t> published;
       for (const auto& a : obs_->aligned_scans())
@@ -855,7 +886,7 @@ class Harness
   int64_t order_id_ = 1000;
   bool gaps_ok_ = true;
   bool drive_ok_ = true;
-  std::string rg_map_proc_, mapper_proc_, base_proc_;
+  std::string rg_map_proc_, mapper_proc_, base_proc_, planner_proc_;
   double decel_v_ = 1.0, decel_w_ = 1.0;
   int64_t mapper_base_ = 0;                  // scans the mapper's current instance resumed with
   int64_t rg_base_ = 0;                      // journal inputs rg_kernel's current instance replayed

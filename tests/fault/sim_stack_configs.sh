@@ -20,6 +20,10 @@ mkdir -p "$out"
 # its laser and odometry behind relays of its own.
 "$ov" "$c/localizer.yaml" "$out/localizer.yaml" channels.laser=LASER_FRONT_LOCALIZER \
   channels.odometry=ODOMETRY_LOCALIZER channels.rg_map=LOCALIZER_RG_MAP_UNUSED
+# The planner on the same saved map, its pose the scan mapper's behind a relay of its own; its
+# targets go where nobody listens (the tour runner drives), and it hears no RG_MAP or POSE.
+"$ov" "$c/planner.yaml" "$out/planner.yaml" channels.slam_pose=SLAM_POSE_PLANNER \
+  channels.rg_map=PLANNER_RG_MAP_UNUSED channels.pose=PLANNER_POSE_UNUSED channels.targets=PLANNER_TARGETS_UNUSED
 if [ -x "$RGNAV_BUILD/bin/two_room_map" ]; then
   "$RGNAV_BUILD/bin/two_room_map" "$s/localizer_map" || { echo "sim_stack_configs: two_room_map failed" >&2; exit 2; }
 fi
@@ -32,7 +36,7 @@ check() {
   "$RGNAV_BUILD/bin/$1" --config "$out/$2.yaml" --check-config >/dev/null || { echo "sim_stack_configs: $2.yaml rejected" >&2; exit 2; }
 }
 # (tour_runner is checked at launch: its tour file is planned by the stack's tour_plan job.)
-for p in rgnav_sim:sim scan_mapper:scan_mapper rg_kernel:rg_kernel base_driver:base_driver localizer:localizer; do
+for p in rgnav_sim:sim scan_mapper:scan_mapper rg_kernel:rg_kernel base_driver:base_driver localizer:localizer planner:planner; do
   bin=${p%%:*}; cfg=${p#*:}
   [ -x "$RGNAV_BUILD/bin/$bin" ] && check "$bin" "$cfg"
 done

@@ -77,6 +77,29 @@ TEST(FreespaceBitmap, CarveRayStopsBeforeTheHit)
   EXPECT_FALSE(b.free(10, 6));
 }
 
+TEST(RgMap, RegionNamesPickOneLiveRegionAndOutliveAMerge)
+{
+  auto m = two_rooms_and_hallway();   // region 1 is "office"
+  std::string why;
+  EXPECT_EQ(region_to_name(m, 2, "lab", &why), 2);
+  EXPECT_TRUE(why.empty());
+  EXPECT_EQ(region_to_name(m, 1, "office", &why), 1);   // its own name again
+  EXPECT_EQ(region_to_name(m, 2, "Office", &why), 0);   // another region's, whatever the case
+  EXPECT_NE(why.find("region 1"), std::string::npos) << why;
+  EXPECT_EQ(region_to_name(m, 9, "lab", &why), 0);
+  EXPECT_EQ(region_to_name(m, 2, "12", &why), 0);       // would read as an id
+  EXPECT_EQ(region_to_name(m, 2, "lab ", &why), 0);
+  EXPECT_EQ(region_to_name(m, 2, std::string(65, 'a'), &why), 0);
+  EXPECT_EQ(region_to_name(m, 2, std::string("a\\b"), &why), 2);   // a backslash is printable
+  EXPECT_EQ(region_to_name(m, 2, std::string("a") + char(9) + "b", &why), 0);
+  // The hallway named, then found to be room 2 seen again: room 2 keeps the name, and the
+  // hallway's id names room 2 from now on.
+  m.region(3)->name = "hall";
+  m.merge(3, 2, geometry::Pose2(1, 0, 0), 500);
+  EXPECT_EQ(m.region(2)->name, "hall");
+  EXPECT_EQ(region_to_name(m, 3, "lab", &why), 2);
+}
+
 TEST(RgMap, IdsNeverReusedAndConsistent)
 {
   auto m = two_rooms_and_hallway();

@@ -597,6 +597,7 @@ global_path_t sample<global_path_t>(uint32_t variant)
   for (int i = 0; i < m.nwaypoints; ++i) m.waypoints.push_back(sample<region_waypoint_t>(variant * 9 + i));
   m.status = g.pick<int8_t>({global_path_t::STATUS_OK, global_path_t::STATUS_NO_PATH,
                              global_path_t::STATUS_GOAL_REACHED, global_path_t::STATUS_CANCELLED});
+  m.reason = variant % 2 ? "" : g.word("through gateway");
   return m;
 }
 
@@ -626,6 +627,7 @@ nav_goal_t sample<nav_goal_t>(uint32_t variant)
   const bool by_name = variant % 2 == 1;
   m.region_id = by_name ? 0 : g.count(1, 50);
   m.region_name = by_name ? g.word("room") : "";
+  m.has_pose = variant % 3 != 1;
   m.region_from_goal = pose(g);
   m.position_tolerance = g.uniform(0.05, 0.5);
   m.heading_tolerance = variant % 3 == 0 ? M_PI : g.uniform(0.05, 0.5);
@@ -660,6 +662,33 @@ gateway_passed_t sample<gateway_passed_t>(uint32_t variant)
   m.to_region = g.count(1, 50);
   m.region_from_base = pose(g);
   m.distance_past = g.uniform(0.5, 2.0);
+  return m;
+}
+
+template <>
+region_name_t sample<region_name_t>(uint32_t variant)
+{
+  Gen g(variant, kSalt + 46);
+  region_name_t m;
+  m.utime = utime(g);
+  m.region_id = g.count(1, 50);
+  m.name = variant % 2 ? g.word("Room") : g.word("hallway east");
+  return m;
+}
+
+template <>
+ca_status_t sample<ca_status_t>(uint32_t variant)
+{
+  Gen g(variant, kSalt + 47);
+  ca_status_t m;
+  m.utime = utime(g);
+  m.goal_id = variant;
+  m.mode = g.pick<int8_t>({ca_status_t::MODE_IDLE, ca_status_t::MODE_PLANNED, ca_status_t::MODE_REACTIVE,
+                           ca_status_t::MODE_BLOCKED, ca_status_t::MODE_STALE_STOP, ca_status_t::MODE_ARRIVED});
+  const bool stuck = m.mode == ca_status_t::MODE_REACTIVE || m.mode == ca_status_t::MODE_BLOCKED;
+  m.blocked_s = stuck ? g.uniform(0, 30) : 0.0;
+  m.next_target = g.count(0, 6);
+  m.status = g.word("planned");
   return m;
 }
 

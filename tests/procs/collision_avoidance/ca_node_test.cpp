@@ -5,6 +5,7 @@
 #include "bus/fake_bus.h"
 #include "collision_avoidance/chain_planner.h"
 #include "msg/conversions.h"
+#include "rgnav/ca_status_t.hpp"
 #include "rgnav/heartbeat_t.hpp"
 #include "rgnav/laser_scan_t.hpp"
 #include "rgnav/odometry_t.hpp"
@@ -144,6 +145,62 @@ TEST(CaNode, StaleScansStop)
   const auto ts = f.trajectories();
   EXPECT_TRUE(ts.back().chain.empty());  // the stop
   EXPECT_EQ(f.ca->ca().mode(), Mode::kStaleStop);
+}
+
+std::vector<ca_status_t> statuses(const bus::FakeBus& fake)
+{
+  std::vector<ca_status_t> out;
+  for (const auto& p : fake.published_on("CA_STATUS")) {
+    ca_status_t m;
+    std::string why;
+    EXPECT_TRUE(bus::decode(p.data.data(), p.data.size(), &m, &why)) << why;
+    out.push_back(m);
+  }
+  return out;
+}
+
+TEST(CaNode, StatusSaysHowLongItCouldNotPass)
+{
+  Fixture f;
+  auto walls = kCorridor;
+  walls.push_back({{0.9, -1.5}, {0.9, 1.5}});  // closed 0.9 m ahead
+  ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0, 1)));
+  ASSERT_TRUE(bus::publish(*f.fake, "LASER_FRONT", scan_msg(kT0, 1, walls)));
+  f.targets({geometry::Pose2(1.5, 0.0, 0.0), geometry::Pose2(2.5, 0.0, 0.0)});
+  // Three seconds of fresh scans and odometry while the corridor stays closed.
+  for (int i = 1; i <= 150; ++i) {
+    ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0 + i * 20'000, 1 + i)));
+    if (i % 5 == 0) {
+      ASSERT_TRUE(bus::publish(*f.fake, "LASER_FRONT", scan_msg(kT0 + i * 20'000, 1 + i / 5, walls)));
+    }
+  }
+  const auto s = statuses(*f.fake);
+  ASSERT_FALSE(s.empty());
+  // At 2 Hz of message time, plus one per change of mode: a few, not one per odometry sample.
+  EXPECT_GE(s.size(), 6u);
+  EXPECT_LE(s.size(), 20u);
+  const auto& last = s.back();
+  EXPECT_EQ(last.goal_id, 1);
+  EXPECT_TRUE(last.mode == ca_status_t::MODE_REACTIVE || last.mode == ca_status_t::MODE_BLOCKED) << int(last.mode);
+  EXPECT_GT(last.blocked_s, 2.0);
+  EXPECT_LE(last.blocked_s, 3.01);
+  EXPECT_FALSE(last.status.empty());
+  for (size_t i = 1; i < s.size(); ++i) EXPECT_GE(s[i].utime, s[i - 1].utime);
+}
+
+TEST(CaNode, StatusOfAFreeWayIsPlannedAndNotBlocked)
+{
+  Fixture f;
+  ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0, 1)));
+  ASSERT_TRUE(bus::publish(*f.fake, "LASER_FRONT", scan_msg(kT0, 1, kCorridor)));
+  f.targets({geometry::Pose2(2.0, 0.0, 0.0), geometry::Pose2(4.0, 0.0, 0.0)});
+  ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0 + 20'000, 2)));
+  const auto s = statuses(*f.fake);
+  ASSERT_FALSE(s.empty());
+  EXPECT_EQ(s.back().mode, ca_status_t::MODE_PLANNED);
+  EXPECT_EQ(s.back().blocked_s, 0.0);
+  EXPECT_EQ(s.back().goal_id, 1);
+  EXPECT_EQ(s.back().next_target, 0);
 }
 
 }  // namespace

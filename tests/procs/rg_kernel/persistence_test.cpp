@@ -12,7 +12,9 @@
 #include "persist/journal.h"
 #include "procs/rg_kernel/rg_kernel_conversions.h"
 #include "procs/rg_kernel/rg_kernel_node.h"
+#include "rgmap/rgmap_conversions.h"
 #include "rgmap/rgmap_json.h"
+#include "rgnav/region_name_t.hpp"
 
 namespace rgnav::rg_kernel {
 namespace {
@@ -141,6 +143,56 @@ TEST_P(RestartContinues, AsIfUninterrupted)
 }
 
 INSTANTIATE_TEST_SUITE_P(RgKernelPersistence, RestartContinues, ::testing::Values(0, 3));
+
+// The operator's REGION_NAME: published at once in a new map version, journaled like any input
+// (so a restart keeps it), and refused without a trace when it names nothing or is not a name.
+TEST(RgKernelPersistence, RegionNamesArePublishedJournaledAndRefusedWhenBad)
+{
+  const auto in = inputs();
+  const std::string dir = fresh_dir("names");
+  const auto name = [](KernelProcess& p, int64_t region, const std::string& n) {
+    region_name_t m;
+    m.utime = 1'700'000'000'000'000;   // an operator's wall time, far from the scans' time
+    m.region_id = region;
+    m.name = n;
+    std::vector<uint8_t> buf(static_cast<size_t>(m.getEncodedSize()));
+    m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+    p.bus->publish("REGION_NAME", buf.data(), buf.size());
+  };
+  const auto last_map = [](KernelProcess& p) {
+    const auto maps = rgnav::testing::decoded<rg_map_t>(*p.bus, "RG_MAP");
+    return maps.empty() ? rgmap::RgMap() : rgmap::from_msg(maps.back());
+  };
+  int64_t version = 0;
+  {
+    KernelProcess p(dir);
+    for (const auto& [ch, b] : in) p.bus->publish(ch, b.data(), b.size());
+    ASSERT_GE(p.kernel->kernel().map().regions().size(), 2u);
+    version = p.kernel->kernel().map().version;
+    const size_t published = p.bus->published_on("RG_MAP").size();
+    name(p, 2, "lab");
+    ASSERT_EQ(p.bus->published_on("RG_MAP").size(), published + 1);
+    const rgmap::RgMap m = last_map(p);
+    EXPECT_EQ(m.version, version + 1);
+    EXPECT_EQ(m.region(2)->name, "lab");
+    // The same name again changes nothing; bad ones are dropped and counted.
+    name(p, 2, "lab");
+    name(p, 99, "hall");          // no such region
+    name(p, 1, "LAB");            // region 2's name already
+    name(p, 1, std::string("room") + char(1));   // a control character (semantic check)
+    name(p, 1, "hall east");     // fine
+    name(p, 1, "");               // empty (semantic check)
+    EXPECT_EQ(p.node->drops().on_channel("REGION_NAME"), 4);
+    EXPECT_EQ(p.kernel->kernel().map().region(1)->name, "hall east");
+    version = p.kernel->kernel().map().version;
+  }
+  // A restart replays the names with the scans.
+  KernelProcess again(dir);
+  EXPECT_EQ(again.kernel->kernel().map().version, version);
+  EXPECT_EQ(again.kernel->kernel().map().region(2)->name, "lab");
+  EXPECT_EQ(again.kernel->kernel().map().region(1)->name, "hall east");
+  EXPECT_EQ(last_map(again).region(2)->name, "lab");
+}
 
 std::vector<std::string> files_in(const std::string& dir)
 {

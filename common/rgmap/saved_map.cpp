@@ -1,0 +1,40 @@
+#include "rgmap/saved_map.h"
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+
+#include "persist/atomic_file.h"
+#include "rgmap/rgmap_json.h"
+
+namespace rgnav::rgmap {
+
+std::string saved_map_file(const std::string& path)
+{
+  return std::filesystem::is_directory(path) ? path + "/rgmap.json" : path;
+}
+
+RgMap load_saved_map(const std::string& path)
+{
+  const std::string file = saved_map_file(path);
+  std::optional<std::string> text;
+  try {
+    text = persist::read_checked(file);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(e.what());   // CorruptFile names the file and the defect
+  }
+  if (!text) throw std::runtime_error(file + ": no such file");
+  try {
+    return from_json(nlohmann::json::parse(*text));
+  } catch (const std::exception& e) {
+    throw std::runtime_error(file + ": not an RG map: " + e.what());
+  }
+}
+
+void save_map(const RgMap& map, const std::string& path)
+{
+  // The same form the RG kernel exports, so render, map and the processes read it alike.
+  persist::write_atomically(saved_map_file(path), to_json(map).dump(1));
+}
+
+}  // namespace rgnav::rgmap

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# ./rgnav bench plan: the planner (procs/planner) on RG maps built by rgnav's own pipeline (scan
+# mapper + gateway detector + RG kernel, one lap of each world's tour, as ./rgnav bench localize
+# maps them). Writes logs/bench/plan.json; maps, per-world JSON and routes.png under
+# logs/bench/plan/<world>/. Figures are reported, never asserted; `targets` lists the issue's.
+#
+# Planning alone, per world PLAN_PAIRS random start/goal pairs (default 250) of standable points
+# (RegionPlanner::standable) in random live regions, planned by GlobalPlanner::plan, against one
+# whole-building grid composed from the same RG map in the map frame (every live region through
+# its map_from_region: freespace free, line segments occupied, the rest unknown; 0.05 m) and its
+# configuration space (cells at least the robot radius from anything not free):
+#   pairs, reference_paths (the reference found a path: "a path exists"), success_ratio = rgnav
+#     routes / pairs where a path exists; failures_where_a_path_exists, no_path_both,
+#     routes_where_reference_has_none; route_defects (legs that do not join, miss start or goal,
+#     lengths that disagree) and routes_in_collision (passing a cell more than a cell inside the
+#     robot radius on the whole grid); `failures` lists the first few with their points.
+#   global_ms_*: PlanStats::global_ms of a "cold" plan (the planner's cached region paths dropped
+#     before each request by a new map version, so every region path the route needs is planned);
+#     plan_ms_* = global + region ms of the cold plan, plan_wall_ms_* its wall time,
+#     plan_warm_wall_ms_* one planner meeting the pairs in turn (cache kept).
+#   region_ms_p50/p99: RegionPlanner::plan timed alone on --region-pairs pairs of points inside one
+#     region; region_path_length_ratio_*: those paths against the whole grid's shortest.
+#   length_ratio_*: route length (legs + gaps where they meet) / the reference length. The
+#     reference is the exact shortest on the same occupancy: 16-connected A* then string pulling
+#     with line of sight on the configuration space, turns cut to the obstacles.
+#   clearance_min_m: smallest RouteLeg::min_clearance over all routes; clearance_sampled_*: the
+#     whole grid's clearance sampled along the routes (min, mean of the per-route means);
+#     clearance_where_it_fits_ratio: of the pairs joined by cells of clearance >= radius + margin
+#     (ends within 1 m), the share of routes keeping that clearance (less one cell) away from 1 m of
+#     their ends.
+#   grid_astar_ms_*: the baseline NavFn-style planners use, 8-connected A* on the same whole grid
+#     with the planner's wall cost (costmap built once, not timed); grid_astar_length_ratio_*
+#     its length over the reference; speedup_vs_grid = grid_astar_ms_p50 / plan_ms_p50
+#     (speedup_vs_grid_wall with the wall time).
+#   target_spacing_*: the targets cut_targets() gives over every route (config spacing);
+#     target_segments_near_walls: straight lines between targets nearer than radius - 0.1 m to a
+#     wall; targets_not_reaching_goal.
+# Closed loop (worlds in PLAN_CLOSED_LOOP, default office lab_ipa office_e): the simulator, collision
+# avoidance and the lld in lock-step at 20 Hz with walking people (a world without people gets
+# three walkers that wait for the robot and step round it), the Planner fed the true pose in its
+# region (a perfect localizer) and collision avoidance's blocked/reactive mode; PLAN_GOALS goals
+# (default 100) one after another from where the last ended:
+#   closed_loop_goals, closed_loop_success_ratio (REACHED and truly within 0.5 m), no_path,
+#   timeouts (3 x reference length at max speed + 60 s), closed_loop_collisions (simulator
+#   contacts), spl = mean over goals of success x shortest / max(shortest, driven), shortest =
+#   the reference between the true start and goal; replans, time_ratio_p50 (time / shortest at
+#   max speed), planner_cpu_share.
+#   door cases (PLAN_DOOR_CASES per world, default 2): a door or narrow-passage gateway of the map
+#   closed by a door leaf in the simulated world (reopening after 60 s), the robot sent from
+#   1.5-6 m before it into the smaller region behind it: as_expected when, without another way
+#   round (on the whole grid with the leaf drawn in), NO_PATH comes before the door reopens and the
+#   robot gets through afterwards, with one, it arrives; no collision either way.
+# Env: PLAN_ONLY (space-separated world names) runs only those; PLAN_PAIRS, PLAN_GOALS,
+#   PLAN_DOOR_CASES, PLAN_CLOSED_LOOP; PLAN_ARGS adds bench flags (e.g. "--region-pairs 100
+#   --seed 3"); PLAN_TRACE=1 prints a line per second and per goal of the closed loop to stderr.
+#   Quick run: PLAN_ONLY=office PLAN_PAIRS=50 PLAN_GOALS=5 ./rgnav bench plan
+# The benchmark itself: tests/eval/plan (rgnav_plan_bench).
+set -euo pipefail
+ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
+BUILD="${RGNAV_BUILD:-$ROOT/build}"
+SHARED="${RGNAV_DATA:-$ROOT/../shared/data}"
+IPA="$SHARED/maps/ipa"
+JSON="$ROOT/logs/bench/plan.json"
+WORK="$ROOT/logs/bench/plan"
+ONLY="${PLAN_ONLY:-}"
+wanted() { [ -z "$ONLY" ] || [[ " $ONLY " == *" $1 "* ]]; }
+bin="$BUILD/bin/rgnav_plan_bench"
+[ -x "$bin" ] || { echo "bench plan: $bin is not built" >&2; exit 1; }
+# The localization benchmark's worlds: the office world and four IPA building maps of different
+# kinds (a lab, an institute floor, a furnished lab, an office floor).
+specs=("office=$ROOT/config/worlds/office.yaml" "lab_ipa=$IPA/lab_ipa.png" "Freiburg52=$IPA/Freiburg52_scan.png"
+       "lab_c_furnished=$IPA/lab_c_scan_furnitures.png" "office_e=$IPA/office_e.png")
+args=()
+for spec in "${specs[@]}"; do
+  wanted "${spec%%=*}" && args+=(--sim "$spec")
+done
+for name in ${PLAN_CLOSED_LOOP:-office lab_ipa office_e}; do
+  wanted "$name" && args+=(--closed-loop "$name")
+done
+mkdir -p "$WORK"
+# shellcheck disable=SC2086
+exec "$bin" --json "$JSON" --out "$WORK" "${args[@]}" --pairs "${PLAN_PAIRS:-250}" --goals "${PLAN_GOALS:-100}" \
+  --door-cases "${PLAN_DOOR_CASES:-2}" ${PLAN_ARGS:-}

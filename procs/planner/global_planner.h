@@ -1,0 +1,115 @@
+// Global planning on the RG graph (diss. 2.1.3, 5.4): A* over the crossing points of the map's
+// gateways, with the robot's start and the goal as extra nodes joined to the crossing points of
+// their regions. A region edge costs its straight length over the nominal speed until its
+// region path is planned (a lower bound), then that path's length, then the measured time once
+// driven; the search is repeated with the planned lengths of the edges it chose until its route
+// uses only planned or measured edges (lazy evaluation: few region paths are planned, and the
+// route is the cheapest by real path lengths). Gateway edges cost what EdgeCosts says; closed
+// ones are left out. The region planners are built on first use and kept per region version.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "planner/edge_costs.h"
+#include "planner/planner_options.h"
+#include "planner/region_planner.h"
+#include "planner/route.h"
+#include "rgmap/rg_map.h"
+
+namespace rgnav::planner {
+
+struct PlanRequest
+{
+  int64_t start_region = 0;
+  Eigen::Vector2d start{0, 0};     // start region frame
+  int64_t goal_region = 0;
+  Eigen::Vector2d goal{0, 0};      // goal region frame
+  double goal_heading = 0;         // [rad] goal region frame
+  bool has_goal_heading = false;
+  double now_s = 0;                // message time, for closed gateways
+};
+
+struct PlanStats
+{
+  double global_ms = 0;            // graph searches
+  double region_ms = 0;            // region paths planned for this request
+  int searches = 0;                // A* runs until the route was exact
+  int region_paths = 0;            // region paths planned (cache misses)
+};
+
+class GlobalPlanner
+{
+ public:
+  explicit GlobalPlanner(const PlannerOptions& options);
+
+  // A new map (version): regions whose description changed get new region planners.
+  void set_map(const rgmap::RgMap& map);
+  const rgmap::RgMap& map() const { return map_; }
+  EdgeCosts& costs() { return costs_; }
+  const EdgeCosts& costs() const { return costs_; }
+
+  // The cheapest route; nullopt with *why set when there is none ("start region 7 unknown",
+  // "goal not reachable: gateway 4 closed", ...).
+  std::optional<Route> plan(const PlanRequest& request, std::string* why, PlanStats* stats = nullptr);
+
+  // The region planner of a live region (built on first use); nullptr for an unknown region.
+  const RegionPlanner* region_planner(int64_t region);
+  // A place to send the robot in a region given by name only: the free cell of its grid with
+  // the largest clearance nearest to its freespace centroid. nullopt for a region with no free cell.
+  std::optional<Eigen::Vector2d> region_goal_point(int64_t region);
+  // The live region named `name` (case-insensitive), 0 if none.
+  int64_t region_named(const std::string& name) const;
+
+ private:
+  // A traversal the search may take: through a region between two points (graph nodes, or the
+  // request's start / goal), or across a gateway.
+  struct Arc
+  {
+    int from = 0, to = 0;          // search node indices (graph nodes, then start, then goal)
+    bool gateway = false;
+    int64_t region = 0;            // region arcs
+    int64_t gateway_id = 0;        // gateway arcs
+  };
+  struct SearchNode
+  {
+    int64_t region = 0;
+    int64_t gateway = 0;           // 0: the start or goal
+    Eigen::Vector2d point{0, 0};   // region frame
+    Eigen::Vector2d map_point{0, 0};
+  };
+  using PathKey = std::tuple<int64_t, int, int>;   // region, from node, to node (from < to)
+
+  // The region path of a region arc, planned once (nullopt: no way); `reversed` when it is
+  // stored the other way than driven from node `from`.
+  const std::optional<RegionPath>& region_path(const Arc& arc, int from, const std::vector<SearchNode>& nodes,
+                                               std::map<PathKey, std::optional<RegionPath>>& cache, bool* reversed,
+                                               PlanStats* stats);
+  bool is_live(int64_t region) const;
+  // Moves each gateway crossing of the route onto the straight line past it where that is free
+  // and no dearer (wide openings are not crossed at one fixed point).
+  void smooth_crossings(Route* route);
+  // The live regions beside `region` through a gateway, placed in its frame.
+  std::vector<NeighbourRegion> neighbours(int64_t region) const;
+  // The newest change of the region or a neighbour (a region planner is rebuilt when it moves).
+  int64_t newest_utime(int64_t region) const;
+
+  PlannerOptions options_;
+  rgmap::RgMap map_;
+  EdgeCosts costs_;
+  std::vector<SearchNode> nodes_;                                    // graph nodes of this map version
+  std::vector<Arc> arcs_;                                            // between graph nodes
+  std::map<int64_t, std::vector<int>> nodes_of_region_;
+  std::map<int64_t, std::unique_ptr<RegionPlanner>> planners_;      // per live region
+  std::map<int64_t, int64_t> planner_utime_;                         // region utime they were built from
+  std::map<PathKey, std::optional<RegionPath>> paths_;               // between graph nodes, this map version
+};
+
+}  // namespace rgnav::planner

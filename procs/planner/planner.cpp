@@ -1,0 +1,343 @@
+#include "planner/planner.h"
+
+#include "planner/route_time.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rgnav::planner {
+
+using geometry::Pose2;
+
+namespace {
+
+constexpr double kUs = 1e-6;
+// A goal with no route is planned again this often (a closed gateway's retry time may come,
+// people may leave) besides on every map change.
+constexpr double kNoPathRetryS = 10.0;
+
+}  // namespace
+
+const char* to_string(GoalStatus s)
+{
+  switch (s) {
+    case GoalStatus::kNone: return "none";
+    case GoalStatus::kActive: return "active";
+    case GoalStatus::kNoPath: return "no_path";
+    case GoalStatus::kReached: return "reached";
+    case GoalStatus::kCancelled: return "cancelled";
+  }
+  return "?";
+}
+
+Planner::Planner(const PlannerOptions& options) : options_(options), global_(options) {}
+
+void Planner::set_map(const rgmap::RgMap& map)
+{
+  const bool changed = !has_map_ || map.version != map_version_;
+  global_.set_map(map);
+  has_map_ = true;
+  map_version_ = map.version;
+  if (!goal_ || !changed) return;
+  if (status_ == GoalStatus::kActive || status_ == GoalStatus::kNoPath) {
+    // A goal given by name or in a region the map did not have yet may be plannable now.
+    if (goal_region_ == 0) {
+      resolve_goal();
+      return;
+    }
+    replan_due_ = true;
+    replan_reason_ = "the map changed";
+  }
+}
+
+void Planner::name_region(int64_t region, const std::string& name)
+{
+  rgmap::RgMap map = global_.map();
+  if (auto* r = map.region(map.resolve(region))) {
+    r->name = name;
+    global_.set_map(map);
+  }
+}
+
+void Planner::set_goal(const NavGoal& goal, int64_t utime)
+{
+  // The same goal again (a sender repeating itself) changes nothing, unless it had no path.
+  if (goal_ && goal_->goal_id == goal.goal_id && status_ != GoalStatus::kNoPath) return;
+  goal_ = goal;
+  route_ = {};
+  leg_ = 0;
+  along_ = 0;
+  replans_ = 0;
+  last_replan_utime_ = utime;
+  resolve_goal();
+}
+
+void Planner::resolve_goal()
+{
+  status_ = GoalStatus::kActive;
+  reason_.clear();
+  goal_region_ = 0;
+  path_changed_ = true;
+  if (!has_map_) {
+    status_ = GoalStatus::kNoPath;
+    reason_ = "no map yet";
+    return;
+  }
+  const auto& map = global_.map();
+  const NavGoal& goal = *goal_;
+  const int64_t region = goal.region_id ? map.resolve(goal.region_id) : global_.region_named(goal.region_name);
+  if (region == 0 || !map.region(region) || map.region(region)->state == rgmap::Region::State::kMerged) {
+    status_ = GoalStatus::kNoPath;
+    reason_ = goal.region_id ? "region " + std::to_string(goal.region_id) + " is not in the map"
+                             : "no region is named '" + goal.region_name + "'";
+    return;
+  }
+  if (goal.has_pose) {
+    goal_point_ = goal.region_from_goal.translation();
+  } else {
+    const auto p = global_.region_goal_point(region);
+    if (!p) {
+      status_ = GoalStatus::kNoPath;
+      reason_ = "region " + std::to_string(region) + " has no free place to go to";
+      return;
+    }
+    goal_point_ = *p;
+  }
+  goal_region_ = region;
+  replan_due_ = true;
+  replan_reason_ = "new goal";
+}
+
+void Planner::cancel(int64_t goal_id, int64_t utime)
+{
+  if (goal_ && goal_->goal_id == goal_id && (status_ == GoalStatus::kActive || status_ == GoalStatus::kNoPath))
+    finish(GoalStatus::kCancelled, "cancelled by the operator", utime);
+}
+
+void Planner::finish(GoalStatus status, const std::string& reason, int64_t utime)
+{
+  (void)utime;
+  status_ = status;
+  reason_ = reason;
+  route_ = {};
+  replan_due_ = false;
+  path_changed_ = true;
+  targets_due_ = true;   // an empty list: collision avoidance stops pursuing
+}
+
+void Planner::on_pose(const RobotPose& pose)
+{
+  pose_ = pose;
+}
+
+void Planner::on_blocked(int64_t utime, bool blocked)
+{
+  if (blocked && !blocked_) blocked_since_ = utime;
+  blocked_ = blocked;
+}
+
+bool Planner::track_progress()
+{
+  if (!pose_ || route_.empty()) return false;
+  // The leg of the pose's region: the current one, or one further on (a gateway was crossed).
+  size_t k = leg_;
+  while (k < route_.legs.size() && route_.legs[k].region_id != pose_->region_id) ++k;
+  if (k == route_.legs.size()) return false;
+  const int64_t now = pose_->utime;
+  if (k > leg_) {
+    // Gateways crossed: learn how long the crossing and the region before it took.
+    for (size_t j = leg_; j < k; ++j) {
+      const auto& leg = route_.legs[j];
+      const auto* gw = global_.map().gateway(leg.exit_gateway);
+      const int64_t reached = j == leg_ && gateway_reached_utime_ ? gateway_reached_utime_ : now;
+      if (gw) global_.costs().gateway_passed(*gw, (now - reached) * kUs);
+      if (j == leg_ && leg.entry_gateway && leg_entered_utime_)
+        global_.costs().region_traversed(leg.region_id, leg.entry_gateway, leg.exit_gateway,
+                                         (reached - leg_entered_utime_) * kUs);
+    }
+    leg_ = k;
+    along_ = 0;
+    leg_entered_utime_ = now;
+    gateway_reached_utime_ = 0;
+  }
+  const RouteLeg& leg = route_.legs[leg_];
+  double distance = 0;
+  along_ = project_onto_leg(leg, pose_->region_from_base.translation(), along_, &distance);
+  if (leg.exit_gateway && !gateway_reached_utime_ &&
+      (leg.points.back() - pose_->region_from_base.translation()).norm() <= options_.execution.gateway_reach_m)
+    gateway_reached_utime_ = now;
+  return distance <= options_.execution.off_route_m;
+}
+
+bool Planner::route_valid() const
+{
+  if (route_.empty()) return false;
+  const auto& map = global_.map();
+  for (const auto& leg : route_.legs) {
+    const auto* r = map.region(leg.region_id);
+    if (!r || r->state == rgmap::Region::State::kMerged) return false;
+    if (leg.exit_gateway && !map.gateway(leg.exit_gateway)) return false;
+  }
+  return true;
+}
+
+bool Planner::goal_reached() const
+{
+  if (!pose_ || route_.empty()) return false;
+  // The goal in the frame of the leg the robot is on.
+  size_t k = leg_;
+  if (route_.legs[k].region_id != pose_->region_id) return false;
+  Pose2 here_from_goal_frame;
+  for (size_t j = k; j + 1 < route_.legs.size(); ++j) here_from_goal_frame = here_from_goal_frame * route_.legs[j].this_from_next;
+  const Eigen::Vector2d goal = here_from_goal_frame * goal_point_;
+  if ((pose_->region_from_base.translation() - goal).norm() > goal_->position_tolerance) return false;
+  if (goal_->heading_tolerance >= M_PI || !goal_->has_pose) return true;
+  const double heading = goal_->region_from_goal.theta() + here_from_goal_frame.theta();
+  return std::abs(geometry::normalize_angle(pose_->region_from_base.theta() - heading)) <= goal_->heading_tolerance;
+}
+
+bool Planner::replan(int64_t utime, const std::string& why)
+{
+  last_replan_utime_ = utime;
+  replan_due_ = false;
+  PlanRequest req;
+  req.start_region = pose_->region_id;
+  req.start = pose_->region_from_base.translation();
+  req.goal_region = goal_region_;
+  req.goal = goal_point_;
+  req.has_goal_heading = goal_->has_pose && goal_->heading_tolerance < M_PI;
+  req.goal_heading = goal_->region_from_goal.theta();
+  req.now_s = utime * kUs;
+  std::string fail;
+  auto route = global_.plan(req, &fail, &last_stats_);
+  if (!route) {
+    status_ = GoalStatus::kNoPath;
+    reason_ = fail;
+    route_ = {};
+    path_changed_ = true;
+    targets_due_ = true;
+    return true;
+  }
+  // Keep a still valid route unless the new one is clearly cheaper (no oscillation).
+  const bool keep_old = status_ == GoalStatus::kActive && route_valid() && why == "the map changed" && [&] {
+    double left = 0;
+    for (size_t j = leg_; j < route_.legs.size(); ++j) left += route_.legs[j].length;
+    left = std::max(0.0, left - along_);
+    const double old_left_s = route_.length > 0 ? route_.cost_s * left / route_.length : 0.0;
+    return route->cost_s >= (1.0 - options_.execution.switch_gain) * old_left_s;
+  }();
+  ++replans_;
+  if (keep_old) return false;
+  status_ = GoalStatus::kActive;
+  reason_ = why;
+  route_ = std::move(*route);
+  route_.targets = cut_targets(route_, options_.execution.target_spacing_min, options_.execution.target_spacing_max);
+  trajectory::Limits limits;
+  limits.v_max = options_.execution.max_speed;
+  limits.a_max = options_.execution.max_accel;
+  limits.omega_max = options_.execution.max_omega;
+  route_.expected_s = predicted_time(route_, limits);
+  leg_ = 0;
+  along_ = 0;
+  leg_entered_utime_ = utime;
+  gateway_reached_utime_ = 0;
+  blocked_since_ = utime;   // blocked time counts afresh on the new route
+  path_changed_ = true;
+  targets_due_ = true;
+  return true;
+}
+
+std::optional<TargetList> Planner::make_targets(int64_t utime) const
+{
+  TargetList t;
+  t.utime = utime;
+  t.goal_id = goal_ ? goal_->goal_id : 0;
+  t.max_speed = options_.execution.max_speed;
+  if (status_ != GoalStatus::kActive || route_.empty() || !pose_) return t;   // nothing to pursue
+  const auto& e = options_.execution;
+  // The route's fixed targets not yet passed (the robot within pass_distance before one passes
+  // it), reaching targets_ahead_m past the robot, at least two while there are two.
+  constexpr double kPassDistance = 0.3;
+  const double progress = route_.leg_start(leg_) + along_;
+  // Leg frame -> odometry frame through the pose (both at the pose's time).
+  const Pose2 odom_from_leg = pose_->odom_from_base * pose_->region_from_base.inverse();
+  for (size_t i = 0; i < route_.targets.size(); ++i) {
+    const RouteTarget& rt = route_.targets[i];
+    if (rt.arc <= progress + kPassDistance && i + 1 < route_.targets.size()) continue;
+    if (rt.arc > progress + e.targets_ahead_m && t.odom_from_target.size() >= 2) break;
+    const Pose2 leg_from_target = rt.leg >= leg_ ? route_.frame_of(leg_, rt.leg) * rt.pose
+                                                 : route_.frame_of(rt.leg, leg_).inverse() * rt.pose;
+    t.odom_from_target.push_back(odom_from_leg * leg_from_target);
+    t.final_is_goal = i + 1 == route_.targets.size();
+  }
+  return t;
+}
+
+Planner::Output Planner::update(int64_t utime)
+{
+  Output out;
+  const auto& e = options_.execution;
+  const bool pursuing = goal_ && (status_ == GoalStatus::kActive || status_ == GoalStatus::kNoPath) && goal_region_ != 0;
+  const bool pose_fresh = pose_ && (utime - pose_->utime) * kUs <= e.pose_timeout_s;
+  if (pursuing && pose_fresh) {
+    if (status_ == GoalStatus::kActive && !route_.empty()) {
+      if (!track_progress() && !replan_due_) {
+        replan_due_ = true;
+        replan_reason_ = "off the route";
+      }
+      if (goal_reached()) {
+        finish(GoalStatus::kReached, "reached", utime);
+      } else if (blocked_ && (utime - blocked_since_) * kUs >= e.blocked_after_s && !replan_due_) {
+        // Collision avoidance cannot pass: near the next gateway that gateway is closed.
+        const RouteLeg& leg = route_.legs[leg_];
+        const auto* gw = global_.map().gateway(leg.exit_gateway);
+        const double to_gateway = (leg.points.back() - pose_->region_from_base.translation()).norm();
+        if (gw && to_gateway <= e.gateway_reach_m) {
+          global_.costs().gateway_failed(*gw, utime * kUs);
+          replan_reason_ = "gateway " + std::to_string(gw->id) + " cannot be passed";
+        } else {
+          replan_reason_ = "blocked";
+        }
+        replan_due_ = true;
+        blocked_since_ = utime;
+      }
+    }
+    if (status_ == GoalStatus::kActive || status_ == GoalStatus::kNoPath) {
+      const double since = (utime - last_replan_utime_) * kUs;
+      const bool first = route_.empty() && status_ == GoalStatus::kActive;
+      if (status_ == GoalStatus::kNoPath && since >= kNoPathRetryS) {
+        replan_due_ = true;
+        replan_reason_ = "retry";
+      }
+      if (replan_due_ && (first || since >= e.min_replan_period_s)) replan(utime, first ? "new goal" : replan_reason_);
+    }
+  }
+  if (goal_ && (path_changed_ || targets_due_ || (status_ == GoalStatus::kActive && pose_fresh &&
+                                                  (utime - last_targets_utime_) * kUs >= e.resend_period_s))) {
+    if (status_ == GoalStatus::kActive && !pose_fresh && !targets_due_) {
+      // No pose: nothing sensible to send.
+    } else {
+      out.targets = make_targets(utime);
+      last_targets_utime_ = utime;
+      targets_due_ = false;
+    }
+  }
+  if (path_changed_ && goal_) {
+    PathReport r;
+    r.utime = utime;
+    r.goal_id = goal_->goal_id;
+    r.status = status_;
+    r.reason = reason_;
+    r.route = route_;
+    r.replans = replans_;
+    double left = 0;
+    for (size_t j = leg_; j < route_.legs.size(); ++j) left += route_.legs[j].length;
+    left = std::max(0.0, left - along_);
+    r.remaining_s = route_.length > 0 ? route_.expected_s * left / route_.length : 0.0;
+    out.path = r;
+    path_changed_ = false;
+  }
+  return out;
+}
+
+}  // namespace rgnav::planner

@@ -1,0 +1,145 @@
+// The planner process's algorithm (diss. 5.4, 5.5.3), without LCM: takes the RG map, navigation
+// goals, the robot's pose (region id + pose in the region frame + odometry pose at that time)
+// and whether collision avoidance can pass; plans a route over the RG graph (global_planner.h),
+// follows the robot's progress along it, and hands out
+//   - the global path (per region waypoints, expected time, status with a reason) whenever it
+//     changes, and
+//   - targets 0.5-2 m apart in the odometry frame for collision avoidance, on every new route
+//     and every resend period.
+// Execution monitoring: a gateway crossed is timed and learned (EdgeCosts), so is a region
+// crossed between two gateways. When collision avoidance reports it cannot pass for
+// blocked_after_s near the next gateway of the route, that gateway is marked closed (its cost
+// raised) and the route replanned around it; no other route: NO_PATH, and the goal stays so
+// that it is planned again when the closed mark expires or the map changes. Replans happen at
+// most once per min_replan_period_s; a new route replaces a still valid one only when it is
+// switch_gain cheaper than what is left of the old, so the robot does not oscillate between
+// two routes. Runs on message time (utime), never the wall clock.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/pose2.h"
+#include "planner/global_planner.h"
+#include "planner/planner_options.h"
+#include "planner/route.h"
+#include "rgmap/rg_map.h"
+
+namespace rgnav::planner {
+
+struct NavGoal
+{
+  int64_t goal_id = 0;
+  int64_t region_id = 0;             // 0: by name
+  std::string region_name;
+  bool has_pose = false;             // false: anywhere suitable in the region
+  geometry::Pose2 region_from_goal;
+  double position_tolerance = 0.3;   // [m]
+  double heading_tolerance = 3.2;    // [rad] >= pi: any heading
+};
+
+struct RobotPose
+{
+  int64_t utime = 0;
+  int64_t region_id = 0;
+  geometry::Pose2 region_from_base;
+  geometry::Pose2 odom_from_base;    // odometry pose at utime
+};
+
+enum class GoalStatus : int8_t { kNone = -1, kActive = 0, kNoPath = 1, kReached = 2, kCancelled = 3 };
+const char* to_string(GoalStatus s);
+
+struct PathReport
+{
+  int64_t utime = 0;
+  int64_t goal_id = 0;
+  GoalStatus status = GoalStatus::kNone;
+  std::string reason;                // why NO_PATH / CANCELLED, or how the route was chosen
+  Route route;                       // empty unless active
+  double remaining_s = 0;            // [s] expected time left
+  int64_t replans = 0;
+};
+
+struct TargetList
+{
+  int64_t utime = 0;
+  int64_t goal_id = 0;
+  std::vector<geometry::Pose2> odom_from_target;
+  double max_speed = 0.5;
+  bool final_is_goal = false;
+};
+
+class Planner
+{
+ public:
+  explicit Planner(const PlannerOptions& options);
+
+  void set_map(const rgmap::RgMap& map);
+  // A new goal (a new goal_id replaces the running one); an unknown region or name gives NO_PATH.
+  void set_goal(const NavGoal& goal, int64_t utime);
+  void cancel(int64_t goal_id, int64_t utime);
+  void on_pose(const RobotPose& pose);
+  // Collision avoidance's state at utime: true while it stands without a way to its targets.
+  void on_blocked(int64_t utime, bool blocked);
+  // Names a region (operator): kept here as in the map, so a goal may use it at once.
+  void name_region(int64_t region, const std::string& name);
+
+  struct Output
+  {
+    std::optional<PathReport> path;      // publish GLOBAL_PATH
+    std::optional<TargetList> targets;   // publish TARGETS
+  };
+  // Decides at message time utime (call on every pose and at least at the resend period).
+  Output update(int64_t utime);
+
+  GoalStatus status() const { return status_; }
+  const std::optional<NavGoal>& goal() const { return goal_; }
+  const Route& route() const { return route_; }
+  int64_t replans() const { return replans_; }
+  const PlanStats& last_stats() const { return last_stats_; }
+  GlobalPlanner& global() { return global_; }
+  const GlobalPlanner& global() const { return global_; }
+
+ private:
+  // Plans from the current pose; returns whether the route changed.
+  bool replan(int64_t utime, const std::string& why);
+  void finish(GoalStatus status, const std::string& reason, int64_t utime);
+  // Progress: which leg the robot is on (by its region) and how far along; false if off route.
+  bool track_progress();
+  std::optional<TargetList> make_targets(int64_t utime) const;
+  bool goal_reached() const;
+  // Resolves the goal's region and point in the current map (NO_PATH with a reason if it cannot).
+  void resolve_goal();
+  // Every region and gateway of the route is still in the map.
+  bool route_valid() const;
+
+  PlannerOptions options_;
+  GlobalPlanner global_;
+  bool has_map_ = false;
+  std::optional<NavGoal> goal_;
+  int64_t goal_region_ = 0;
+  Eigen::Vector2d goal_point_{0, 0};
+  GoalStatus status_ = GoalStatus::kNone;
+  std::string reason_;
+  Route route_;
+  size_t leg_ = 0;
+  double along_ = 0;
+  std::optional<RobotPose> pose_;
+  int64_t leg_entered_utime_ = 0;         // when the robot entered the current leg's region
+  int64_t gateway_reached_utime_ = 0;     // when the robot came within reach of the leg's exit
+  bool blocked_ = false;
+  int64_t blocked_since_ = 0;
+  int64_t last_replan_utime_ = 0;
+  bool replan_due_ = false;
+  std::string replan_reason_;
+  bool path_changed_ = false;
+  int64_t last_targets_utime_ = 0;
+  bool targets_due_ = false;
+  int64_t replans_ = 0;
+  int64_t map_version_ = 0;
+  PlanStats last_stats_;
+};
+
+}  // namespace rgnav::planner

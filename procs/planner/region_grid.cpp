@@ -1,0 +1,230 @@
+#include "planner/region_grid.h"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rgnav::planner {
+
+namespace {
+
+// The region-frame rectangle the grid must cover: its freespace bitmap (unknown beyond it is
+// occupied anyway) and its line map.
+void extent(const rgmap::Region& region, Eigen::Vector2d* lo, Eigen::Vector2d* hi)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  *lo = Eigen::Vector2d(inf, inf);
+  *hi = -*lo;
+  auto take = [&](const Eigen::Vector2d& p) {
+    *lo = lo->cwiseMin(p);
+    *hi = hi->cwiseMax(p);
+  };
+  const auto& fs = region.freespace;
+  if (fs.width() > 0 && fs.height() > 0) {
+    const double w = fs.width() * fs.resolution(), h = fs.height() * fs.resolution();
+    for (const auto& c : {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0), Eigen::Vector2d(0, h), Eigen::Vector2d(w, h)})
+      take(fs.region_from_grid() * c);
+  }
+  for (const auto& s : region.segments) {
+    take(s.a);
+    take(s.b);
+  }
+  if (!std::isfinite(lo->x())) *lo = *hi = Eigen::Vector2d::Zero();
+}
+
+}  // namespace
+
+RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
+                       const std::vector<NeighbourRegion>& neighbours,
+                       const std::vector<std::vector<Eigen::Vector2d>>& gateways)
+    : options_(options), resolution_(options.resolution)
+{
+  Eigen::Vector2d lo, hi;
+  extent(region, &lo, &hi);
+  if (!neighbours.empty()) {
+    lo -= Eigen::Vector2d::Constant(options_.neighbour_margin);
+    hi += Eigen::Vector2d::Constant(options_.neighbour_margin);
+  }
+  // One occupied cell all round, so that the edge of the known world is an obstacle too.
+  origin_ = lo - Eigen::Vector2d::Constant(resolution_);
+  width_ = std::max(1, static_cast<int>(std::ceil((hi.x() - origin_.x()) / resolution_)) + 1);
+  height_ = std::max(1, static_cast<int>(std::ceil((hi.y() - origin_.y()) / resolution_)) + 1);
+
+  // 255 = free; 0 = occupied (a line, or nothing the freespace calls free).
+  cv::Mat free_mask(height_, width_, CV_8UC1, cv::Scalar(0));
+  // Bresenham: cv::line with 8-connectivity sets every cell the segment passes.
+  auto draw = [this](cv::Mat& mask, const Eigen::Vector2d& pa, const Eigen::Vector2d& pb) {
+    const Cell a = cell_of(pa), b = cell_of(pb);
+    cv::line(mask, cv::Point(a.x(), a.y()), cv::Point(b.x(), b.y()), cv::Scalar(0), 1, cv::LINE_8);
+  };
+  cv::Mat own(height_, width_, CV_8UC1, cv::Scalar(0));
+  for (int y = 1; y + 1 < height_; ++y)
+    for (int x = 1; x + 1 < width_; ++x)
+      if (region.freespace.is_free(center_of(Cell(x, y)))) own.at<uint8_t>(y, x) = 255;
+  own.copyTo(free_mask);
+  if (!neighbours.empty()) {
+    // Where the region knows nothing, its neighbours' freespace. (Not their lines: a wall seen
+    // from both sides is in both line maps a few centimetres apart, and the copy from beside,
+    // placed through the gateway's transform, would narrow or close the opening.)
+    cv::Mat beside(height_, width_, CV_8UC1, cv::Scalar(0));
+    for (const auto& n : neighbours) {
+      const geometry::Pose2 other_from_this = n.this_from_other.inverse();
+      // Only the cells under the neighbour's freespace grid.
+      const auto& fs = n.region->freespace;
+      const double fw = fs.width() * fs.resolution(), fh = fs.height() * fs.resolution();
+      Eigen::Vector2d flo(1e18, 1e18), fhi(-1e18, -1e18);
+      for (const auto& c : {Eigen::Vector2d(0, 0), Eigen::Vector2d(fw, 0), Eigen::Vector2d(0, fh), Eigen::Vector2d(fw, fh)}) {
+        const Eigen::Vector2d p = n.this_from_other * (fs.region_from_grid() * c);
+        flo = flo.cwiseMin(p);
+        fhi = fhi.cwiseMax(p);
+      }
+      const Cell c0 = cell_of(flo), c1 = cell_of(fhi);
+      for (int y = std::max(1, c0.y()); y <= std::min(height_ - 2, c1.y()); ++y)
+        for (int x = std::max(1, c0.x()); x <= std::min(width_ - 2, c1.x()); ++x)
+          if (!own.at<uint8_t>(y, x) && fs.is_free(other_from_this * center_of(Cell(x, y))))
+            beside.at<uint8_t>(y, x) = 255;
+    }
+    cv::bitwise_or(free_mask, beside, free_mask);
+  }
+  for (const auto& points : gateways) carve_gateway(free_mask, points);
+  for (const auto& seg : region.segments) draw(free_mask, seg.a, seg.b);
+  cv::Mat dist;
+  cv::distanceTransform(free_mask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+
+  // Cost levels: 0 in open space; 1 in the comfort band [r + margin, r + margin + comfort)
+  // (a slight push away from walls); 2 .. levels-1 split [r, r + margin) evenly, rising to
+  // 1 + wall_cost at the blocked limit (clearance below the margin is paid for dearly, so paths
+  // keep it wherever the passage allows and prefer wide passages to narrow ones).
+  const double r = options_.robot_radius, m = options_.clearance_margin, w = options_.comfort_width;
+  const int levels = std::clamp(options_.cost_levels, 3, 254);
+  const int tight = levels - 2;   // levels inside the margin
+  level_cost_.assign(static_cast<size_t>(levels), 1.0);
+  level_cost_[1] = 1.0 + options_.comfort_cost;
+  for (int k = 0; k < tight; ++k)
+    level_cost_[static_cast<size_t>(2 + k)] =
+        1.0 + options_.comfort_cost + (options_.wall_cost - options_.comfort_cost) * (k + 1.0) / tight;
+  clearance_.resize(static_cast<size_t>(width_) * height_);
+  level_.resize(clearance_.size());
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      const size_t i = index(Cell(x, y));
+      const float c = dist.at<float>(y, x) * static_cast<float>(resolution_);
+      clearance_[i] = c;
+      if (c < r) {
+        level_[i] = kBlocked;
+      } else if (c >= r + m + w) {
+        level_[i] = 0;
+      } else if (c >= r + m) {
+        level_[i] = 1;
+      } else {
+        const int k = std::min(tight - 1, static_cast<int>((r + m - c) / m * tight));   // 0 near r + m
+        level_[i] = static_cast<uint8_t>(2 + k);
+      }
+    }
+  }
+  // The robot's space in this region: free cells connected to the region's own freespace (a
+  // start or goal is moved onto these only, never into a room behind a wall seen from beside).
+  cv::Mat traversable(height_, width_, CV_8UC1, cv::Scalar(0));
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x)
+      if (level_[index(Cell(x, y))] != kBlocked) traversable.at<uint8_t>(y, x) = 255;
+  cv::Mat labels;
+  const int n = cv::connectedComponents(traversable, labels, 8, CV_32S);
+  std::vector<uint8_t> own_label(static_cast<size_t>(n), 0);
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x)
+      if (own.at<uint8_t>(y, x) && traversable.at<uint8_t>(y, x)) own_label[static_cast<size_t>(labels.at<int>(y, x))] = 1;
+  own_.assign(level_.size(), 0);
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x)
+      if (traversable.at<uint8_t>(y, x)) own_[index(Cell(x, y))] = own_label[static_cast<size_t>(labels.at<int>(y, x))];
+}
+
+void RegionGrid::carve_gateway(cv::Mat& free_mask, const std::vector<Eigen::Vector2d>& points) const
+{
+  auto fill = [&](const std::vector<Eigen::Vector2d>& corners) {
+    std::vector<cv::Point> poly;
+    for (const auto& p : corners) {
+      const Cell c = cell_of(p);
+      poly.emplace_back(c.x(), c.y());
+    }
+    cv::fillConvexPoly(free_mask, poly, cv::Scalar(255), cv::LINE_8);
+  };
+  if (points.size() == 4) {
+    fill(points);   // a crossing's square
+    return;
+  }
+  for (const auto& [a, b] : rgmap::gateway_edges(points)) {
+    const Eigen::Vector2d d = b - a;
+    if (d.norm() < 1e-6) continue;
+    const Eigen::Vector2d n = Eigen::Vector2d(-d.y(), d.x()).normalized() * options_.passage_depth;
+    fill({a + n, b + n, b - n, a - n});
+  }
+}
+
+Cell RegionGrid::cell_of(const Eigen::Vector2d& p) const
+{
+  return Cell(static_cast<int>(std::floor((p.x() - origin_.x()) / resolution_)),
+              static_cast<int>(std::floor((p.y() - origin_.y()) / resolution_)));
+}
+
+Eigen::Vector2d RegionGrid::center_of(const Cell& c) const
+{
+  return origin_ + resolution_ * Eigen::Vector2d(c.x() + 0.5, c.y() + 0.5);
+}
+
+std::optional<double> RegionGrid::line_cost(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const
+{
+  const double len = (b - a).norm();
+  const int n = std::max(1, static_cast<int>(std::ceil(len / (0.5 * resolution_))));
+  double cost = 0;
+  for (int i = 0; i <= n; ++i) {
+    const Cell c = cell_of(a + (b - a) * (static_cast<double>(i) / n));
+    if (!free(c)) return std::nullopt;
+    // The two ends count half: a polyline's shared vertices are not counted twice.
+    const double w = (i == 0 || i == n) ? 0.5 : 1.0;
+    cost += w * level_cost_[level_[index(c)]];
+  }
+  return cost * len / n;
+}
+
+double RegionGrid::line_clearance(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const
+{
+  const double len = (b - a).norm();
+  const int n = std::max(1, static_cast<int>(std::ceil(len / (0.5 * resolution_))));
+  double m = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= n; ++i) {
+    const Cell c = cell_of(a + (b - a) * (static_cast<double>(i) / n));
+    m = std::min(m, in_bounds(c) ? static_cast<double>(clearance_[index(c)]) : 0.0);
+  }
+  return m;
+}
+
+std::optional<Cell> RegionGrid::nearest_free(const Cell& c, double reach_m) const
+{
+  if (free(c) && own_[index(c)]) return c;
+  const int reach = static_cast<int>(std::ceil((reach_m < 0 ? options_.adapt_distance : reach_m) / resolution_));
+  std::optional<Cell> best;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  float best_clear = 0;
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const double d2 = dx * dx + dy * dy;
+      if (d2 > static_cast<double>(reach) * reach) continue;
+      const Cell n(c.x() + dx, c.y() + dy);
+      if (!free(n) || !own_[index(n)]) continue;
+      const float cl = clearance_[index(n)];
+      if (d2 < best_d2 - 1e-9 || (d2 < best_d2 + 1e-9 && cl > best_clear)) {
+        best = n;
+        best_d2 = d2;
+        best_clear = cl;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace rgnav::planner

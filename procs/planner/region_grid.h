@@ -1,0 +1,86 @@
+// A region rendered for path planning (diss. 5.4): its 2D line map drawn into an occupancy grid
+// with Bresenham's algorithm, everything its freespace bitmap does not call free counted as
+// occupied (unknown is not free), and the distance of every cell to the nearest occupied one.
+// A cell nearer than the robot radius is blocked; nearer than radius + margin + comfort width it
+// costs more per metre, in a few quantised levels (level 0: no extra cost), so that the path
+// keeps away from walls where the passage allows and wide passages are preferred to narrow ones.
+// The grid is axis-aligned with the region frame. It reaches neighbour_margin beyond the region
+// and sees the neighbouring regions there (through the gateways' transforms): their free cells
+// are free where the region itself knows nothing, so that a gateway's opening is not a wall of
+// unknown and a small region (a crossing's square) has room. The gateways' own openings are free
+// too (the RG kernel trims a region's freespace at narrow passages, doors included): a door's
+// line widened to passage_depth each side, a crossing's outline filled.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "planner/planner_options.h"
+
+namespace cv { class Mat; }
+#include "rgmap/rg_map.h"
+
+namespace rgnav::planner {
+
+using Cell = Eigen::Vector2i;
+
+// A region beside this one, and where it lies: its frame in this region's.
+struct NeighbourRegion
+{
+  const rgmap::Region* region = nullptr;
+  geometry::Pose2 this_from_other;
+};
+
+class RegionGrid
+{
+ public:
+  // gateways: each gateway of the region as its points in the region frame (rgmap::gateway_edges).
+  RegionGrid(const rgmap::Region& region, const GridOptions& options, const std::vector<NeighbourRegion>& neighbours = {},
+             const std::vector<std::vector<Eigen::Vector2d>>& gateways = {});
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  double resolution() const { return resolution_; }
+  bool in_bounds(const Cell& c) const { return c.x() >= 0 && c.y() >= 0 && c.x() < width_ && c.y() < height_; }
+  // Traversable by the robot's centre (clearance >= robot radius).
+  bool free(const Cell& c) const { return in_bounds(c) && level_[index(c)] != kBlocked; }
+  // [m] distance from the cell centre to the nearest occupied cell.
+  float clearance(const Cell& c) const { return clearance_[index(c)]; }
+  // Cost level of a free cell (0 = open space); kBlocked when blocked.
+  uint8_t level(const Cell& c) const { return level_[index(c)]; }
+  // Cost per metre in a cell of this level (1 for level 0).
+  double level_cost(uint8_t level) const { return level_cost_[level]; }
+  double max_level_cost() const { return level_cost_.back(); }
+  // Cost of the straight line a->b: its length weighted by the level cost of the cells it
+  // crosses (sampled every half cell); nullopt when a cell on it is blocked.
+  std::optional<double> line_cost(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
+  // The smallest clearance along a->b [m].
+  double line_clearance(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
+
+  Cell cell_of(const Eigen::Vector2d& region_point) const;
+  Eigen::Vector2d center_of(const Cell& c) const;
+  // The free cell nearest to `c` within `reach` metres (options.adapt_distance if < 0) that is
+  // connected to the region's own freespace, preferring higher clearance among equally near
+  // ones (start and goal adaption); nullopt if none.
+  std::optional<Cell> nearest_free(const Cell& c, double reach = -1) const;
+
+  static constexpr uint8_t kBlocked = 255;
+
+ private:
+  size_t index(const Cell& c) const { return static_cast<size_t>(c.y()) * width_ + c.x(); }
+  void carve_gateway(cv::Mat& free_mask, const std::vector<Eigen::Vector2d>& points) const;
+
+  GridOptions options_;
+  double resolution_ = 0.05;
+  Eigen::Vector2d origin_{0, 0};  // region frame, corner of cell (0,0)
+  int width_ = 0, height_ = 0;
+  std::vector<float> clearance_;
+  std::vector<uint8_t> level_;
+  std::vector<uint8_t> own_;   // 1: free and connected to the region's own freespace
+  std::vector<double> level_cost_;
+};
+
+}  // namespace rgnav::planner

@@ -1,0 +1,108 @@
+#include "planner/region_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rgnav::planner {
+
+namespace {
+
+constexpr int kMaxQuadCells = 32;
+
+}  // namespace
+
+RegionPlanner::RegionPlanner(const rgmap::Region& region, const GridOptions& options,
+                             const std::vector<NeighbourRegion>& neighbours,
+                             const std::vector<std::vector<Eigen::Vector2d>>& gateways)
+    : grid_(region, options, neighbours, gateways), tree_(grid_, kMaxQuadCells)
+{
+}
+
+bool RegionPlanner::standable(const Eigen::Vector2d& p, double reach) const
+{
+  return grid_.nearest_free(grid_.cell_of(p), reach).has_value();
+}
+
+std::optional<RegionPath> RegionPlanner::plan(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::string* why,
+                                              double from_reach, double to_reach) const
+{
+  auto fail = [&](const char* text) -> std::optional<RegionPath> {
+    if (why) *why = text;
+    return std::nullopt;
+  };
+  const auto start = grid_.nearest_free(grid_.cell_of(from), from_reach);
+  if (!start) return fail("start is blocked");
+  const auto goal = grid_.nearest_free(grid_.cell_of(to), to_reach);
+  if (!goal) return fail("goal is blocked");
+  QuadSearchStats stats;
+  const auto cells = tree_.search(*start, *goal, &stats);
+  if (!cells) return fail("no way inside the region");
+
+  // Start and goal adaption (diss. 5.4): the search ran between cell centres; the path begins
+  // and ends at the requested points, through the adapted free cells when those were blocked
+  // (a crossing point on a door line lies at the edge of the region's known freespace; one in
+  // the middle of a crossing's square may lie outside the freespace of the region beside it).
+  std::vector<Eigen::Vector2d> inner;
+  inner.reserve(cells->size());
+  for (const Cell& c : *cells) inner.push_back(grid_.center_of(c));
+  const bool start_free = *start == grid_.cell_of(from);
+  const bool goal_free = *goal == grid_.cell_of(to);
+  if (start_free) inner.front() = from;
+  if (goal_free) inner.back() = to;
+  inner = smooth(inner);
+
+  RegionPath path;
+  if (!start_free) path.points.push_back(from);
+  path.points.insert(path.points.end(), inner.begin(), inner.end());
+  if (!goal_free) path.points.push_back(to);
+  path.min_clearance = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i + 1 < path.points.size(); ++i) {
+    const auto& a = path.points[i];
+    const auto& b = path.points[i + 1];
+    const double len = (b - a).norm();
+    path.length += len;
+    const auto c = grid_.line_cost(a, b);
+    path.cost += c ? *c : len * grid_.max_level_cost();
+    // The adapted ends reach into what the region does not know (past a door line): their
+    // clearance says nothing about walls.
+    const bool adapted_end = (i == 0 && !start_free) || (i + 2 == path.points.size() && !goal_free);
+    if (!adapted_end) path.min_clearance = std::min(path.min_clearance, grid_.line_clearance(a, b));
+  }
+  if (path.points.size() < 2 || !std::isfinite(path.min_clearance)) {
+    path.min_clearance = grid_.clearance(*start);
+  }
+  path.expanded = stats.expanded;
+  if (why) why->clear();
+  return path;
+}
+
+std::vector<Eigen::Vector2d> RegionPlanner::smooth(const std::vector<Eigen::Vector2d>& points) const
+{
+  if (points.size() <= 2) return points;
+  // Cost of each piece of the found path, and of the path up to each point.
+  std::vector<double> upto(points.size(), 0.0);
+  for (size_t i = 1; i < points.size(); ++i) {
+    const auto c = grid_.line_cost(points[i - 1], points[i]);
+    upto[i] = upto[i - 1] + (c ? *c : (points[i] - points[i - 1]).norm() * grid_.level_cost(0));
+  }
+  // Greedy shortcuts: from each kept point, the farthest later point reachable on a free
+  // straight line that costs no more than the way through the points between.
+  std::vector<Eigen::Vector2d> out{points.front()};
+  size_t i = 0;
+  while (i + 1 < points.size()) {
+    size_t next = i + 1;
+    for (size_t j = points.size() - 1; j > i + 1; --j) {
+      const auto c = grid_.line_cost(points[i], points[j]);
+      if (c && *c <= upto[j] - upto[i] + 1e-6) {
+        next = j;
+        break;
+      }
+    }
+    out.push_back(points[next]);
+    i = next;
+  }
+  return out;
+}
+
+}  // namespace rgnav::planner

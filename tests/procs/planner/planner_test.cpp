@@ -1,0 +1,566 @@
+// The planner's algorithm library (procs/planner) on small hand-made RG maps: region grids and
+// framed-quadtree paths (length, clearance, narrow gaps), the RG-graph search with closed and
+// learned gateways, targets, and the execution of a goal with a robot that follows the targets.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <queue>
+
+#include "planner/edge_costs.h"
+#include "planner/framed_quadtree.h"
+#include "planner/global_planner.h"
+#include "planner/planner.h"
+#include "planner/region_grid.h"
+#include "planner/region_planner.h"
+#include "planner/route.h"
+#include "planner/route_time.h"
+
+namespace rgnav::planner {
+namespace {
+
+using Eigen::Vector2d;
+using geometry::Pose2;
+using V = Vector2d;
+using Wall = std::pair<V, V>;
+
+constexpr int64_t kUtime = 1'700'000'000'000'000;
+
+// A region in the map frame offset by `origin`: walls (map frame) as its line map, and freespace
+// at 0.1 m over the box [lo, hi] (map frame), less what `blocked` says.
+rgmap::Region& add_region(rgmap::RgMap* map, const std::string& name, const V& lo, const V& hi,
+                          const std::vector<Wall>& walls, std::function<bool(const V&)> blocked = {})
+{
+  const Pose2 map_from_region(lo, 0.0);
+  rgmap::Region& r = map->add_region(map_from_region, kUtime);
+  r.name = name;
+  r.state = rgmap::Region::State::kFinalised;
+  for (const auto& [a, b] : walls) {
+    rgmap::LineSegment s;
+    s.a = map_from_region.inverse() * a;
+    s.b = map_from_region.inverse() * b;
+    r.segments.push_back(s);
+  }
+  constexpr double res = 0.1;
+  const V size = hi - lo;
+  const int w = static_cast<int>(std::lround(size.x() / res)), h = static_cast<int>(std::lround(size.y() / res));
+  r.freespace = rgmap::FreespaceBitmap(res, Pose2(0, 0, 0), w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const V c = lo + V((x + 0.5) * res, (y + 0.5) * res);
+      r.freespace.set_free(x, y, !blocked || !blocked(c));
+    }
+  r.bbox_min = V::Zero();
+  r.bbox_max = size;
+  return r;
+}
+
+// A gateway between two regions of the map at map point c (both region frames are offsets).
+rgmap::Gateway& add_gateway(rgmap::RgMap* map, rgmap::GatewayClass cls, int64_t a, int64_t b, const V& c)
+{
+  rgmap::Gateway& g = map->add_gateway(cls, a, kUtime);
+  const Pose2 map_from_a = map->region(a)->map_from_region, map_from_b = map->region(b)->map_from_region;
+  g.crossing_points = {map_from_a.inverse() * c};
+  g.gateway_points = g.crossing_points;
+  map->connect(g.id, b, map_from_a.inverse() * map_from_b);
+  return g;
+}
+
+// One room [0, 8] x [0, 5] with a wall from the bottom to y = 3.5 at x = 4.
+rgmap::RgMap one_room_with_wall()
+{
+  rgmap::RgMap map;
+  add_region(&map, "room", V(0, 0), V(8, 5),
+             {{V(0, 0), V(8, 0)}, {V(8, 0), V(8, 5)}, {V(8, 5), V(0, 5)}, {V(0, 5), V(0, 0)}, {V(4, 0), V(4, 3.5)}});
+  return map;
+}
+
+// Three regions: A [0,4]x[0,3] and B [5,9]x[0,3] joined by a door at (4.5, 1.5) through a 1 m
+// wall gap; a hallway H [0,9]x[-2.5,-0.5]... joined to A and B by openings in their floors.
+struct Ring
+{
+  rgmap::RgMap map;
+  int64_t a = 0, b = 0, h = 0, door = 0, ha = 0, hb = 0;
+};
+
+// trimmed_door: neither region's freespace covers the door's opening (the RG kernel trims
+// freespace at narrow passages); the gateway's points are its jambs.
+Ring ring(bool trimmed_door = false)
+{
+  Ring r;
+  const std::vector<Wall> walls_a = {{V(0, 0), V(1, 0)}, {V(2.2, 0), V(4, 0)}, {V(4, 0), V(4, 1)}, {V(4, 2), V(4, 3)},
+                                     {V(4, 3), V(0, 3)}, {V(0, 3), V(0, 0)}};
+  const std::vector<Wall> walls_door = {{V(4, 1), V(5, 1)}, {V(4, 2), V(5, 2)}};
+  const std::vector<Wall> walls_b = {{V(5, 0), V(6.8, 0)}, {V(8, 0), V(9, 0)}, {V(9, 0), V(9, 3)}, {V(9, 3), V(5, 3)},
+                                     {V(5, 3), V(5, 2)}, {V(5, 1), V(5, 0)}};
+  const std::vector<Wall> walls_h = {{V(0, -2), V(9, -2)}, {V(9, -2), V(9, 0)}, {V(0, 0), V(0, -2)},
+                                     {V(0, 0), V(1, 0)}, {V(2.2, 0), V(6.8, 0)}, {V(8, 0), V(9, 0)}};
+  std::vector<Wall> a_lines = walls_a, b_lines = walls_b;
+  a_lines.insert(a_lines.end(), walls_door.begin(), walls_door.end());
+  r.a = add_region(&r.map, "Room A", V(0, 0), V(5, 3), a_lines,
+                   [=](const V& c) { return c.x() > 4 && (trimmed_door || c.y() < 1 || c.y() > 2); }).id;
+  r.b = add_region(&r.map, "Room B", V(4.5, 0), V(9, 3), b_lines,
+                   [=](const V& c) { return c.x() < 5 && (trimmed_door || c.y() < 1 || c.y() > 2); }).id;
+  r.h = add_region(&r.map, "hallway", V(0, -2), V(9, 0.5), walls_h,
+                   [](const V& c) { return c.y() > 0 && !((c.x() > 1 && c.x() < 2.2) || (c.x() > 6.8 && c.x() < 8)); }).id;
+  auto& door = add_gateway(&r.map, rgmap::GatewayClass::kDoor, r.a, r.b, V(4.5, 1.5));
+  door.gateway_points = {V(4.5, 1.0), V(4.5, 2.0)};
+  r.door = door.id;
+  r.ha = add_gateway(&r.map, rgmap::GatewayClass::kOpening, r.h, r.a, V(1.6, 0)).id;
+  r.hb = add_gateway(&r.map, rgmap::GatewayClass::kOpening, r.h, r.b, V(7.4, 0)).id;
+  r.map.version = 1;
+  return r;
+}
+
+PlannerOptions options()
+{
+  PlannerOptions o;
+  o.grid.robot_radius = 0.26;
+  return o;
+}
+
+TEST(RegionGrid, BlocksNearWallsAndUnknown)
+{
+  const auto map = one_room_with_wall();
+  const RegionGrid grid(map.regions().begin()->second, options().grid);
+  EXPECT_TRUE(grid.free(grid.cell_of(V(2, 2))));
+  EXPECT_FALSE(grid.free(grid.cell_of(V(4.1, 1))));     // beside the inner wall
+  EXPECT_FALSE(grid.free(grid.cell_of(V(0.1, 2))));     // beside the outer wall
+  EXPECT_FALSE(grid.free(grid.cell_of(V(9, 2))));       // outside: unknown
+  EXPECT_NEAR(grid.clearance(grid.cell_of(V(2, 2))), 2.0, 0.08);
+  EXPECT_EQ(grid.level(grid.cell_of(V(2, 2))), 0);      // open space costs nothing extra
+  EXPECT_GT(grid.level(grid.cell_of(V(0.35, 2))), 0);   // near a wall it does
+}
+
+TEST(RegionPlanner, GoesAroundTheWallWithClearance)
+{
+  const auto map = one_room_with_wall();
+  const RegionPlanner rp(map.regions().begin()->second, options().grid);
+  std::string why;
+  const auto path = rp.plan(V(2, 1), V(6, 1), &why);
+  ASSERT_TRUE(path) << why;
+  // Around the wall's end at (4, 3.5): the shortest way with the radius is ~ 2 * |(2,1)-(4,3.76)|.
+  const double shortest = 2 * (V(4, 3.5 + 0.26) - V(2, 1)).norm();
+  EXPECT_GT(path->length, shortest - 0.05);
+  EXPECT_LT(path->length, shortest * 1.12);
+  EXPECT_GE(path->min_clearance, 0.26);
+  // Smoothing leaves few waypoints, not a staircase of cells.
+  EXPECT_LE(path->points.size(), 8u);
+  for (size_t i = 0; i + 1 < path->points.size(); ++i)
+    EXPECT_TRUE(rp.grid().line_cost(path->points[i], path->points[i + 1]).has_value());
+}
+
+TEST(RegionPlanner, StraightInOpenSpace)
+{
+  const auto map = one_room_with_wall();
+  const RegionPlanner rp(map.regions().begin()->second, options().grid);
+  const auto path = rp.plan(V(1, 4), V(7, 4.2));
+  ASSERT_TRUE(path);
+  EXPECT_NEAR(path->length, (V(7, 4.2) - V(1, 4)).norm(), 0.05);
+}
+
+TEST(RegionPlanner, NoWayThroughAGapNarrowerThanTheRobot)
+{
+  rgmap::RgMap map;
+  // A wall across the room with a 0.4 m gap: the robot (0.52 m wide) does not fit.
+  add_region(&map, "room", V(0, 0), V(8, 5),
+             {{V(0, 0), V(8, 0)}, {V(8, 0), V(8, 5)}, {V(8, 5), V(0, 5)}, {V(0, 5), V(0, 0)}, {V(4, 0), V(4, 2.3)},
+              {V(4, 2.7), V(4, 5)}});
+  const RegionPlanner rp(map.regions().begin()->second, options().grid);
+  std::string why;
+  EXPECT_FALSE(rp.plan(V(2, 2.5), V(6, 2.5), &why));
+  EXPECT_EQ(why, "no way inside the region");
+}
+
+TEST(RegionPlanner, PrefersTheWidePassage)
+{
+  rgmap::RgMap map;
+  // Two ways past a block in the middle: a 0.7 m gap below (fits, tight) and a 1.6 m one above.
+  // The narrow one is a little shorter; the wall cost makes the wide one the choice.
+  add_region(&map, "room", V(0, 0), V(8, 5),
+             {{V(0, 0), V(8, 0)}, {V(8, 0), V(8, 5)}, {V(8, 5), V(0, 5)}, {V(0, 5), V(0, 0)}, {V(3.5, 0.7), V(4.5, 0.7)},
+              {V(4.5, 0.7), V(4.5, 3.4)}, {V(4.5, 3.4), V(3.5, 3.4)}, {V(3.5, 3.4), V(3.5, 0.7)}},
+             [](const V& c) { return c.x() > 3.5 && c.x() < 4.5 && c.y() > 0.7 && c.y() < 3.4; });
+  const RegionPlanner rp(map.regions().begin()->second, options().grid);
+  const auto path = rp.plan(V(1, 1.5), V(7, 1.5));
+  ASSERT_TRUE(path);
+  double top = -1;
+  for (const auto& p : path->points) top = std::max(top, p.y());
+  EXPECT_GT(top, 3.4);
+}
+
+TEST(FramedQuadtree, OpenSpaceMakesLargeQuads)
+{
+  const auto map = one_room_with_wall();
+  const RegionGrid grid(map.regions().begin()->second, options().grid);
+  const FramedQuadtree tree(grid);
+  int free_cells = 0;
+  for (int y = 0; y < grid.height(); ++y)
+    for (int x = 0; x < grid.width(); ++x) free_cells += grid.free(Cell(x, y));
+  EXPECT_LT(static_cast<int>(tree.quads().size()) * 4, free_cells);
+  for (const auto& q : tree.quads())
+    for (int y = q.y0; y < q.y0 + q.size; ++y)
+      for (int x = q.x0; x < q.x0 + q.size; ++x) ASSERT_EQ(grid.level(Cell(x, y)), q.level);
+}
+
+// The framed quadtree's path costs what the cheapest 8-connected path on the same cells does,
+// or less (its straight lines inside quads are shorter than grid steps).
+TEST(FramedQuadtree, NoDearerThanTheGridSearch)
+{
+  const auto map = one_room_with_wall();
+  const RegionGrid grid(map.regions().begin()->second, options().grid);
+  const FramedQuadtree tree(grid);
+  const Cell s = grid.cell_of(V(2, 1)), t = grid.cell_of(V(6, 1.5));
+  const auto path = tree.search(s, t);
+  ASSERT_TRUE(path);
+  double quad_cost = 0;
+  for (size_t i = 0; i + 1 < path->size(); ++i)
+    quad_cost += *grid.line_cost(grid.center_of((*path)[i]), grid.center_of((*path)[i + 1]));
+  // Dijkstra on the 8-connected grid with the same cell costs.
+  const int w = grid.width(), h = grid.height();
+  std::vector<double> d(static_cast<size_t>(w) * h, 1e18);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  d[static_cast<size_t>(s.y() * w + s.x())] = 0;
+  open.push({0, s.y() * w + s.x()});
+  while (!open.empty()) {
+    const auto [du, u] = open.top();
+    open.pop();
+    if (du > d[static_cast<size_t>(u)]) continue;
+    const Cell cu(u % w, u / w);
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const Cell cv(cu.x() + dx, cu.y() + dy);
+        if ((dx || dy) && grid.free(cv)) {
+          const double step = std::hypot(dx, dy) * grid.resolution() * 0.5 *
+                              (grid.level_cost(grid.level(cu)) + grid.level_cost(grid.level(cv)));
+          const int v = cv.y() * w + cv.x();
+          if (du + step < d[static_cast<size_t>(v)]) {
+            d[static_cast<size_t>(v)] = du + step;
+            open.push({du + step, v});
+          }
+        }
+      }
+  }
+  const double grid_cost = d[static_cast<size_t>(t.y() * w + t.x())];
+  EXPECT_LT(quad_cost, grid_cost * 1.02);
+  EXPECT_GT(quad_cost, grid_cost * 0.85);
+}
+
+TEST(GlobalPlanner, RoutesThroughTheDoorAndAroundItWhenClosed)
+{
+  Ring r = ring();
+  GlobalPlanner gp(options());
+  gp.set_map(r.map);
+  PlanRequest req{r.a, V(2, 1.5), r.b, V(2.5, 1.5)};
+  std::string why;
+  auto route = gp.plan(req, &why);
+  ASSERT_TRUE(route) << why;
+  ASSERT_EQ(route->legs.size(), 2u);
+  EXPECT_EQ(route->legs[0].exit_gateway, r.door);
+  EXPECT_EQ(route->legs[1].region_id, r.b);
+  // The leg in B ends at the goal, in B's frame.
+  EXPECT_LT((route->legs[1].points.back() - V(2.5, 1.5)).norm(), 1e-9);
+
+  gp.costs().gateway_failed(*r.map.gateway(r.door), 0.0);
+  route = gp.plan(req, &why);
+  ASSERT_TRUE(route) << why;
+  ASSERT_EQ(route->legs.size(), 3u);
+  EXPECT_EQ(route->legs[1].region_id, r.h);
+  EXPECT_GT(route->length, 8.0);
+
+  // Every way closed: no route, and the reason names the closed gateways.
+  gp.costs().gateway_failed(*r.map.gateway(r.ha), 0.0);
+  EXPECT_FALSE(gp.plan(req, &why));
+  EXPECT_NE(why.find("closed gateways"), std::string::npos) << why;
+  // After the retry time the door is tried again (where it is the only way; it costs more now).
+  req.now_s = options().global.closed_retry_s + 1;
+  EXPECT_FALSE(gp.costs().closed(r.door, req.now_s));
+  gp.costs().gateway_failed(*r.map.gateway(r.ha), req.now_s);
+  route = gp.plan(req, &why);
+  ASSERT_TRUE(route) << why;
+  EXPECT_EQ(route->legs[0].exit_gateway, r.door);
+}
+
+// The door's opening is unknown to both rooms: the gateway itself makes it passable.
+TEST(GlobalPlanner, PassesADoorWhoseOpeningNeitherRoomKnows)
+{
+  Ring r = ring(true);
+  GlobalPlanner gp(options());
+  gp.set_map(r.map);
+  std::string why;
+  const auto route = gp.plan({r.a, V(2, 1.5), r.b, V(2.5, 1.5)}, &why);
+  ASSERT_TRUE(route) << why;
+  ASSERT_EQ(route->legs.size(), 2u);
+  EXPECT_EQ(route->legs[0].exit_gateway, r.door);
+  EXPECT_LT(route->length, 6.0);
+  // Without the gateway's opening the rooms are joined through the hallway only.
+  Ring closed = ring(true);
+  closed.map.gateway(closed.door)->gateway_points = {V(4.5, 1.5)};
+  GlobalPlanner gp2(options());
+  gp2.set_map(closed.map);
+  const auto around = gp2.plan({closed.a, V(2, 1.5), closed.b, V(2.5, 1.5)}, &why);
+  ASSERT_TRUE(around) << why;
+  EXPECT_EQ(around->legs.size(), 3u);
+}
+
+// A start next to a room beside this one (seen through the gateway) is moved onto the region's
+// own side, never into the other room.
+TEST(RegionGrid, AdaptsOnlyOntoTheRegionsOwnSpace)
+{
+  rgmap::RgMap map;
+  const auto& a = add_region(&map, "upper", V(0, 0), V(4, 3), {{V(0, 0), V(4, 0)}, {V(4, 0), V(4, 3)}, {V(4, 3), V(0, 3)}, {V(0, 3), V(0, 0)}});
+  add_region(&map, "lower", V(0, -3.1), V(4, -0.1),
+             {{V(0, -0.1), V(4, -0.1)}, {V(4, -0.1), V(4, -3.1)}, {V(4, -3.1), V(0, -3.1)}, {V(0, -3.1), V(0, -0.1)}});
+  GlobalPlanner gp(options());
+  gp.set_map(map);
+  const RegionGrid& grid = gp.region_planner(a.id)->grid();
+  // Between the two walls; the lower room's free cells are nearer than the upper's.
+  const auto c = grid.nearest_free(grid.cell_of(V(2, -0.12)), 1.0);
+  ASSERT_TRUE(c);
+  EXPECT_GT(grid.center_of(*c).y(), 0.0);
+  EXPECT_TRUE(grid.free(grid.cell_of(V(2, -0.6))));   // seen from beside, but not where a start goes
+}
+
+TEST(GlobalPlanner, PrefersHallwayGatewaysToDoorsOnlyWithinTheirCost)
+{
+  Ring r = ring();
+  GlobalPlanner gp(options());
+  gp.set_map(r.map);
+  const PlanRequest req{r.a, V(2, 1.5), r.b, V(2.5, 1.5)};
+  std::string why;
+  // A door that failed often costs more than the detour through the hallway (~ 8 m more).
+  for (int i = 0; i < 3; ++i) gp.costs().gateway_failed(*r.map.gateway(r.door), -1e6);
+  auto route = gp.plan(req, &why);
+  ASSERT_TRUE(route) << why;
+  EXPECT_EQ(route->legs.size(), 3u);
+  // Passed again and again, its extra falls back to the base door cost: the door is taken.
+  for (int i = 0; i < 10; ++i) gp.costs().gateway_passed(*r.map.gateway(r.door), 2.0);
+  route = gp.plan(req, &why);
+  ASSERT_TRUE(route) << why;
+  EXPECT_EQ(route->legs.size(), 2u);
+}
+
+TEST(GlobalPlanner, UnknownRegionsAndBlockedGoalsAreRefusedWithAReason)
+{
+  Ring r = ring();
+  GlobalPlanner gp(options());
+  gp.set_map(r.map);
+  std::string why;
+  EXPECT_FALSE(gp.plan({r.a, V(2, 1.5), 99, V(0, 0)}, &why));
+  EXPECT_NE(why.find("99"), std::string::npos);
+  EXPECT_FALSE(gp.plan({r.a, V(2, 1.5), r.b, V(40, 40)}, &why));
+  EXPECT_NE(why.find("goal is blocked"), std::string::npos) << why;
+  EXPECT_EQ(gp.region_named("room b"), r.b);
+  const auto p = gp.region_goal_point(r.b);
+  ASSERT_TRUE(p);
+  EXPECT_TRUE(gp.region_planner(r.b)->grid().free(gp.region_planner(r.b)->grid().cell_of(*p)));
+}
+
+TEST(EdgeCosts, SavesAndRestoresWhatWasLearned)
+{
+  Ring r = ring();
+  EdgeCosts c(options().global);
+  c.gateway_failed(*r.map.gateway(r.door), 100.0);
+  c.gateway_passed(*r.map.gateway(r.ha), 3.5);
+  c.region_traversed(r.h, r.ha, r.hb, 14.0);
+  EdgeCosts d(options().global);
+  d.from_json(c.to_json());
+  EXPECT_TRUE(d.closed(r.door, 120.0));
+  EXPECT_FALSE(d.closed(r.door, 100.0 + options().global.closed_retry_s + 1));
+  // A second failure in a row keeps it closed twice as long.
+  d.gateway_failed(*r.map.gateway(r.door), 200.0);
+  EXPECT_TRUE(d.closed(r.door, 200.0 + 1.5 * options().global.closed_retry_s));
+  EXPECT_DOUBLE_EQ(*d.gateway_cost(*r.map.gateway(r.ha), 0), 3.5);
+  EXPECT_TRUE(d.measured(r.h, r.hb, r.ha));
+  EXPECT_DOUBLE_EQ(d.region_cost(r.h, r.hb, r.ha, 1.0), 14.0);
+  nlohmann::json bad = c.to_json();
+  bad["gateways"][0]["time_s"] = "x";
+  EXPECT_THROW(d.from_json(bad), std::invalid_argument);
+}
+
+TEST(Route, TargetsAreHalfAMetreToOneAndAHalfApart)
+{
+  Ring r = ring();
+  GlobalPlanner gp(options());
+  gp.set_map(r.map);
+  std::string why;
+  gp.costs().gateway_failed(*r.map.gateway(r.door), 0.0);
+  const auto route = gp.plan({r.a, V(2, 1.5), r.b, V(2.5, 1.5)}, &why);
+  ASSERT_TRUE(route) << why;
+  const auto targets = cut_targets(*route, 0.5, 1.5);
+  ASSERT_GE(targets.size(), 6u);
+  for (size_t i = 1; i < targets.size(); ++i) {
+    const double step = targets[i].arc - targets[i - 1].arc;
+    EXPECT_GE(step, 0.5 - 1e-9);
+    EXPECT_LE(step, 1.5 + 1e-9);
+  }
+  EXPECT_NEAR(targets.back().arc, route->length, 1e-6);
+  EXPECT_EQ(targets.back().leg, route->legs.size() - 1);
+  EXPECT_LT((targets.back().pose.translation() - V(2.5, 1.5)).norm(), 1e-9);
+}
+
+TEST(RouteTime, PredictsTheDriveUnderTheLimits)
+{
+  trajectory::Limits limits;
+  limits.v_max = 0.6;
+  limits.a_max = 0.4;
+  Route straight;
+  straight.legs.push_back({});
+  straight.legs[0].points = {V(0, 0), V(5, 0)};
+  straight.legs[0].length = 5;
+  straight.length = 5;
+  // Accelerate, cruise, brake: 5 / 0.6 + 0.6 / 0.4.
+  EXPECT_NEAR(predicted_time(straight, limits), 5 / 0.6 + 0.6 / 0.4, 0.05);
+  // The same length with a right angle in the middle takes longer (slower through the bend),
+  // and a second leg is placed through the gateway's transform.
+  Route bend = straight;
+  bend.legs[0].points = {V(0, 0), V(2.5, 0)};
+  bend.legs[0].this_from_next = Pose2(2.5, 0, M_PI / 2);
+  bend.legs.push_back({});
+  bend.legs[1].points = {V(0, 0), V(2.5, 0)};
+  const double t = predicted_time(bend, limits);
+  EXPECT_GT(t, predicted_time(straight, limits) + 0.3);
+  EXPECT_LT(t, predicted_time(straight, limits) + 6.0);
+}
+
+// A robot that drives straight to the first target at 0.5 m/s (no obstacles), its odometry
+// frame offset from the map.
+struct FollowingRobot
+{
+  Pose2 map_from_base;
+  Pose2 odom_from_map{1.0, -2.0, 0.3};
+  std::function<bool(const V&)> wall;   // where it cannot go (a shut door)
+  // False when the step was refused: collision avoidance would report it cannot pass.
+  bool drive(const TargetList& t, double dt)
+  {
+    if (t.odom_from_target.empty()) return true;
+    const V target = odom_from_map.inverse() * t.odom_from_target.front().translation();
+    const V d = target - map_from_base.translation();
+    const double step = std::min(d.norm(), 0.5 * dt);
+    if (d.norm() < 1e-9) return true;
+    const V next = map_from_base.translation() + d.normalized() * step;
+    if (wall && wall(next)) return false;
+    map_from_base = Pose2(next, std::atan2(d.y(), d.x()));
+    return true;
+  }
+};
+
+RobotPose pose_of(const Ring& r, const FollowingRobot& robot, int64_t utime)
+{
+  // The region whose box holds the robot (regions are offsets of the map frame here).
+  const V p = robot.map_from_base.translation();
+  int64_t region = p.y() < 0 ? r.h : (p.x() < 4.5 ? r.a : r.b);
+  RobotPose pose;
+  pose.utime = utime;
+  pose.region_id = region;
+  pose.region_from_base = r.map.region(region)->map_from_region.inverse() * robot.map_from_base;
+  pose.odom_from_base = robot.odom_from_map * robot.map_from_base;
+  return pose;
+}
+
+GoalStatus drive_goal(Planner* planner, const Ring& r, FollowingRobot* robot, int64_t* utime, double seconds)
+{
+  TargetList last;
+  bool blocked = false;
+  for (int i = 0; i < seconds * 10; ++i) {
+    *utime += 100'000;
+    planner->on_pose(pose_of(r, *robot, *utime));
+    planner->on_blocked(*utime, blocked);
+    const auto out = planner->update(*utime);
+    if (out.targets) last = *out.targets;
+    if (getenv("PLANNER_TEST_TRACE") && i % 10 == 0)
+      fprintf(stderr, "t %.1f at %.2f %.2f status %s replans %lld targets %zu\n", i * 0.1, robot->map_from_base.x(),
+              robot->map_from_base.y(), to_string(planner->status()), (long long)planner->replans(), last.odom_from_target.size());
+    if (planner->status() != GoalStatus::kActive) return planner->status();
+    blocked = !robot->drive(last, 0.1);
+  }
+  return planner->status();
+}
+
+TEST(Planner, DrivesToANamedRoomThroughTheDoor)
+{
+  Ring r = ring();
+  Planner planner(options());
+  planner.set_map(r.map);
+  FollowingRobot robot;
+  robot.map_from_base = Pose2(2, 1.5, 0);
+  int64_t utime = kUtime;
+  NavGoal goal;
+  goal.goal_id = 1;
+  goal.region_name = "Room B";
+  planner.set_goal(goal, utime);
+  EXPECT_EQ(drive_goal(&planner, r, &robot, &utime, 60), GoalStatus::kReached);
+  EXPECT_GT(robot.map_from_base.x(), 5.0);
+  EXPECT_GT(robot.map_from_base.y(), 0.0);
+  // The door was crossed and timed.
+  EXPECT_GT(planner.global().costs().changes(), 0);
+}
+
+TEST(Planner, AClosedDoorIsGoneAroundAndNoPathWhenThereIsNoOtherWay)
+{
+  Ring r = ring();
+  Planner planner(options());
+  planner.set_map(r.map);
+  FollowingRobot robot;
+  robot.map_from_base = Pose2(2, 1.5, 0);
+  int64_t utime = kUtime;
+  NavGoal goal;
+  goal.goal_id = 7;
+  goal.region_id = r.b;
+  goal.has_pose = true;
+  goal.region_from_goal = Pose2(2.5, 1.5, 0);
+  planner.set_goal(goal, utime);
+  // The door stays shut: before it, collision avoidance reports it cannot pass.
+  robot.wall = [](const V& p) { return p.x() > 3.7 && p.x() < 5.3 && p.y() > 0.5; };
+  EXPECT_EQ(drive_goal(&planner, r, &robot, &utime, 120), GoalStatus::kReached);
+  EXPECT_GE(planner.replans(), 1);
+  EXPECT_LT(robot.map_from_base.x(), 8.0);
+  EXPECT_TRUE(planner.global().costs().closed(r.door, utime * 1e-6));
+
+  // Back in A with the hallway openings closed too: no path, with the reason.
+  Ring closed = ring();
+  Planner p2(options());
+  p2.set_map(closed.map);
+  p2.global().costs().gateway_failed(*closed.map.gateway(closed.ha), utime * 1e-6);
+  p2.global().costs().gateway_failed(*closed.map.gateway(closed.door), utime * 1e-6);
+  FollowingRobot r2;
+  r2.map_from_base = Pose2(2, 1.5, 0);
+  goal.goal_id = 8;
+  p2.set_goal(goal, utime);
+  EXPECT_EQ(drive_goal(&p2, closed, &r2, &utime, 5), GoalStatus::kNoPath);
+}
+
+TEST(Planner, TargetsAreInTheOdometryFrameAndCancelStopsThem)
+{
+  Ring r = ring();
+  Planner planner(options());
+  planner.set_map(r.map);
+  FollowingRobot robot;
+  robot.map_from_base = Pose2(1, 1.5, 0);
+  int64_t utime = kUtime;
+  NavGoal goal;
+  goal.goal_id = 3;
+  goal.region_id = r.a;
+  goal.has_pose = true;
+  goal.region_from_goal = Pose2(3.5, 1.5, 0);
+  planner.set_goal(goal, utime);
+  planner.on_pose(pose_of(r, robot, utime));
+  const auto out = planner.update(utime);
+  ASSERT_TRUE(out.path);
+  EXPECT_EQ(out.path->status, GoalStatus::kActive);
+  ASSERT_TRUE(out.targets);
+  ASSERT_FALSE(out.targets->odom_from_target.empty());
+  EXPECT_TRUE(out.targets->final_is_goal);
+  const V last_map = robot.odom_from_map.inverse() * out.targets->odom_from_target.back().translation();
+  EXPECT_LT((last_map - V(3.5, 1.5)).norm(), 1e-6);
+  planner.cancel(3, utime + 1000);
+  const auto after = planner.update(utime + 2000);
+  ASSERT_TRUE(after.path);
+  EXPECT_EQ(after.path->status, GoalStatus::kCancelled);
+  ASSERT_TRUE(after.targets);
+  EXPECT_TRUE(after.targets->odom_from_target.empty());
+}
+
+}  // namespace
+}  // namespace rgnav::planner
