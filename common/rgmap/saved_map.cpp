@@ -4,6 +4,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "config/config.h"
 #include "persist/atomic_file.h"
 #include "rgmap/rgmap_json.h"
 
@@ -12,6 +13,15 @@ namespace rgnav::rgmap {
 std::string saved_map_file(const std::string& path)
 {
   return std::filesystem::is_directory(path) ? path + "/rgmap.json" : path;
+}
+
+RgMap load_map_flag(const std::string& path)
+{
+  try {
+    return load_saved_map(path);
+  } catch (const std::exception& e) {
+    throw config::ConfigError(std::string("--map: ") + e.what());
+  }
 }
 
 RgMap load_saved_map(const std::string& path)

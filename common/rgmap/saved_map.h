@@ -15,6 +15,9 @@ std::string saved_map_file(const std::string& path);
 // Throws std::runtime_error naming the file and what is wrong with it (missing, damaged, not
 // an RG map).
 RgMap load_saved_map(const std::string& path);
+// load_saved_map for a process's --map flag: throws config::ConfigError ("--map: ...") so that
+// the process refuses to start with the reason.
+RgMap load_map_flag(const std::string& path);
 // Writes `map` to saved_map_file(path) atomically (the old file stays whole if this fails);
 // throws std::runtime_error on failure.
 void save_map(const RgMap& map, const std::string& path);

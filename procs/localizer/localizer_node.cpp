@@ -60,13 +60,7 @@ LocalizerNode::LocalizerNode(runtime::Node& node, const LocalizerNodeOptions& op
       spdlog::info("no saved estimate in {}: global localization with the first scan", files_.state_file);
   }
   if (!files_.map.empty()) {
-    rgmap::RgMap map;
-    try {
-      map = rgmap::load_saved_map(files_.map);
-    } catch (const std::exception& e) {
-      throw config::ConfigError(std::string("--map: ") + e.what());
-    }
-    take_map(map, files_.map);
+    take_map(rgmap::load_map_flag(files_.map), files_.map);
   } else {
     spdlog::info("no saved map given (--map): waiting for {}", options_.channels.rg_map);
   }

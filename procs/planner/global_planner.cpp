@@ -253,6 +253,7 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
   auto arc_cost = [&](const Arc& a, bool* exact) -> std::optional<double> {
     *exact = true;
     if (a.gateway) {
+      if (a.gateway_id == request.avoid_gateway) return std::nullopt;
       const auto* g = map_.gateway(a.gateway_id);
       return g ? costs_.gateway_cost(*g, request.now_s) : std::nullopt;
     }

@@ -35,6 +35,7 @@ struct PlanRequest
   double goal_heading = 0;         // [rad] goal region frame
   bool has_goal_heading = false;
   double now_s = 0;                // message time, for closed gateways
+  int64_t avoid_gateway = 0;       // a gateway not to cross (is there a way round it?)
 };
 
 struct PlanStats

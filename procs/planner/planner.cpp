@@ -163,6 +163,14 @@ bool Planner::track_progress()
   const RouteLeg& leg = route_.legs[leg_];
   double distance = 0;
   along_ = project_onto_leg(leg, pose_->region_from_base.translation(), along_, &distance);
+  // Progress: the robot got this much further along the route.
+  constexpr double kProgressStep = 0.3;   // [m]
+  const double arc = route_.leg_start(leg_) + along_;
+  if (arc >= progress_arc_ + kProgressStep) {
+    progress_arc_ = arc;
+    progress_utime_ = now;
+    replanned_stuck_ = false;
+  }
   if (leg.exit_gateway && !gateway_reached_utime_ &&
       (leg.points.back() - pose_->region_from_base.translation()).norm() <= options_.execution.gateway_reach_m)
     gateway_reached_utime_ = now;
@@ -196,10 +204,8 @@ bool Planner::goal_reached() const
   return std::abs(geometry::normalize_angle(pose_->region_from_base.theta() - heading)) <= goal_->heading_tolerance;
 }
 
-bool Planner::replan(int64_t utime, const std::string& why)
+PlanRequest Planner::request_from_pose(int64_t utime) const
 {
-  last_replan_utime_ = utime;
-  replan_due_ = false;
   PlanRequest req;
   req.start_region = pose_->region_id;
   req.start = pose_->region_from_base.translation();
@@ -208,6 +214,49 @@ bool Planner::replan(int64_t utime, const std::string& why)
   req.has_goal_heading = goal_->has_pose && goal_->heading_tolerance < M_PI;
   req.goal_heading = goal_->region_from_goal.theta();
   req.now_s = utime * kUs;
+  return req;
+}
+
+void Planner::handle_stuck(int64_t utime)
+{
+  // Stuck: collision avoidance reports it cannot pass and the robot has made no progress along
+  // the route, both for blocked_after_s (squeezing through a door in reactive mode is progress).
+  const auto& e = options_.execution;
+  if (!blocked_) return;
+  const double stuck_s = (utime - std::max(blocked_since_, progress_utime_)) * kUs;
+  if (stuck_s < e.blocked_after_s || (utime - last_stuck_check_utime_) * kUs < e.min_replan_period_s) return;
+  last_stuck_check_utime_ = utime;
+  const RouteLeg& leg = route_.legs[leg_];
+  const auto* gw = global_.map().gateway(leg.exit_gateway);
+  const double to_gateway = (leg.points.back() - pose_->region_from_base.translation()).norm();
+  if (!gw || to_gateway > e.gateway_reach_m) {
+    // Away from gateways: plan again from here (once per stuck spell).
+    if (!replanned_stuck_) {
+      replanned_stuck_ = true;
+      replan_due_ = true;
+      replan_reason_ = "blocked";
+    }
+    return;
+  }
+  // Before the route's next gateway. With another way round it is left at once (marked closed
+  // for a while, its cost raised); without one it counts as closed only after closed_after_s, so
+  // that people in a doorway are waited for rather than reported as NO_PATH.
+  PlanRequest around = request_from_pose(utime);
+  around.avoid_gateway = gw->id;
+  std::string why;
+  const bool way_round = global_.plan(around, &why).has_value();
+  if (way_round || stuck_s >= e.closed_after_s) {
+    global_.costs().gateway_failed(*gw, utime * kUs);
+    replan_due_ = true;
+    replan_reason_ = "gateway " + std::to_string(gw->id) + (way_round ? " cannot be passed" : " is closed");
+  }
+}
+
+bool Planner::replan(int64_t utime, const std::string& why)
+{
+  last_replan_utime_ = utime;
+  replan_due_ = false;
+  const PlanRequest req = request_from_pose(utime);
   std::string fail;
   auto route = global_.plan(req, &fail, &last_stats_);
   if (!route) {
@@ -242,6 +291,9 @@ bool Planner::replan(int64_t utime, const std::string& why)
   leg_entered_utime_ = utime;
   gateway_reached_utime_ = 0;
   blocked_since_ = utime;   // blocked time counts afresh on the new route
+  progress_utime_ = utime;
+  progress_arc_ = 0;
+  replanned_stuck_ = false;
   path_changed_ = true;
   targets_due_ = true;
   return true;
@@ -287,19 +339,8 @@ Planner::Output Planner::update(int64_t utime)
       }
       if (goal_reached()) {
         finish(GoalStatus::kReached, "reached", utime);
-      } else if (blocked_ && (utime - blocked_since_) * kUs >= e.blocked_after_s && !replan_due_) {
-        // Collision avoidance cannot pass: near the next gateway that gateway is closed.
-        const RouteLeg& leg = route_.legs[leg_];
-        const auto* gw = global_.map().gateway(leg.exit_gateway);
-        const double to_gateway = (leg.points.back() - pose_->region_from_base.translation()).norm();
-        if (gw && to_gateway <= e.gateway_reach_m) {
-          global_.costs().gateway_failed(*gw, utime * kUs);
-          replan_reason_ = "gateway " + std::to_string(gw->id) + " cannot be passed";
-        } else {
-          replan_reason_ = "blocked";
-        }
-        replan_due_ = true;
-        blocked_since_ = utime;
+      } else if (!replan_due_) {
+        handle_stuck(utime);
       }
     }
     if (status_ == GoalStatus::kActive || status_ == GoalStatus::kNoPath) {

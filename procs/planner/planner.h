@@ -7,10 +7,12 @@
 //   - targets 0.5-2 m apart in the odometry frame for collision avoidance, on every new route
 //     and every resend period.
 // Execution monitoring: a gateway crossed is timed and learned (EdgeCosts), so is a region
-// crossed between two gateways. When collision avoidance reports it cannot pass for
-// blocked_after_s near the next gateway of the route, that gateway is marked closed (its cost
-// raised) and the route replanned around it; no other route: NO_PATH, and the goal stays so
-// that it is planned again when the closed mark expires or the map changes. Replans happen at
+// crossed between two gateways. When collision avoidance reports it cannot pass and the robot
+// made no progress for blocked_after_s near the next gateway of the route, that gateway is
+// marked closed (its cost raised) and the route replanned around it if there is another way;
+// with none, the robot waits until closed_after_s before the gateway counts as closed and the
+// goal has NO_PATH; the goal stays, so that it is planned again when the closed mark expires or
+// the map changes. Replans happen at
 // most once per min_replan_period_s; a new route replaces a still valid one only when it is
 // switch_gain cheaper than what is left of the old, so the robot does not oscillate between
 // two routes. Runs on message time (utime), never the wall clock.
@@ -110,6 +112,10 @@ class Planner
   bool track_progress();
   std::optional<TargetList> make_targets(int64_t utime) const;
   bool goal_reached() const;
+  PlanRequest request_from_pose(int64_t utime) const;
+  // Collision avoidance cannot pass and the robot makes no progress: replan, go round the next
+  // gateway, or (no way round, for long enough) take it for closed.
+  void handle_stuck(int64_t utime);
   // Resolves the goal's region and point in the current map (NO_PATH with a reason if it cannot).
   void resolve_goal();
   // Every region and gateway of the route is still in the map.
@@ -132,6 +138,10 @@ class Planner
   bool blocked_ = false;
   int64_t blocked_since_ = 0;
   int64_t last_replan_utime_ = 0;
+  int64_t progress_utime_ = 0;            // when the robot last got kProgressStep further along the route
+  double progress_arc_ = 0;               // [m] how far along the route it was then
+  int64_t last_stuck_check_utime_ = 0;
+  bool replanned_stuck_ = false;          // replanned once in this stuck spell away from gateways
   bool replan_due_ = false;
   std::string replan_reason_;
   bool path_changed_ = false;

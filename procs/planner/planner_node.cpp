@@ -81,13 +81,7 @@ PlannerNode::PlannerNode(runtime::Node& node, PlannerNodeConfig config, PlannerF
 {
   if (!files_.state_file.empty()) restore();
   if (!files_.map.empty()) {
-    rgmap::RgMap map;
-    try {
-      map = rgmap::load_saved_map(files_.map);
-    } catch (const std::exception& e) {
-      throw config::ConfigError(std::string("--map: ") + e.what());
-    }
-    take_map(map, files_.map);
+    take_map(rgmap::load_map_flag(files_.map), files_.map);
   } else if (!config_.options.channels.rg_map.empty()) {
     spdlog::info("no saved map given (--map): waiting for {}", config_.options.channels.rg_map);
   }

@@ -66,6 +66,7 @@ ExecutionOptions load_execution(const config::Config& c, const config::RobotDesc
   e.min_replan_period_s = c.number("min_replan_period_s", e.min_replan_period_s, 0.0, 600.0);
   e.blocked_after_s = c.number("blocked_after_s", e.blocked_after_s, 0.5, 600.0);
   e.gateway_reach_m = c.number("gateway_reach_m", e.gateway_reach_m, 0.0, 20.0);
+  e.closed_after_s = c.number("closed_after_s", e.closed_after_s, e.blocked_after_s, 3600.0);
   e.switch_gain = c.number("switch_gain", e.switch_gain, 0.0, 1.0);
   e.off_route_m = c.number("off_route_m", e.off_route_m, 0.1, 50.0);
   // Targets are re-sent every resend period; a pose older than that many periods stops them.

@@ -14,7 +14,7 @@ namespace rgnav::planner {
 // 1 + wall_cost; in the comfort band beyond that it is 1 + comfort_cost; then 1.
 struct GridOptions
 {
-  double resolution = 0.05;        // [m] cell edge
+  double resolution = 0.1;         // [m] cell edge (a fifth of the robot's width; 0.05 m costs four times the search)
   double robot_radius = 0.26;      // [m] from the robot description
   double clearance_margin = 0.15;  // [m] wanted beyond the radius wherever the passage allows
   double comfort_width = 0.25;     // [m] the cost keeps falling this far beyond radius + margin
@@ -58,6 +58,7 @@ struct ExecutionOptions
   double min_replan_period_s = 1.0;    // [s] at most one replan per this long
   double blocked_after_s = 6.0;        // [s] collision avoidance cannot pass this long: the passage is blocked
   double gateway_reach_m = 2.0;        // [m] blocked this near the next gateway of the route: that gateway is closed
+  double closed_after_s = 30.0;        // [s] ... and with no way round, blocked this long before it counts as closed
   double switch_gain = 0.15;           // a new route replaces the running one only if this much cheaper (share)
   double off_route_m = 1.5;            // [m] farther than this from the route: replan from where the robot is
   double pose_timeout_s = 2.0;         // [s] no pose this long: targets are no longer sent

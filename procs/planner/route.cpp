@@ -56,6 +56,8 @@ Pose2 Route::frame_of(size_t from, size_t to) const
 
 std::vector<RouteTarget> cut_targets(const Route& route, double spacing_min, double spacing_max)
 {
+  constexpr double kBendTolerance = 0.1;   // [m] a skipped bend may lie this far off the line past it
+  constexpr double kMinStep = 0.25;        // [m] targets are never closer than this
   std::vector<RouteTarget> out;
   if (route.empty() || route.legs.front().points.empty()) return out;
   // `last`: the last target (or the start), in the frame of the leg being walked.
@@ -68,7 +70,16 @@ std::vector<RouteTarget> cut_targets(const Route& route, double spacing_min, dou
       arc += (pts[i] - pts[i - 1]).norm();
       const bool end = k + 1 == route.legs.size() && i + 1 == pts.size();
       const double d = arc - last_arc;
-      if (d < spacing_min && !end) continue;
+      // A bend nearer than spacing_min is skipped only when the path hardly bends there: the
+      // straight line past it would cut a corner (a door's jamb) that the path goes round.
+      if (d < spacing_min && !end) {
+        const bool crossing = i + 1 == pts.size();   // the door itself: the line through it matters
+        const Eigen::Vector2d next = i + 1 < pts.size() ? pts[i + 1] : pts[i];
+        const Eigen::Vector2d chord = next - last;
+        const double off = chord.norm() > 1e-9 ? std::abs(chord.x() * (pts[i] - last).y() - chord.y() * (pts[i] - last).x()) / chord.norm()
+                                               : 0.0;
+        if (!(crossing && d >= kMinStep) && !(off > kBendTolerance && d >= kMinStep)) continue;
+      }
       if (d <= 1e-9) continue;
       const int pieces = std::max(1, static_cast<int>(std::ceil(d / spacing_max - 1e-9)));
       for (int j = 1; j <= pieces; ++j) {

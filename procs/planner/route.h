@@ -53,8 +53,10 @@ struct Route
 };
 
 // Targets along the whole route: every bend of the path at least spacing_min (along the path)
-// past the last target, long stretches divided so that targets are at most spacing_max apart;
-// the last target is the route's end. Each is in the frame of the leg it lies in.
+// past the last target, and nearer ones too (down to 0.25 m) where the path bends by more than
+// 0.1 m or crosses a gateway, so that the line between two targets does not cut a corner the
+// path goes round; long stretches divided so that targets are at most spacing_max apart. The
+// last target is the route's end. Each is in the frame of the leg it lies in.
 std::vector<RouteTarget> cut_targets(const Route& route, double spacing_min, double spacing_max);
 
 // Where p (leg `leg`'s frame) projects onto that leg's path, as arc length from its start, not

@@ -450,6 +450,7 @@ TEST(PlannerNode, ShippedConfigHasTheHeadersDefaults)
   EXPECT_EQ(o.execution.min_replan_period_s, d.execution.min_replan_period_s);
   EXPECT_EQ(o.execution.blocked_after_s, d.execution.blocked_after_s);
   EXPECT_EQ(o.execution.gateway_reach_m, d.execution.gateway_reach_m);
+  EXPECT_EQ(o.execution.closed_after_s, d.execution.closed_after_s);
   EXPECT_EQ(o.execution.switch_gain, d.execution.switch_gain);
   EXPECT_EQ(o.execution.off_route_m, d.execution.off_route_m);
   EXPECT_EQ(o.execution.pose_timeout_s, d.execution.pose_timeout_s);
