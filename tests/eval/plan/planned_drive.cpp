@@ -1,0 +1,141 @@
+#include "planned_drive.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include "bench_stats.h"
+#include "geometry/segment2.h"
+#include "office_tour.h"
+
+namespace rgnav::plan_eval {
+
+using geometry::Pose2;
+using localize_eval::BenchWorld;
+
+namespace {
+
+const auto kPeriodUs = std::chrono::microseconds(50'000);
+// The localizer's hand-over (config/localizer.yaml's defaults).
+constexpr double kHandoverReach = 1.5;   // [m] a gateway this near
+constexpr double kBboxMargin = 0.3;      // [m] beyond the region's measurement rectangle
+
+Pose2 to_pose(const sim::Pose2& p) { return Pose2(p.x, p.y, p.theta); }
+
+}  // namespace
+
+PlannedDrive::PlannedDrive(const sim::World& world, const sim::SimulatorOptions& sim_options, const BenchWorld& w,
+                           const ClosedLoopSetup& setup)
+    : w_(w),
+      setup_(setup),
+      sim_(world, sim_options),
+      follower_(setup.lld.follower),
+      ca_(setup.ca),
+      planner_(setup.planner)
+{
+  sim_.set_command_source(&cmd_);
+  planner_.set_map(w.map);
+  truth_ = to_pose(sim_.truth());
+  region_ = w_.frames.region_at(truth_);
+}
+
+void PlannedDrive::step()
+{
+  const auto out = sim_.step(kPeriodUs);
+  for (const auto& c : out.collisions) contacts_.push_back(c.with);
+  if (bench::feed_collision_avoidance(out, ca_, &odometry_)) have_odometry_ = true;
+  for (const auto& o : out.odometry) {
+    truth_ = to_pose(o.world_from_base);
+    true_distance_ = o.true_distance;
+    pose_utime_ = o.utime;
+  }
+  if (!have_odometry_) return;
+  const int64_t utime = sim_.now_utime();
+  const auto now = time::from_utime(utime);
+  if (const int64_t r = region_of(truth_)) region_ = r;
+  const double c0 = localize_eval::thread_cpu();
+  if (region_ != 0) planner_.on_pose({pose_utime_, region_, w_.frames.in_region(region_, truth_), odometry_.pose});
+  const auto mode = ca_.mode();
+  planner_.on_blocked(utime, mode == collision_avoidance::Mode::kBlocked || mode == collision_avoidance::Mode::kReactive);
+  const auto o = planner_.update(utime);
+  planner_cpu_s_ += localize_eval::thread_cpu() - c0;
+  if (o.path && o.path->reason != last_reason_) {
+    last_reason_ = o.path->reason;
+    if (reasons_.size() < 12) reasons_.insert(std::string(planner::to_string(o.path->status)) + ": " + o.path->reason);
+  }
+  if (o.targets) {
+    last_targets_ = *o.targets;
+    collision_avoidance::Targets t;
+    t.goal_id = o.targets->goal_id;
+    t.poses = o.targets->odom_from_target;
+    t.max_speed = o.targets->max_speed;
+    t.final_is_goal = o.targets->final_is_goal;
+    ca_.set_targets(t);
+  }
+  bench::hand_over_trajectory(ca_, follower_, setup_.lld.follower, now, &last_trajectory_id_);
+  const auto& st = follower_.step(now, kPeriod, &odometry_);
+  cmd_.set(utime, {st.command.v, st.command.omega}, setup_.lld.loop.command_deadline_ms * 1000);
+}
+
+int64_t PlannedDrive::region_of(const Pose2& truth) const
+{
+  // As the localizer hands a particle over (Localizer::hand_over): it stays in its region while
+  // on the region's freespace and within its measurement rectangle (+ kBboxMargin); leaving, it
+  // goes to the neighbour beyond a gateway within kHandoverReach that holds the place the same
+  // way (the nearest such gateway here); else it stays.
+  const auto& map = w_.map;
+  const auto holds = [&](int64_t id) {
+    const auto* r = map.region(id);
+    if (!r || !w_.frames.world_from_region.count(id)) return false;
+    const Eigen::Vector2d p = w_.frames.in_region(id, truth).translation();
+    const Eigen::Vector2d m = Eigen::Vector2d::Constant(kBboxMargin);
+    return r->freespace.is_free(p) && (p.array() >= (r->bbox_min - m).array()).all() &&
+           (p.array() <= (r->bbox_max + m).array()).all();
+  };
+  if (region_ == 0) return w_.frames.region_at(truth);
+  if (holds(region_)) return region_;
+  int64_t best = 0;
+  double best_d = kHandoverReach;
+  for (const auto& [id, g] : map.gateways()) {
+    if (g.neutralized || g.region_b == 0) continue;
+    const int64_t a = map.resolve(g.region_a), b = map.resolve(g.region_b);
+    if ((region_ != a && region_ != b) || !w_.frames.world_from_region.count(a)) continue;
+    const int64_t other = region_ == a ? b : a;
+    // The gateway's lines, in the world through region a.
+    const Pose2& world_from_a = w_.frames.world_from_region.at(a);
+    double d = std::numeric_limits<double>::infinity();
+    for (const auto& [pa, pb] : rgmap::gateway_edges(g.gateway_points))
+      d = std::min(d, geometry::point_segment_distance(truth.translation(), world_from_a * pa, world_from_a * pb));
+    if (d <= best_d && holds(other)) {
+      best_d = d;
+      best = other;
+    }
+  }
+  return best ? best : region_;
+}
+
+double PlannedDrive::nearest_person() const
+{
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& p : sim_.people()) best = std::min(best, (p.center - truth_.translation()).norm() - p.radius);
+  return best;
+}
+
+std::vector<std::string> PlannedDrive::take_contacts() { return std::exchange(contacts_, {}); }
+
+std::string PlannedDrive::targets_text(size_t n) const
+{
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2);
+  const Pose2 world_from_odom = truth_ * odometry_.pose.inverse();
+  for (size_t k = 0; k < last_targets_.odom_from_target.size() && k < n; ++k) {
+    const Pose2 t = world_from_odom * last_targets_.odom_from_target[k];
+    out << " (" << t.x() << "," << t.y() << ")";
+  }
+  return out.str();
+}
+
+}  // namespace rgnav::plan_eval
