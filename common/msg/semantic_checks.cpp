@@ -167,4 +167,29 @@ bool semantically_valid(const global_path_t& m, std::string* why)
   return true;
 }
 
+bool semantically_valid(const region_name_request_t& m, std::string* why)
+{
+  if (m.region_id <= 0) return no(why, "region_name_request_t: region_id must be > 0");
+  if (!(m.area >= 0)) return no(why, "region_name_request_t: area must be >= 0");
+  if (std::fabs(m.centroid.x) > 1e4 || std::fabs(m.centroid.y) > 1e4)
+    return no(why, "region_name_request_t: centroid beyond 10 km");
+  if (m.description.size() > 200) return no(why, "region_name_request_t: description longer than 200 characters");
+  return true;
+}
+
+bool semantically_valid(const explorer_status_t& m, std::string* why)
+{
+  if (m.activity.size() > 256) return no(why, "explorer_status_t: activity longer than 256 characters");
+  if (m.current_region < 0 || m.goal_id < 0 || m.goal_region < 0)
+    return no(why, "explorer_status_t: current_region, goal_id and goal_region must be >= 0");
+  if (!(m.current_completeness >= 0 && m.current_completeness <= 1))
+    return no(why, "explorer_status_t: current_completeness outside [0, 1]");
+  if (m.regions < 0 || m.complete_regions < 0 || m.complete_regions > m.regions)
+    return no(why, "explorer_status_t: need 0 <= complete_regions <= regions");
+  if (m.stack_pending < 0 || m.stack_done < 0 || m.stack_set_aside < 0 || m.goals_sent < 0 || m.goals_reached < 0 ||
+      m.goals_failed < 0)
+    return no(why, "explorer_status_t: counts must be >= 0");
+  return true;
+}
+
 }  // namespace rgnav::msg

@@ -31,5 +31,7 @@ bool semantically_valid(const gateway_passed_t& m, std::string* why);
 bool semantically_valid(const region_name_t& m, std::string* why);
 bool semantically_valid(const ca_status_t& m, std::string* why);
 bool semantically_valid(const global_path_t& m, std::string* why);
+bool semantically_valid(const region_name_request_t& m, std::string* why);
+bool semantically_valid(const explorer_status_t& m, std::string* why);
 
 }  // namespace rgnav::msg

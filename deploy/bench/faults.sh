@@ -8,8 +8,8 @@
 #   tests/fault/sim_stack.pmd    the real processes: deploy/launch/sim.pmd's simulated robot
 #                                plus the CAN drive chain, relays in front of their inputs
 # Stateful processes must come back with their state (RG_MAP, the scan mapper's checkpoint,
-# the planner's goal); the localizer and the planner run on a saved map (the two-room map of
-# their tests) and are restarted on it;
+# the planner's goal, the explorer's gateway stack); the localizer and the planner run on a
+# saved map (the two-room map of their tests) and are restarted on it;
 # drive-chain faults must bring commanded and measured velocity to zero. A process not built
 # yet is `pending`. Writes logs/bench/faults.json: one row per (process, fault).
 set -uo pipefail
@@ -37,7 +37,7 @@ run fault_stack tests/fault/fault_stack.pmd
 # processes under test.
 run sim_stack tests/fault/sim_stack.pmd --prepare "$root/tests/fault/sim_stack_configs.sh" \
   --process rgnav_sim --process tour_runner --process vcan_broker --process drive_emulator \
-  --process base_driver --process scan_mapper --process rg_kernel --process localizer --process planner
+  --process base_driver --process scan_mapper --process rg_kernel --process localizer --process planner --process explorer
 rm -rf "$state"
 echo "wrote $out (supervisor logs: logs/bench/faults-*.log)" >&2
 exit $rc

@@ -196,8 +196,11 @@ const std::optional<RegionPath>& GlobalPlanner::region_path(const Arc& arc, int 
     const auto& u = nodes[static_cast<size_t>(a)];
     const auto& v = nodes[static_cast<size_t>(b)];
     // Crossing points reach farther onto the region's free cells than the robot's start or goal.
-    const double reach = options_.global.crossing_reach, own = options_.grid.adapt_distance;
-    if (rp) path = rp->plan(u.point, v.point, nullptr, u.gateway ? reach : own, v.gateway ? reach : own);
+    const auto reach = [&](const SearchNode& n) {
+      if (n.reach > 0) return n.reach;
+      return n.gateway ? options_.global.crossing_reach : options_.grid.adapt_distance;
+    };
+    if (rp) path = rp->plan(u.point, v.point, nullptr, reach(u), reach(v), v.clear_of_walls);
     it = cache.emplace(key, std::move(path)).first;
     if (stats) {
       stats->region_ms += ms_since(t0);
@@ -220,14 +223,16 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
   if (!is_live(sr)) return fail("start region " + std::to_string(request.start_region) + " is not in the map");
   if (!is_live(gr)) return fail("goal region " + std::to_string(request.goal_region) + " is not in the map");
   if (!region_planner(sr)->standable(request.start)) return fail("the start is blocked in region " + std::to_string(sr));
-  if (!region_planner(gr)->standable(request.goal)) return fail("the goal is blocked in region " + std::to_string(gr));
+  if (!region_planner(gr)->standable(request.goal, request.goal_reach))
+    return fail("the goal is blocked in region " + std::to_string(gr));
 
   // Search nodes: the graph's, then the start and the goal, joined to the crossing points of
   // their regions (and to each other in one region).
   std::vector<SearchNode> nodes = nodes_;
   const int start = static_cast<int>(nodes.size()), goal = start + 1;
   nodes.push_back({sr, 0, request.start, map_.region(sr)->map_from_region * request.start});
-  nodes.push_back({gr, 0, request.goal, map_.region(gr)->map_from_region * request.goal});
+  nodes.push_back({gr, 0, request.goal, map_.region(gr)->map_from_region * request.goal, request.goal_reach,
+                   request.goal_reach > 0});
   std::vector<Arc> arcs = arcs_;
   auto join = [&](int n, int64_t region) {
     const auto it = nodes_of_region_.find(region);

@@ -34,6 +34,10 @@ struct PlanRequest
   Eigen::Vector2d goal{0, 0};      // goal region frame
   double goal_heading = 0;         // [rad] goal region frame
   bool has_goal_heading = false;
+  // The goal may lie this far [m] from the region's free cells (> 0; else GridOptions::
+  // adapt_distance), in unknown space reached straight from the nearest free cell through no
+  // line of the region's map (NavGoal::beyond_known).
+  double goal_reach = -1;
   double now_s = 0;                // message time, for closed gateways
   int64_t avoid_gateway = 0;       // a gateway not to cross (is there a way round it?)
 };
@@ -85,6 +89,8 @@ class GlobalPlanner
     int64_t gateway = 0;           // 0: the start or goal
     Eigen::Vector2d point{0, 0};   // region frame
     Eigen::Vector2d map_point{0, 0};
+    double reach = -1;             // [m] onto the region's free cells (< 0: by kind, see region_path)
+    bool clear_of_walls = false;   // a goal past the freespace: reached through no wall
   };
   using PathKey = std::tuple<int64_t, int, int>;   // region, from node, to node (from < to)
 

@@ -213,6 +213,7 @@ PlanRequest Planner::request_from_pose(int64_t utime) const
   req.goal = goal_point_;
   req.has_goal_heading = goal_->has_pose && goal_->heading_tolerance < M_PI;
   req.goal_heading = goal_->region_from_goal.theta();
+  if (goal_->beyond_known) req.goal_reach = options_.grid.beyond_known_reach;
   req.now_s = utime * kUs;
   return req;
 }
@@ -311,8 +312,18 @@ std::optional<TargetList> Planner::make_targets(int64_t utime) const
   // it), reaching targets_ahead_m past the robot, at least two while there are two.
   constexpr double kPassDistance = 0.3;
   const double progress = route_.leg_start(leg_) + along_;
-  // Leg frame -> odometry frame through the pose (both at the pose's time).
-  const Pose2 odom_from_leg = pose_->odom_from_base * pose_->region_from_base.inverse();
+  // Leg frame -> odometry frame through the pose (both at the pose's time). The pose may be in
+  // another region than the leg's while a replan is due (the map's current region changed, or
+  // the robot left the route): then through the map frame, where both regions are placed.
+  Pose2 odom_from_leg = pose_->odom_from_base * pose_->region_from_base.inverse();
+  const int64_t leg_region = route_.legs[leg_].region_id;
+  if (pose_->region_id != leg_region) {
+    const auto& map = global_.map();
+    const auto* here = map.region(map.resolve(pose_->region_id));
+    const auto* there = map.region(map.resolve(leg_region));
+    if (!here || !there) return t;   // a region gone from the map: nothing sensible until the replan
+    odom_from_leg = odom_from_leg * here->map_from_region.inverse() * there->map_from_region;
+  }
   for (size_t i = 0; i < route_.targets.size(); ++i) {
     const RouteTarget& rt = route_.targets[i];
     if (rt.arc <= progress + kPassDistance && i + 1 < route_.targets.size()) continue;

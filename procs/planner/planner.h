@@ -40,6 +40,7 @@ struct NavGoal
   geometry::Pose2 region_from_goal;
   double position_tolerance = 0.3;   // [m]
   double heading_tolerance = 3.2;    // [rad] >= pi: any heading
+  bool beyond_known = false;         // the goal may lie in unknown space past the region's freespace (exploring)
 };
 
 struct RobotPose

@@ -17,6 +17,7 @@ NavGoal to_nav_goal(const nav_goal_t& m)
   g.region_from_goal = msg::to_pose2(m.region_from_goal);
   g.position_tolerance = m.position_tolerance;
   g.heading_tolerance = m.heading_tolerance;
+  g.beyond_known = m.beyond_known;
   return g;
 }
 
@@ -31,6 +32,7 @@ nav_goal_t to_msg(const NavGoal& goal, int64_t utime)
   m.region_from_goal = msg::to_msg(goal.region_from_goal);
   m.position_tolerance = goal.position_tolerance;
   m.heading_tolerance = goal.heading_tolerance;
+  m.beyond_known = goal.beyond_known;
   m.cancel = false;
   return m;
 }

@@ -21,13 +21,6 @@ namespace rgnav::planner {
 namespace {
 
 constexpr double kUs = 1e-6;
-// utime beyond this is refused, so that differences of stamps cannot overflow.
-constexpr int64_t kMaxStamp = int64_t{1} << 62;
-bool stamp_ok(int64_t v) { return v > 0 && v < kMaxStamp; }
-// A stamp this far ahead of the robot's time moves it only when a second input confirms it
-// (within kConfirmUs of the first): a corrupted stamp would otherwise age every pose at once.
-constexpr int64_t kMaxJumpUs = 5'000'000;
-constexpr int64_t kConfirmUs = 1'000'000;
 // No robot is 10 km from its region's origin: such a pose is a corrupted one.
 constexpr double kMaxCoordinate = 1e4;
 // A final status (reached, cancelled) is repeated this many times (once a second) after its
@@ -180,42 +173,30 @@ void PlannerNode::take_map(const rgmap::RgMap& received, const std::string& sour
   planner_.set_map(map);
   has_map_ = true;
   map_version_ = map.version;
+  if (slam_before_map_) {
+    place_slam_pose(*slam_before_map_);
+    slam_before_map_.reset();
+  }
   spdlog::log(first ? spdlog::level::info : spdlog::level::debug, "map version {} from {}: {} regions, {} gateways",
               map.version, source, map.regions().size(), map.gateways().size());
   if (resume_goal_) {
     const NavGoal g = *resume_goal_;
     resume_goal_.reset();
-    planner_.set_goal(g, robot_utime_ > 0 ? robot_utime_ : last_saved_utime_);
+    planner_.set_goal(g, clock_.now() > 0 ? clock_.now() : last_saved_utime_);
     resumed_goal_ = g;
     spdlog::info("resuming goal {} ({}) from the saved state", g.goal_id,
                  g.region_id ? "region " + std::to_string(g.region_id) : "'" + g.region_name + "'");
     // Said at once, before the first pose: the planner's time is then the one it was saved at.
-    if (robot_utime_ == 0 && last_saved_utime_ > 0) step_at(last_saved_utime_);
+    if (clock_.now() == 0 && last_saved_utime_ > 0) step_at(last_saved_utime_);
   }
   step();
 }
 
 bool PlannerNode::observe_time(int64_t utime, const std::string& channel)
 {
-  if (!stamp_ok(utime)) {
-    node_.drops().drop(channel, "utime out of range");
-    return false;
-  }
-  if (robot_utime_ == 0 || utime <= robot_utime_ + kMaxJumpUs) {
-    robot_utime_ = std::max(robot_utime_, utime);
-    held_jump_utime_ = 0;
-    return true;
-  }
-  if (held_jump_utime_ != 0 && std::llabs(utime - held_jump_utime_) <= kConfirmUs) {
-    spdlog::warn("robot time jumped ahead by {:.1f} s (confirmed by {})", static_cast<double>(utime - robot_utime_) * kUs,
-                 channel);
-    robot_utime_ = utime;
-    held_jump_utime_ = 0;
-    return true;
-  }
-  held_jump_utime_ = utime;
-  node_.drops().drop(channel, fmt::format("stamp {:.1f} s ahead of the robot's time (used once another input confirms it)",
-                                          static_cast<double>(utime - robot_utime_) * kUs));
+  const std::string why = clock_.observe(utime, channel);
+  if (why.empty()) return true;
+  node_.drops().drop(channel, why);
   return false;
 }
 
@@ -238,8 +219,17 @@ void PlannerNode::on_slam_pose(const slam_pose_t& m)
   if (!observe_time(m.utime, ch)) return;
   if (!pose_plausible(m.map_from_base) || !pose_plausible(m.map_from_odom))
     return node_.drops().drop(ch, "pose beyond 10 km or |theta| > 100 rad");
-  // While mapping, the robot is in the RG map's current region.
-  if (!has_map_) return;
+  // While mapping, the robot is in the RG map's current region. Before the first map the pose
+  // is kept for it: a robot standing at its start gets no other from the scan mapper.
+  if (!has_map_) {
+    slam_before_map_ = m;
+    return;
+  }
+  place_slam_pose(m);
+}
+
+void PlannerNode::place_slam_pose(const slam_pose_t& m)
+{
   const rgmap::RgMap& map = planner_.global().map();
   const int64_t region = map.resolve(map.current_region);
   const rgmap::Region* r = region ? map.region(region) : nullptr;
@@ -285,7 +275,7 @@ void PlannerNode::on_goal(const nav_goal_t& m)
 {
   const std::string& ch = config_.options.channels.nav_goal;
   // Operators stamp with wall time: the robot's time decides (it is the planner's clock).
-  const int64_t t = robot_utime_ > 0 ? robot_utime_ : m.utime;
+  const int64_t t = clock_.now() > 0 ? clock_.now() : m.utime;
   if (m.cancel) {
     const auto& running = planner_.goal();
     const int64_t id = m.goal_id != 0 ? m.goal_id : (running ? running->goal_id : 0);
@@ -344,12 +334,12 @@ void PlannerNode::on_ca_status(const ca_status_t& m)
   const auto& goal = planner_.goal();
   // Only collision avoidance's state on this planner's targets says anything about its route.
   if (!goal || m.goal_id != goal->goal_id) return;
-  planner_.on_blocked(robot_utime_, cannot_pass(m));
+  planner_.on_blocked(clock_.now(), cannot_pass(m));
 }
 
 void PlannerNode::step()
 {
-  if (robot_utime_ > 0) step_at(robot_utime_);
+  if (clock_.now() > 0) step_at(clock_.now());
 }
 
 void PlannerNode::step_at(int64_t utime)
@@ -383,7 +373,7 @@ void PlannerNode::republish_path()
     --republish_after_end_;
   }
   PathReport r = *last_path_;
-  if (robot_utime_ > r.utime) r.utime = robot_utime_;
+  if (clock_.now() > r.utime) r.utime = clock_.now();
   if (active && r.status == GoalStatus::kActive && last_pose_)
     if (const auto left = remaining_s(r.route, *last_pose_)) r.remaining_s = *left;
   node_.publish(config_.options.channels.global_path, to_msg(r, r.route.map_version ? r.route.map_version : map_version_));
@@ -397,12 +387,12 @@ void PlannerNode::save(bool now)
   if (!now) {
     if (!goal_dirty_ && !learned) return;
     if (std::chrono::steady_clock::now() - last_save_wall_ < kMinSaveGap) return;   // the timer saves it soon
-    const bool costs_due = learned && (robot_utime_ < last_saved_utime_ ||
-                                       static_cast<double>(robot_utime_ - last_saved_utime_) * kUs >= config_.options.persist_period_s);
+    const bool costs_due = learned && (clock_.now() < last_saved_utime_ ||
+                                       static_cast<double>(clock_.now() - last_saved_utime_) * kUs >= config_.options.persist_period_s);
     if (!goal_dirty_ && !costs_due) return;
   }
   PlannerState s;
-  s.utime = robot_utime_ > 0 ? robot_utime_ : last_saved_utime_;
+  s.utime = clock_.now() > 0 ? clock_.now() : last_saved_utime_;
   s.costs = planner_.global().costs().to_json();
   s.names = names_;
   if (resume_goal_) s.goal = resume_goal_;
@@ -439,7 +429,7 @@ void PlannerNode::report()
       text += ": " + last_path_->reason;
   }
   if (!has_map_) text += "; no map yet";
-  const bool pose_stale = !last_pose_ || static_cast<double>(robot_utime_ - last_pose_->utime) * kUs >
+  const bool pose_stale = !last_pose_ || static_cast<double>(clock_.now() - last_pose_->utime) * kUs >
                                              config_.options.planner.execution.pose_timeout_s;
   if (goal && status == GoalStatus::kActive && pose_stale) text += "; no fresh pose";
   if (save_failed_) text += "; saving the state fails";

@@ -30,6 +30,7 @@
 #include "rgnav/rg_map_t.hpp"
 #include "rgnav/slam_pose_t.hpp"
 #include "runtime/node.h"
+#include "time/robot_clock.h"
 
 namespace rgnav::planner {
 
@@ -66,7 +67,7 @@ class PlannerNode
   const std::optional<NavGoal>& resumed_goal() const { return resumed_goal_; }
   const std::map<int64_t, std::string>& names() const { return names_; }
   int64_t saves() const { return saves_; }
-  int64_t robot_utime() const { return robot_utime_; }
+  int64_t robot_utime() const { return clock_.now(); }
   // Runs the planner at the newest robot time and publishes what it decides (tests; the node
   // does this on its own on every pose and every 100 ms).
   void step();
@@ -76,6 +77,7 @@ class PlannerNode
   void take_map(const rgmap::RgMap& map, const std::string& source);
   void on_pose(const region_pose_t& m);
   void on_slam_pose(const slam_pose_t& m);
+  void place_slam_pose(const slam_pose_t& m);
   void on_odometry(const odometry_t& m);
   void on_goal(const nav_goal_t& m);
   void on_region_name(const region_name_t& m);
@@ -98,12 +100,12 @@ class PlannerNode
   bool has_map_ = false;
   int64_t map_version_ = -1;
   std::map<int64_t, std::string> names_;        // the operator's names, laid over every map
-  int64_t robot_utime_ = 0;
-  int64_t held_jump_utime_ = 0;                 // a stamp far ahead, waiting for confirmation
+  time::RobotClock clock_;                      // message time from the inputs' stamps
   int64_t last_odometry_seq_ = -1;
   int64_t last_odometry_utime_ = 0;
   int64_t last_carried_utime_ = 0;
   std::optional<RobotPose> last_pose_;
+  std::optional<slam_pose_t> slam_before_map_;  // the scan mapper's pose heard before the first map
   std::optional<NavGoal> resume_goal_;          // from the state file, until a map is there
   std::optional<NavGoal> resumed_goal_;
   std::optional<PathReport> last_path_;         // republished while the goal is pursued

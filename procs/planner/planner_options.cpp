@@ -27,6 +27,8 @@ GridOptions load_grid(const config::Config& c, const config::RobotDescription& r
   g.adapt_distance = c.number("adapt_distance_m", g.adapt_distance, 0.0, 5.0);
   g.neighbour_margin = c.number("neighbour_margin_m", g.neighbour_margin, 0.0, 10.0);
   g.passage_depth = c.number("passage_depth_m", g.passage_depth, 0.0, 5.0);
+  g.beyond_known_reach = c.number("beyond_known_reach_m", g.beyond_known_reach, g.adapt_distance, 10.0);
+  g.unknown_overlap = c.number("unknown_overlap_m", g.unknown_overlap, 0.0, g.robot_radius);
   return g;
 }
 

@@ -25,6 +25,9 @@ struct GridOptions
   double adapt_distance = 0.6;     // [m] a start or goal on a blocked cell moves to the nearest free one this near
   double neighbour_margin = 1.0;   // [m] the grid reaches this far beyond the region, into its neighbours' freespace
   double passage_depth = 0.5;      // [m] a door's opening is free this far each side of its line
+  double beyond_known_reach = 1.5; // [m] a goal sent beyond_known may lie this far from the region's free cells
+  double unknown_overlap = 0.15;   // [m] the robot's body may reach this far into space the region has not seen (never
+                                   // into a wall): freshly mapped space is ragged at its edges (0: unknown is a wall)
 };
 
 // Global planning over the RG graph (diss. 5.4): edge costs are times [s]; a region edge starts

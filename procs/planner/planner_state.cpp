@@ -1,10 +1,9 @@
 #include "planner/planner_state.h"
 
 #include <cmath>
-#include <filesystem>
 #include <stdexcept>
 
-#include "persist/atomic_file.h"
+#include "persist/json_state.h"
 #include "rgmap/region_name.h"
 
 namespace rgnav::planner {
@@ -22,7 +21,8 @@ nlohmann::json goal_to_json(const NavGoal& g)
           {"has_pose", g.has_pose},
           {"region_from_goal", {g.region_from_goal.x(), g.region_from_goal.y(), g.region_from_goal.theta()}},
           {"position_tolerance", g.position_tolerance},
-          {"heading_tolerance", g.heading_tolerance}};
+          {"heading_tolerance", g.heading_tolerance},
+          {"beyond_known", g.beyond_known}};
 }
 
 double finite(const nlohmann::json& j, const char* key)
@@ -46,6 +46,7 @@ NavGoal goal_from_json(const nlohmann::json& j)
   g.region_from_goal = geometry::Pose2(x, y, th);
   g.position_tolerance = finite(j, "position_tolerance");
   g.heading_tolerance = finite(j, "heading_tolerance");
+  g.beyond_known = j.value("beyond_known", false);   // absent in state files written before it existed
   // The same rules as a goal on NAV_GOAL (semantic_checks.cpp): a saved goal is one that was taken.
   if (g.goal_id <= 0) throw std::invalid_argument("goal_id must be > 0");
   if (g.region_id < 0 || (g.region_id == 0 && g.region_name.empty())) throw std::invalid_argument("goal needs a region id or name");
@@ -59,32 +60,21 @@ NavGoal goal_from_json(const nlohmann::json& j)
 void save_planner_state(const std::string& path, const PlannerState& s)
 {
   nlohmann::json j;
-  j["schema"] = kSchema;
-  j["schema_version"] = kSchemaVersion;
   j["utime"] = s.utime;
   j["costs"] = s.costs;
   auto names = nlohmann::json::array();
   for (const auto& [id, name] : s.names) names.push_back({{"region", id}, {"name", name}});
   j["names"] = names;
   j["goal"] = s.goal ? goal_to_json(*s.goal) : nlohmann::json();
-  const auto dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty()) std::filesystem::create_directories(dir);
-  persist::write_atomically(path, j.dump(1));
+  persist::write_json_state(path, kSchema, kSchemaVersion, std::move(j));
 }
 
 std::optional<PlannerState> load_planner_state(const std::string& path)
 {
-  std::optional<std::string> text;
+  const auto doc = persist::read_json_state(path, kSchema, kSchemaVersion, "a planner");
+  if (!doc) return std::nullopt;
+  const nlohmann::json& j = *doc;
   try {
-    text = persist::read_checked(path);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(e.what());   // CorruptFile names the file and the defect
-  }
-  if (!text) return std::nullopt;
-  try {
-    const auto j = nlohmann::json::parse(*text);
-    if (j.at("schema").get<std::string>() != kSchema) throw std::invalid_argument("schema is not " + std::string(kSchema));
-    if (j.at("schema_version").get<int>() != kSchemaVersion) throw std::invalid_argument("unknown schema_version");
     PlannerState s;
     s.utime = j.at("utime").get<int64_t>();
     s.costs = j.at("costs");
@@ -99,7 +89,7 @@ std::optional<PlannerState> load_planner_state(const std::string& path)
     if (!j.at("goal").is_null()) s.goal = goal_from_json(j.at("goal"));
     return s;
   } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": not a planner state: " + e.what());
+    throw persist::not_this_state(path, "a planner", e);
   }
 }
 

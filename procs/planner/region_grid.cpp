@@ -93,6 +93,14 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
   for (const auto& seg : region.segments) draw(free_mask, seg.a, seg.b);
   cv::Mat dist;
   cv::distanceTransform(free_mask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  // The walls alone (and the grid's border): the robot's body may reach unknown_overlap into
+  // space the region has not seen, never into a wall.
+  cv::Mat walls(height_, width_, CV_8UC1, cv::Scalar(255)), wall_dist;
+  if (options_.unknown_overlap > 0) {
+    cv::rectangle(walls, cv::Rect(0, 0, width_, height_), cv::Scalar(0), 1);
+    for (const auto& seg : region.segments) draw(walls, seg.a, seg.b);
+    cv::distanceTransform(walls, wall_dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  }
 
   // Cost levels: 0 in open space; 1 in the comfort band [r + margin, r + margin + comfort)
   // (a slight push away from walls); 2 .. levels-1 split [r, r + margin) evenly, rising to
@@ -113,8 +121,13 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
       const size_t i = index(Cell(x, y));
       const float c = dist.at<float>(y, x) * static_cast<float>(resolution_);
       clearance_[i] = c;
-      if (c < r) {
+      const bool blocked = options_.unknown_overlap > 0
+                               ? c < r - options_.unknown_overlap || wall_dist.at<float>(y, x) * resolution_ < r
+                               : c < r;
+      if (blocked) {
         level_[i] = kBlocked;
+      } else if (c < r) {
+        level_[i] = static_cast<uint8_t>(levels - 1);   // the body over unseen space: the dearest level
       } else if (c >= r + m + w) {
         level_[i] = 0;
       } else if (c >= r + m) {

@@ -1,8 +1,10 @@
 // A region rendered for path planning (diss. 5.4): its 2D line map drawn into an occupancy grid
 // with Bresenham's algorithm, everything its freespace bitmap does not call free counted as
 // occupied (unknown is not free), and the distance of every cell to the nearest occupied one.
-// A cell nearer than the robot radius is blocked; nearer than radius + margin + comfort width it
-// costs more per metre, in a few quantised levels (level 0: no extra cost), so that the path
+// A cell nearer a wall than the robot radius, or nearer unknown space than the radius less
+// unknown_overlap (freshly mapped space is ragged at its edges), is blocked; nearer than
+// radius + margin + comfort width to either it costs more per metre, in a few quantised levels
+// (level 0: no extra cost; the body over unknown space: the dearest), so that the path
 // keeps away from walls where the passage allows and wide passages are preferred to narrow ones.
 // The grid is axis-aligned with the region frame. It reaches neighbour_margin beyond the region
 // and sees the neighbouring regions there (through the gateways' transforms): their free cells

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/segment2.h"
+
 namespace rgnav::planner {
 
 namespace {
@@ -17,6 +19,7 @@ RegionPlanner::RegionPlanner(const rgmap::Region& region, const GridOptions& opt
                              const std::vector<std::vector<Eigen::Vector2d>>& gateways)
     : grid_(region, options, neighbours, gateways), tree_(grid_, kMaxQuadCells)
 {
+  for (const auto& s : region.segments) walls_.emplace_back(s.a, s.b);
 }
 
 bool RegionPlanner::standable(const Eigen::Vector2d& p, double reach) const
@@ -25,7 +28,7 @@ bool RegionPlanner::standable(const Eigen::Vector2d& p, double reach) const
 }
 
 std::optional<RegionPath> RegionPlanner::plan(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::string* why,
-                                              double from_reach, double to_reach) const
+                                              double from_reach, double to_reach, bool to_clear_of_walls) const
 {
   auto fail = [&](const char* text) -> std::optional<RegionPath> {
     if (why) *why = text;
@@ -35,6 +38,11 @@ std::optional<RegionPath> RegionPlanner::plan(const Eigen::Vector2d& from, const
   if (!start) return fail("start is blocked");
   const auto goal = grid_.nearest_free(grid_.cell_of(to), to_reach);
   if (!goal) return fail("goal is blocked");
+  if (to_clear_of_walls && *goal != grid_.cell_of(to)) {
+    const Eigen::Vector2d g = grid_.center_of(*goal);
+    for (const auto& [a, b] : walls_)
+      if (geometry::segments_cross(g, to, a, b)) return fail("goal is behind a wall");
+  }
   QuadSearchStats stats;
   const auto cells = tree_.search(*start, *goal, &stats);
   if (!cells) return fail("no way inside the region");

@@ -32,9 +32,12 @@ class RegionPlanner
                 const std::vector<std::vector<Eigen::Vector2d>>& gateways = {});
 
   // A path from `from` to `to`; each end may be moved onto a free cell up to its reach [m]
-  // (< 0: GridOptions::adapt_distance). nullopt with *why set when there is none.
+  // (< 0: GridOptions::adapt_distance). With to_clear_of_walls the straight piece from the
+  // free cell to a moved `to` must cross no line of the region's map (a goal in unknown space
+  // past the freespace, reached through an opening, not through a wall). nullopt with *why set
+  // when there is none.
   std::optional<RegionPath> plan(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::string* why = nullptr,
-                                 double from_reach = -1, double to_reach = -1) const;
+                                 double from_reach = -1, double to_reach = -1, bool to_clear_of_walls = false) const;
   const RegionGrid& grid() const { return grid_; }
   const FramedQuadtree& tree() const { return tree_; }
   // Whether the robot can stand at p (free, or adaptable onto a free cell within reach).
@@ -45,6 +48,7 @@ class RegionPlanner
 
   RegionGrid grid_;
   FramedQuadtree tree_;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> walls_;   // the region's line map
 };
 
 }  // namespace rgnav::planner

@@ -12,7 +12,8 @@ using Eigen::Vector2d;
 
 namespace {
 
-// [m] neighbouring end points farther apart than this are a depth jump: no free wedge between.
+// [m] neighbouring end points farther apart than this are a depth jump: the free wedge between
+// them reaches only as far as the nearer one.
 constexpr double kMaxWedgeGap = 0.5;
 
 uint64_t cell_key(int32_t x, int32_t y) { return (static_cast<uint64_t>(static_cast<uint32_t>(x)) << 32) | static_cast<uint32_t>(y); }
@@ -57,8 +58,8 @@ void for_cells_in_triangle(const Vector2d& o, const Vector2d& a, const Vector2d&
 }
 
 // Carves the free wedges of one scan (points in beam order, region frame) into `cells`:
-// neighbouring in-range beams that do not cross a gateway and whose end points are close
-// (no depth jump between them) bound a free triangle; the end points' cells stay unmarked.
+// neighbouring in-range beams that do not cross a gateway bound a free triangle (cut at the
+// nearer end point where they jump in depth); the end points' cells stay unmarked.
 template <class F>
 void carve_scan(const Vector2d& o, const std::vector<Vector2d>& pts, const std::vector<bool>& usable, double res,
                 double max_gap, double robot_radius, F f)
@@ -70,10 +71,18 @@ void carve_scan(const Vector2d& o, const std::vector<Vector2d>& pts, const std::
     for (int32_t x = ox - r; x <= ox + r; ++x)
       if ((Vector2d((x + 0.5) * res, (y + 0.5) * res) - o).norm() <= robot_radius) f(x, y);
   for (size_t i = 0; i + 1 < pts.size(); ++i) {
-    if (!usable[i] || !usable[i + 1] || (pts[i] - pts[i + 1]).norm() > max_gap) continue;
-    // Shrink the wedge by half a cell so the wall cells at its far edge are not marked free.
-    const Vector2d a = pts[i] - (pts[i] - o).normalized() * (0.5 * res);
-    const Vector2d b = pts[i + 1] - (pts[i + 1] - o).normalized() * (0.5 * res);
+    if (!usable[i] || !usable[i + 1]) continue;
+    const Vector2d da = pts[i] - o, db = pts[i + 1] - o;
+    // Shrink the wedge by half a cell so the wall cells at its far edge are not marked free. At
+    // a depth jump (an edge in front of something farther) both beams saw free space up to the
+    // nearer end point, so the wedge is free that far: without it every jump would leave a thin
+    // unknown sliver from the robot outward, and a planner that keeps off unknown space would
+    // find the region cut into strips.
+    double ra = da.norm(), rb = db.norm();
+    if ((pts[i] - pts[i + 1]).norm() > max_gap) ra = rb = std::min(ra, rb);
+    if (ra <= 0.5 * res || rb <= 0.5 * res) continue;
+    const Vector2d a = o + da.normalized() * (ra - 0.5 * res);
+    const Vector2d b = o + db.normalized() * (rb - 0.5 * res);
     for_cells_in_triangle(o, a, b, res, f);
   }
 }
@@ -102,10 +111,29 @@ void RegionBuilder::remove_scan(int64_t scan_id)
 
 void RegionBuilder::add_incrementally(const StoredScan& scan) const
 {
+  add_lines(scan);
+  carve(scan);
+}
+
+bool RegionBuilder::in_free_space(const Vector2d& p) const
+{
+  const double res = options_.freespace_resolution;
+  const int32_t cx = cell_index(p.x(), res), cy = cell_index(p.y(), res);
+  for (int32_t y = cy - 2; y <= cy + 2; ++y)
+    for (int32_t x = cx - 2; x <= cx + 2; ++x)
+      if (!free_cells_.count(cell_key(x, y))) return false;
+  return true;
+}
+
+void RegionBuilder::add_lines(const StoredScan& scan) const
+{
   const Vector2d o = scan.region_from_laser.translation();
   std::vector<Vector2d> pts;
   pts.reserve(scan.laser_points.size());
-  for (const auto& lp : scan.laser_points) pts.push_back(scan.region_from_laser * lp);
+  for (const auto& lp : scan.laser_points) {
+    const Vector2d p = scan.region_from_laser * lp;
+    if (!options_.drop_points_in_free_space || !in_free_space(p)) pts.push_back(p);
+  }
   // Tolerances follow the scan's own range noise (line_map.h): coarse logs keep walls whole.
   const double noise = estimate_range_noise(pts, options_.extract.max_point_gap);
   const auto correction = align_to_line_map(pts, segments_, options_.align);
@@ -114,6 +142,14 @@ void RegionBuilder::add_incrementally(const StoredScan& scan) const
   auto circles = circles_in_scan({o, pts}, options_.objects);
   if (circles.empty()) circle_observations_.erase(scan.scan_id);
   else circle_observations_[scan.scan_id] = std::move(circles);
+}
+
+void RegionBuilder::carve(const StoredScan& scan) const
+{
+  const Vector2d o = scan.region_from_laser.translation();
+  std::vector<Vector2d> pts;
+  pts.reserve(scan.laser_points.size());
+  for (const auto& lp : scan.laser_points) pts.push_back(scan.region_from_laser * lp);
   lo_ = lo_.cwiseMin(o);
   hi_ = hi_.cwiseMax(o);
   std::vector<bool> usable(pts.size());
@@ -136,7 +172,9 @@ void RegionBuilder::refresh() const
   circle_observations_.clear();
   lo_ = Vector2d::Constant(std::numeric_limits<double>::max());
   hi_ = -lo_;
-  for (const auto& [id, s] : scans_) add_incrementally(s);
+  // All the free space first, so that what moved is known wherever it was seen empty, at any time.
+  for (const auto& [id, s] : scans_) carve(s);
+  for (const auto& [id, s] : scans_) add_lines(s);
   stale_ = false;
 }
 

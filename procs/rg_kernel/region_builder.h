@@ -47,6 +47,11 @@ struct RegionBuildOptions
   // [m] the exact freespace leaves out what the robot only saw through a passage narrower than
   // this (freespace_trim.h); 0: off
   double freespace_min_passage = 1.0;
+  // Scan points in space the region has seen free all around them (the 5 x 5 freespace cells
+  // about the point) are something that moved there — a person walking, a door swung — and no
+  // part of the line map or its 2D objects (the map is of the static structure; collision
+  // avoidance sees what moves). A wall's point always has unseen cells behind it.
+  bool drop_points_in_free_space = true;
   ObjectOptions objects;               // 2D objects (rectangles, circles), diss. 3.1-3.2
   DoorwayOptions doorways;             // the exact freespace also ends at doorways of the line map never crossed
 };
@@ -109,6 +114,12 @@ class RegionBuilder
 
  private:
   void add_incrementally(const StoredScan& scan) const;
+  // The two halves of add_incrementally: the scan's lines and circles merged into the caches
+  // (from its points not in free space seen so far), and its free wedges carved.
+  void add_lines(const StoredScan& scan) const;
+  void carve(const StoredScan& scan) const;
+  // True if the 5 x 5 freespace cells about p (region frame) are all free.
+  bool in_free_space(const Eigen::Vector2d& p) const;
   void refresh() const;
   void fill_objects(rgmap::Region* region) const;
   void fill_region(rgmap::Region* region, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,

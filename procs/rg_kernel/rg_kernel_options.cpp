@@ -77,6 +77,7 @@ KernelOptions load_kernel_options(const config::Config& cfg, const config::Robot
   c.build.extract.max_point_gap = lines.number("max_point_gap_m", c.build.extract.max_point_gap, 0.01, 5.0);
   c.build.extract.min_points = static_cast<int>(lines.integer("min_points", c.build.extract.min_points, 2, 1000));
   c.build.extract.min_length = lines.number("min_length_m", c.build.extract.min_length, 0.0, 10.0);
+  c.build.drop_points_in_free_space = lines.boolean("drop_points_in_free_space", c.build.drop_points_in_free_space);
   const auto fs = cfg.section("freespace");
   c.build.freespace_resolution = fs.number("resolution_m", c.build.freespace_resolution, 0.02, 1.0);
   c.build.freespace_max_range = fs.number("max_range_m", c.build.freespace_max_range, 1.0, 80.0);

@@ -5,6 +5,7 @@
 #include "bus/typed.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "rgnav/aligned_scan_t.hpp"
+#include "rgnav/explorer_status_t.hpp"
 #include "rgnav/global_path_t.hpp"
 #include "rgnav/odometry_t.hpp"
 #include "rgnav/rg_map_t.hpp"
@@ -83,6 +84,12 @@ BusObserver::BusObserver(const std::string& url, const std::string& host, const 
   bus::subscribe<global_path_t>(
       bus_, channels.global_path,
       [this](const global_path_t& m, const bus::RawMessage&) { path_log_.push_back({Clock::now(), m.goal_id, m.status}); },
+      &drops_);
+  bus::subscribe<explorer_status_t>(
+      bus_, channels.explorer_status,
+      [this](const explorer_status_t& m, const bus::RawMessage&) {
+        explorer_log_.push_back({Clock::now(), m.phase, int64_t{m.stack_pending} + m.stack_done + m.stack_set_aside, m.goals_sent});
+      },
       &drops_);
 }
 

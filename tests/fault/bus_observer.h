@@ -2,7 +2,7 @@
 // between heartbeats, dropped-input counts), every SUPERVISOR_STATUS (a timeline of process
 // states), the state counters probes publish, raw copies of each process's inputs (to
 // flood them with), the drive chain (BASE_CMD, ODOMETRY), and the stateful processes' published
-// state (RG_MAP, ALIGNED_SCAN, the planner's GLOBAL_PATH).
+// state (RG_MAP, ALIGNED_SCAN, the planner's GLOBAL_PATH, the explorer's EXPLORER_STATUS).
 #pragma once
 
 #include <chrono>
@@ -47,6 +47,7 @@ class BusObserver
     std::string rg_map = "RG_MAP";
     std::string aligned_scan = "ALIGNED_SCAN";
     std::string global_path = "GLOBAL_PATH";   // the planner's goal and status
+    std::string explorer_status = "EXPLORER_STATUS";   // the explorer's phase, stack and goals
   };
   BusObserver(const std::string& url, const std::string& host, const std::vector<std::string>& input_channels,
               const std::map<std::string, std::string>& state_channels, const Channels& channels);
@@ -118,6 +119,15 @@ class BusObserver
   const std::vector<MapSample>& rg_maps() const { return map_log_; }
   const std::vector<AlignedSample>& aligned_scans() const { return aligned_log_; }
   const std::vector<PathSample>& paths() const { return path_log_; }
+  // The explorer's published state: EXPLORER_STATUS (phase, gateway stack size, goals sent).
+  struct ExplorerSample
+  {
+    Clock::time_point when;
+    int8_t phase = 0;
+    int64_t stack = 0;        // pending + done + set aside
+    int64_t goals_sent = 0;
+  };
+  const std::vector<ExplorerSample>& explorer_states() const { return explorer_log_; }
 
  private:
   bus::LcmBus bus_;
@@ -144,6 +154,7 @@ class BusObserver
   std::vector<MapSample> map_log_;
   std::vector<AlignedSample> aligned_log_;
   std::vector<PathSample> path_log_;
+  std::vector<ExplorerSample> explorer_log_;
 };
 
 }  // namespace rgnav::fault

@@ -23,6 +23,7 @@
 #include "launch_plan.h"
 #include "proc_info.h"
 #include "recording.h"
+#include "rgnav/explorer_status_t.hpp"
 #include "rgnav/global_path_t.hpp"
 #include "rgnav/supervisor_order_t.hpp"
 #include "time/message_time.h"
@@ -187,8 +188,9 @@ class Harness
  private:
   // What a process is, from its real config: the RG map keeper (persistence.state_dir +
   // channels.rg_map), the scan mapper (persistence.state_file + channels.aligned_scan), the
-  // base driver (drives.*), the planner (channels.nav_goal + channels.global_path, and a
-  // --state-file), so the checks follow the configs rather than names.
+  // base driver (drives.*), the planner (channels.nav_goal + channels.global_path +
+  // channels.targets, and a --state-file), the explorer (channels.region_name_request +
+  // channels.status, and a --state-file), so the checks follow the configs rather than names.
   void learn_role(const sup::PlannedCommand& c, BusObserver::Channels& channels)
   {
     const std::string path = arg_after(c.argv, "--config");
@@ -222,11 +224,17 @@ class Harness
     }
     const auto chs = y["channels"];
     if (chs && chs.IsMap() && chs["base_cmd"]) channels.base_cmd = "BASE_CMD";  // the hold's channel
-    // The planner: goals in, their state out, kept across restarts with --state-file.
+    // The planner: goals in, their state and targets out, kept across restarts with --state-file.
     if (!str("channels", "nav_goal").empty() && !str("channels", "global_path").empty() &&
-        !arg_after(c.argv, "--state-file").empty()) {
+        !str("channels", "targets").empty() && !arg_after(c.argv, "--state-file").empty()) {
       planner_proc_ = c.spec.name;
       channels.global_path = str("channels", "global_path");
+    }
+    // The explorer: its gateway stack and goal counter kept across restarts with --state-file.
+    if (!str("channels", "region_name_request").empty() && !str("channels", "status").empty() &&
+        !arg_after(c.argv, "--state-file").empty()) {
+      explorer_proc_ = c.spec.name;
+      channels.explorer_status = str("channels", "status");
     }
   }
 
@@ -596,6 +604,33 @@ class Harness
       row.note += "; goal " + std::to_string(goal) + " before, " +
                   (after ? "goal " + std::to_string(after->goal_id) + " status " + std::to_string(after->status) + " after"
                          : std::string("no GLOBAL_PATH within 5 s of the restart"));
+    } else if (name == explorer_proc_) {
+      // What it had explored before the fault it still has after it: the new instance's first
+      // EXPLORER_STATUS holds at least the stacked gateways and goals sent, and is not back to
+      // exploring once it was done.
+      const BusObserver::ExplorerSample* before = nullptr;
+      for (const auto& e : obs_->explorer_states())
+        if (e.when < t0) before = &e;
+      if (!before) {
+        row.note += "; no EXPLORER_STATUS before the fault";
+        return;
+      }
+      const BusObserver::ExplorerSample b = *before;
+      std::optional<BusObserver::ExplorerSample> after;
+      obs_->wait_until([&] {
+        for (const auto& e : obs_->explorer_states())
+          if (e.when >= t_new) return (after = e).has_value();
+        return false;
+      }, std::chrono::seconds(5));
+      const bool kept = after && after->stack >= b.stack && after->goals_sent >= b.goals_sent &&
+                        (b.phase != explorer_status_t::PHASE_DONE || after->phase == explorer_status_t::PHASE_DONE);
+      row.state_lost = !kept;
+      const auto text = [](const BusObserver::ExplorerSample& e) {
+        return "phase " + std::to_string(e.phase) + ", " + std::to_string(e.stack) + " stacked, " +
+               std::to_string(e.goals_sent) + " goals";
+      };
+      row.note += "; " + text(b) + " before, " +
+                  (after ? text(*after) + " after" : std::string("no EXPLORER_STATUS within 5 s of the restart"));
     } else if (name == mapper_proc_) {
       std::set<int64_t> published;
       for (const auto& a : obs_->aligned_scans())
@@ -886,7 +921,7 @@ class Harness
   int64_t order_id_ = 1000;
   bool gaps_ok_ = true;
   bool drive_ok_ = true;
-  std::string rg_map_proc_, mapper_proc_, base_proc_, planner_proc_;
+  std::string rg_map_proc_, mapper_proc_, base_proc_, planner_proc_, explorer_proc_;
   double decel_v_ = 1.0, decel_w_ = 1.0;
   int64_t mapper_base_ = 0;                  // scans the mapper's current instance resumed with
   int64_t rg_base_ = 0;                      // journal inputs rg_kernel's current instance replayed

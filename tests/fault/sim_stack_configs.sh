@@ -24,6 +24,11 @@ mkdir -p "$out"
 # targets go where nobody listens (the tour runner drives), and it hears no RG_MAP or POSE.
 "$ov" "$c/planner.yaml" "$out/planner.yaml" channels.slam_pose=SLAM_POSE_PLANNER \
   channels.rg_map=PLANNER_RG_MAP_UNUSED channels.pose=PLANNER_POSE_UNUSED channels.targets=PLANNER_TARGETS_UNUSED
+# The explorer on the kernel's RG_MAP, its pose the scan mapper's behind a relay of its own; its
+# goals go where nobody listens (the tour runner drives, the planner keeps its own goal).
+"$ov" "$c/explorer.yaml" "$out/explorer.yaml" channels.slam_pose=SLAM_POSE_EXPLORER \
+  channels.pose=EXPLORER_POSE_UNUSED channels.nav_goal=EXPLORER_NAV_GOAL_UNUSED \
+  channels.global_path=EXPLORER_GLOBAL_PATH_UNUSED
 if [ -x "$RGNAV_BUILD/bin/two_room_map" ]; then
   "$RGNAV_BUILD/bin/two_room_map" "$s/localizer_map" || { echo "sim_stack_configs: two_room_map failed" >&2; exit 2; }
 fi
@@ -36,7 +41,7 @@ check() {
   "$RGNAV_BUILD/bin/$1" --config "$out/$2.yaml" --check-config >/dev/null || { echo "sim_stack_configs: $2.yaml rejected" >&2; exit 2; }
 }
 # (tour_runner is checked at launch: its tour file is planned by the stack's tour_plan job.)
-for p in rgnav_sim:sim scan_mapper:scan_mapper rg_kernel:rg_kernel base_driver:base_driver localizer:localizer planner:planner; do
+for p in rgnav_sim:sim scan_mapper:scan_mapper rg_kernel:rg_kernel base_driver:base_driver localizer:localizer planner:planner explorer:explorer; do
   bin=${p%%:*}; cfg=${p#*:}
   [ -x "$RGNAV_BUILD/bin/$bin" ] && check "$bin" "$cfg"
 done

@@ -631,6 +631,7 @@ nav_goal_t sample<nav_goal_t>(uint32_t variant)
   m.region_from_goal = pose(g);
   m.position_tolerance = g.uniform(0.05, 0.5);
   m.heading_tolerance = variant % 3 == 0 ? M_PI : g.uniform(0.05, 0.5);
+  m.beyond_known = variant % 5 == 2;
   m.cancel = variant % 4 == 3;
   return m;
 }
@@ -759,6 +760,46 @@ lld_status_t sample<lld_status_t>(uint32_t variant)
   m.predicted_end_utime = m.utime + g.count(0, 10'000'000);
   m.overruns = g.count(0, 3);
   m.period_jitter_ms = static_cast<float>(g.uniform(0, 2));
+  return m;
+}
+
+template <>
+region_name_request_t sample<region_name_request_t>(uint32_t variant)
+{
+  Gen g(variant, kSalt + 48);
+  region_name_request_t m;
+  m.utime = utime(g);
+  m.region_id = g.count(1, 50);
+  m.centroid = point(g);
+  m.area = variant % 3 == 0 ? 0.0 : g.uniform(1, 200);
+  m.description = variant % 2 ? g.word("room 12 m^2 with 2 gateways") : "";
+  return m;
+}
+
+template <>
+explorer_status_t sample<explorer_status_t>(uint32_t variant)
+{
+  Gen g(variant, kSalt + 49);
+  explorer_status_t m;
+  m.utime = utime(g);
+  m.phase = g.pick<int8_t>({explorer_status_t::PHASE_WAITING, explorer_status_t::PHASE_EXPLORING,
+                            explorer_status_t::PHASE_DONE});
+  m.activity = g.word("frontier 2.1 m wide in region");
+  m.current_region = g.count(0, 50);
+  m.current_completeness = g.uniform(0, 1);
+  m.regions = g.count(0, 40);
+  m.complete_regions = g.count(0, m.regions);
+  m.stack_pending = g.count(0, 10);
+  m.stack_done = g.count(0, 30);
+  m.stack_set_aside = g.count(0, 3);
+  m.goals_sent = g.count(0, 100);
+  m.goals_reached = g.count(0, m.goals_sent);
+  m.goals_failed = m.goals_sent - m.goals_reached;
+  const bool has_goal = variant % 3 != 0;
+  m.goal_id = has_goal ? g.count(1, 100) : 0;
+  m.goal_region = has_goal ? g.count(1, 50) : 0;
+  if (has_goal) m.goal_map_point = point(g);
+  else m.goal_map_point.x = m.goal_map_point.y = 0;
   return m;
 }
 

@@ -120,12 +120,14 @@ void RgMapPipeline::pass_on(const scan_mapper::ScanNode& node)
   ++counts_.aligned;
   const auto& mount = options_.mapper.base_from_laser;
   if (kernel_.add_scan(to_kernel_input(node, mount))) ++counts_.kernel_changes;
+  last_aligned_ = node;
   const auto out = detector_.process(to_posed_scan(node, mount));
   for (const auto& e : out.events) {
     ++counts_.events;
     if (e.kind == gateway_detector::EventKind::kTraversed) ++counts_.traversals;
     if (kernel_.add_gateway_event(to_kernel_event(e, out.utime, out.scan_id))) ++counts_.kernel_changes;
   }
+  last_detection_ = out;
 }
 
 std::vector<scan_mapper::ScanNode> RgMapPipeline::nodes() const

@@ -40,6 +40,12 @@ class RgMapPipeline
   const rg_kernel::RgKernel& kernel() const { return kernel_; }
   const PipelineCounts& counts() const { return counts_; }
   const PipelineOptions& options() const { return options_; }
+  // The newest accepted scan as it was passed on (its pose then: what SLAM_POSE said of it;
+  // nullptr before the first), and what the gateway detector made of it (GATEWAY_HYPOTHESES).
+  const scan_mapper::ScanNode* last_aligned() const { return last_aligned_ ? &*last_aligned_ : nullptr; }
+  const gateway_detector::DetectorOutput& last_detection() const { return last_detection_; }
+  // The map as the live RG kernel publishes it (RgKernel::refreshed_map).
+  const rgmap::RgMap& refreshed_map() { return kernel_.refreshed_map(); }
 
  private:
   void pass_on(const scan_mapper::ScanNode& node);
@@ -51,6 +57,8 @@ class RgMapPipeline
   gateway_detector::GatewayDetector detector_;
   rg_kernel::RgKernel kernel_;
   PipelineCounts counts_;
+  std::optional<scan_mapper::ScanNode> last_aligned_;
+  gateway_detector::DetectorOutput last_detection_;
   // Given-poses mode: the newest pose sample and the gated scans (the scan mapper is not used).
   std::optional<scan_mapper::OdometrySample> last_odometry_;
   std::vector<scan_mapper::ScanNode> given_;

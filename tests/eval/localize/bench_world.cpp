@@ -17,10 +17,6 @@ namespace rgnav::localize_eval {
 namespace rp = rgmap_pipeline;
 using geometry::Pose2;
 
-namespace {
-
-// Walkers for a world that has none: people pacing stretches of the robot's own tour (they
-// meet it head on in hallways and doors, the hard case for scan matching).
 void add_walkers(sim::World* world, const std::vector<sim::Vec2>& tour, int count)
 {
   if (!world->people.empty() || tour.size() < 4) return;
@@ -35,8 +31,6 @@ void add_walkers(sim::World* world, const std::vector<sim::Vec2>& tour, int coun
     world->people.push_back(p);
   }
 }
-
-}  // namespace
 
 BenchWorld map_world(const std::string& name, const std::string& path, const std::string& out_dir,
                      const sim::SimulatorOptions& sim_options, const rp::LoadedPipeline& loaded,

@@ -41,6 +41,10 @@ BenchWorld map_world(const std::string& name, const std::string& path, const std
                      const sim::SimulatorOptions& sim_options, const rgmap_pipeline::LoadedPipeline& loaded,
                      const geometry::Pose2& base_from_laser, int walkers);
 
+// Walkers for a world that has none: `count` people pacing stretches of the robot's own tour
+// (they meet it head on in hallways and doors, the hard case for scan matching).
+void add_walkers(sim::World* world, const std::vector<sim::Vec2>& tour, int count);
+
 // How good the map itself is: the per-region fits, and how far each gateway's transform between
 // its regions is from their true placement at the gateway (the map's own inconsistency, which
 // no localizer can undo at a hand-over). LOCALIZE_TRACE prints every gateway's.

@@ -178,29 +178,9 @@ ConfigSpace::ConfigSpace(OccupancyGrid grid, double robot_radius) : grid_(std::m
 
 bool ConfigSpace::line_free(const Vector2d& a, const Vector2d& b) const
 {
-  // Every cell the segment passes (Amanatides & Woo's traversal).
-  const Vector2d pa = (a - grid_.origin) / grid_.resolution, pb = (b - grid_.origin) / grid_.resolution;
-  Cell c(static_cast<int>(std::floor(pa.x())), static_cast<int>(std::floor(pa.y())));
-  const Cell end(static_cast<int>(std::floor(pb.x())), static_cast<int>(std::floor(pb.y())));
-  const Vector2d d = pb - pa;
-  const int sx = d.x() > 0 ? 1 : -1, sy = d.y() > 0 ? 1 : -1;
-  const double inf = std::numeric_limits<double>::infinity();
-  const double dtx = d.x() != 0 ? std::abs(1.0 / d.x()) : inf, dty = d.y() != 0 ? std::abs(1.0 / d.y()) : inf;
-  double tx = d.x() != 0 ? (sx > 0 ? (c.x() + 1 - pa.x()) : (pa.x() - c.x())) * dtx : inf;
-  double ty = d.y() != 0 ? (sy > 0 ? (c.y() + 1 - pa.y()) : (pa.y() - c.y())) * dty : inf;
-  const int steps = std::abs(end.x() - c.x()) + std::abs(end.y() - c.y());
-  for (int k = 0; k <= steps; ++k) {
-    if (!free(c)) return false;
-    if (c == end) break;
-    if (tx < ty) {
-      c.x() += sx;
-      tx += dtx;
-    } else {
-      c.y() += sy;
-      ty += dty;
-    }
-  }
-  return true;
+  bool ok = true;
+  for_cells_along(grid_, a, b, [&](const Cell& c, bool) { return ok = free(c); });
+  return ok;
 }
 
 std::optional<Cell> ConfigSpace::nearest_free(const Cell& c, double max_distance) const

@@ -8,7 +8,9 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <set>
 #include <optional>
 #include <vector>
@@ -44,6 +46,33 @@ struct OccupancyGrid
   // Marks free every cell the convex polygon (map frame) covers or touches.
   void fill_free(const std::vector<Eigen::Vector2d>& convex);
 };
+
+// Every cell the straight line a -> b (map frame) passes, in order, b's last (Amanatides & Woo's
+// traversal): f(cell, last) returns false to stop there.
+template <typename F>
+void for_cells_along(const OccupancyGrid& g, const Eigen::Vector2d& a, const Eigen::Vector2d& b, F&& f)
+{
+  const Eigen::Vector2d pa = (a - g.origin) / g.resolution, pb = (b - g.origin) / g.resolution;
+  Cell c(static_cast<int>(std::floor(pa.x())), static_cast<int>(std::floor(pa.y())));
+  const Cell end(static_cast<int>(std::floor(pb.x())), static_cast<int>(std::floor(pb.y())));
+  const Eigen::Vector2d d = pb - pa;
+  const int sx = d.x() > 0 ? 1 : -1, sy = d.y() > 0 ? 1 : -1;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double dtx = d.x() != 0 ? std::abs(1.0 / d.x()) : inf, dty = d.y() != 0 ? std::abs(1.0 / d.y()) : inf;
+  double tx = d.x() != 0 ? (sx > 0 ? (c.x() + 1 - pa.x()) : (pa.x() - c.x())) * dtx : inf;
+  double ty = d.y() != 0 ? (sy > 0 ? (c.y() + 1 - pa.y()) : (pa.y() - c.y())) * dty : inf;
+  const int steps = std::abs(end.x() - c.x()) + std::abs(end.y() - c.y());
+  for (int k = 0; k <= steps; ++k) {
+    if (!f(static_cast<const Cell&>(c), k == steps)) return;
+    if (tx < ty) {
+      c.x() += sx;
+      tx += dtx;
+    } else {
+      c.y() += sy;
+      ty += dty;
+    }
+  }
+}
 
 // Every live region of `map` (or those in `only`, and the gateways between them) placed by its
 // map_from_region, at `resolution`, over their extent. With passage_depth > 0 the

@@ -75,19 +75,10 @@ int main(int argc, char** argv)
       if (std::none_of(sims.begin(), sims.end(), [&](const std::string& s) { return rp::split_spec(s).first == name; }))
         throw std::runtime_error("--closed-loop " + name + ": no --sim of that name");
     const rp::LoadedPipeline loaded = rp::load_pipeline(paths);
-    const auto sim_cfg = rgnav::config::Config::load(sim_config);
-    const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg, loaded.robot);
-    rgnav::config::finish_except(sim_cfg, {"node", "channels", "sim", "protocol"});
-    const auto plan_cfg = rgnav::config::Config::load(planner_config);
-    const auto planner_options = rgnav::planner::load_planner_options(plan_cfg, loaded.robot);
-    rgnav::config::finish_except(plan_cfg, {"node", "channels", "pose", "persist"});
-    const auto lld_cfg = rgnav::config::Config::load(lld_config);
-    const auto lld_options = rgnav::lld::load_lld_options(lld_cfg, loaded.robot);
-    rgnav::config::finish_except(lld_cfg, {"node"});
-    const auto ca_cfg = rgnav::config::Config::load(ca_config);
-    const auto ca_options = rgnav::collision_avoidance::load_ca_options(ca_cfg, loaded.robot).ca;
-    rgnav::config::finish_except(ca_cfg, {"node"});
-    const pe::ClosedLoopSetup setup{planner_options, lld_options, ca_options, sim_options};
+    const pe::DriveChainOptions chain = pe::load_drive_chain({sim_config, planner_config, lld_config, ca_config}, loaded.robot);
+    const auto& planner_options = chain.planner;
+    const auto& sim_options = chain.sim;
+    const pe::ClosedLoopSetup setup{chain.planner, chain.lld, chain.ca, chain.sim};
 
     std::mt19937_64 rng(seed);
     nlohmann::json j;

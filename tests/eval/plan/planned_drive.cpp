@@ -9,7 +9,6 @@
 
 #include "bench_stats.h"
 #include "geometry/segment2.h"
-#include "office_tour.h"
 
 namespace rgnav::plan_eval {
 
@@ -18,48 +17,41 @@ using localize_eval::BenchWorld;
 
 namespace {
 
-const auto kPeriodUs = std::chrono::microseconds(50'000);
 // The localizer's hand-over (config/localizer.yaml's defaults).
 constexpr double kHandoverReach = 1.5;   // [m] a gateway this near
 constexpr double kBboxMargin = 0.3;      // [m] beyond the region's measurement rectangle
 
-Pose2 to_pose(const sim::Pose2& p) { return Pose2(p.x, p.y, p.theta); }
-
 }  // namespace
+
+collision_avoidance::Targets to_ca_targets(const planner::TargetList& targets)
+{
+  collision_avoidance::Targets t;
+  t.goal_id = targets.goal_id;
+  t.poses = targets.odom_from_target;
+  t.max_speed = targets.max_speed;
+  t.final_is_goal = targets.final_is_goal;
+  return t;
+}
 
 PlannedDrive::PlannedDrive(const sim::World& world, const sim::SimulatorOptions& sim_options, const BenchWorld& w,
                            const ClosedLoopSetup& setup)
-    : w_(w),
-      setup_(setup),
-      sim_(world, sim_options),
-      follower_(setup.lld.follower),
-      ca_(setup.ca),
-      planner_(setup.planner)
+    : w_(w), setup_(setup), loop_(world, sim_options, setup.lld, setup.ca), planner_(setup.planner)
 {
-  sim_.set_command_source(&cmd_);
   planner_.set_map(w.map);
-  truth_ = to_pose(sim_.truth());
-  region_ = w_.frames.region_at(truth_);
+  region_ = w_.frames.region_at(loop_.truth());
 }
 
 void PlannedDrive::step()
 {
-  const auto out = sim_.step(kPeriodUs);
-  for (const auto& c : out.collisions) contacts_.push_back(c.with);
-  if (bench::feed_collision_avoidance(out, ca_, &odometry_)) have_odometry_ = true;
-  for (const auto& o : out.odometry) {
-    truth_ = to_pose(o.world_from_base);
-    true_distance_ = o.true_distance;
-    pose_utime_ = o.utime;
-  }
-  if (!have_odometry_) return;
-  const int64_t utime = sim_.now_utime();
-  const auto now = time::from_utime(utime);
-  if (const int64_t r = region_of(truth_)) region_ = r;
+  loop_.sense();
+  if (!loop_.ready()) return;
+  const int64_t utime = loop_.sim().now_utime();
+  const Pose2& truth = loop_.truth();
+  if (const int64_t r = region_of(truth)) region_ = r;
   const double c0 = localize_eval::thread_cpu();
-  if (region_ != 0) planner_.on_pose({pose_utime_, region_, w_.frames.in_region(region_, truth_), odometry_.pose});
-  const auto mode = ca_.mode();
-  planner_.on_blocked(utime, mode == collision_avoidance::Mode::kBlocked || mode == collision_avoidance::Mode::kReactive);
+  if (region_ != 0)
+    planner_.on_pose({loop_.truth_utime(), region_, w_.frames.in_region(region_, truth), loop_.odometry().pose});
+  planner_.on_blocked(utime, loop_.cannot_pass());
   const auto o = planner_.update(utime);
   planner_cpu_s_ += localize_eval::thread_cpu() - c0;
   if (o.path && o.path->reason != last_reason_) {
@@ -68,16 +60,9 @@ void PlannedDrive::step()
   }
   if (o.targets) {
     last_targets_ = *o.targets;
-    collision_avoidance::Targets t;
-    t.goal_id = o.targets->goal_id;
-    t.poses = o.targets->odom_from_target;
-    t.max_speed = o.targets->max_speed;
-    t.final_is_goal = o.targets->final_is_goal;
-    ca_.set_targets(t);
+    loop_.set_targets(to_ca_targets(*o.targets));
   }
-  bench::hand_over_trajectory(ca_, follower_, setup_.lld.follower, now, &last_trajectory_id_);
-  const auto& st = follower_.step(now, kPeriod, &odometry_);
-  cmd_.set(utime, {st.command.v, st.command.omega}, setup_.lld.loop.command_deadline_ms * 1000);
+  loop_.act();
 }
 
 int64_t PlannedDrive::region_of(const Pose2& truth) const
@@ -117,20 +102,11 @@ int64_t PlannedDrive::region_of(const Pose2& truth) const
   return best ? best : region_;
 }
 
-double PlannedDrive::nearest_person() const
-{
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& p : sim_.people()) best = std::min(best, (p.center - truth_.translation()).norm() - p.radius);
-  return best;
-}
-
-std::vector<std::string> PlannedDrive::take_contacts() { return std::exchange(contacts_, {}); }
-
 std::string PlannedDrive::targets_text(size_t n) const
 {
   std::ostringstream out;
   out << std::fixed << std::setprecision(2);
-  const Pose2 world_from_odom = truth_ * odometry_.pose.inverse();
+  const Pose2 world_from_odom = loop_.truth() * loop_.odometry().pose.inverse();
   for (size_t k = 0; k < last_targets_.odom_from_target.size() && k < n; ++k) {
     const Pose2 t = world_from_odom * last_targets_.odom_from_target[k];
     out << " (" << t.x() << "," << t.y() << ")";

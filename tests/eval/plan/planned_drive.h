@@ -15,7 +15,7 @@
 #include "bench_world.h"
 #include "collision_avoidance/ca_options.h"
 #include "collision_avoidance/collision_avoidance.h"
-#include "lld/follower.h"
+#include "drive_loop.h"
 #include "lld/lld_options.h"
 #include "planner/planner.h"
 #include "planner/planner_options.h"
@@ -31,6 +31,9 @@ struct ClosedLoopSetup
   sim::SimulatorOptions sim;
 };
 
+// The planner's targets as collision avoidance takes them (TARGETS).
+collision_avoidance::Targets to_ca_targets(const planner::TargetList& targets);
+
 class PlannedDrive
 {
  public:
@@ -38,25 +41,25 @@ class PlannedDrive
   PlannedDrive(const sim::World& world, const sim::SimulatorOptions& sim_options, const localize_eval::BenchWorld& w,
                const ClosedLoopSetup& setup);
 
-  static constexpr double kPeriod = 0.05;   // [s] the lld's loop
+  static constexpr double kPeriod = DriveLoop::kPeriod;
 
   // One period.
   void step();
 
   planner::Planner& planner() { return planner_; }
   const planner::Planner& planner() const { return planner_; }
-  const sim::Simulator& sim() const { return sim_; }
-  const collision_avoidance::CollisionAvoidance& ca() const { return ca_; }
-  const geometry::Pose2& truth() const { return truth_; }
-  double true_distance() const { return true_distance_; }   // [m] driven since the start
+  const sim::Simulator& sim() const { return loop_.sim(); }
+  const collision_avoidance::CollisionAvoidance& ca() const { return loop_.ca(); }
+  const geometry::Pose2& truth() const { return loop_.truth(); }
+  double true_distance() const { return loop_.true_distance(); }   // [m] driven since the start
   int64_t region() const { return region_; }                // the region the planner is told
   double planner_cpu_s() const { return planner_cpu_s_; }
   // Distinct planner reports seen ("status: reason"), a few.
   const std::set<std::string>& reasons() const { return reasons_; }
   // What the robot hit since the last call (the simulator's names: "lab.table.top", "person p2").
-  std::vector<std::string> take_contacts();
+  std::vector<std::string> take_contacts() { return loop_.take_contacts(); }
   // [m] from the robot's centre to the nearest person's edge (infinity: nobody).
-  double nearest_person() const;
+  double nearest_person() const { return loop_.nearest_person(); }
   // The first `n` targets last sent, in the world frame.
   std::string targets_text(size_t n) const;
 
@@ -65,23 +68,13 @@ class PlannedDrive
 
   const localize_eval::BenchWorld& w_;
   const ClosedLoopSetup& setup_;
-  sim::Simulator sim_;
-  sim::TimedCommandSource cmd_;
-  lld::Follower follower_;
-  collision_avoidance::CollisionAvoidance ca_;
+  DriveLoop loop_;
   planner::Planner planner_;
-  lld::OdometryInput odometry_;
-  bool have_odometry_ = false;
-  geometry::Pose2 truth_;
-  double true_distance_ = 0;
-  int64_t pose_utime_ = 0;
   int64_t region_ = 0;
-  int64_t last_trajectory_id_ = 0;
   double planner_cpu_s_ = 0;
   std::string last_reason_;
   std::set<std::string> reasons_;
   planner::TargetList last_targets_;
-  std::vector<std::string> contacts_;
 };
 
 }  // namespace rgnav::plan_eval

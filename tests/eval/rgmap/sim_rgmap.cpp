@@ -14,14 +14,6 @@ using Eigen::Vector2d;
 
 geometry::Pose2 to_sm(const sim::Pose2& p) { return geometry::Pose2(p.x, p.y, p.theta); }
 
-// The simulated scan as the mapper would get it from LASER_FRONT: header rounded to float.
-sensors::LaserScan to_scan(const sensors::LaserScan& s)
-{
-  sensors::LaserScan out = sensors::with_message_precision(s);
-  out.scan_id = s.scan_id + 1;  // ids start at 1 like LASER_FRONT's
-  return out;
-}
-
 struct TimedTruth
 {
   int64_t utime;
@@ -44,6 +36,13 @@ geometry::Pose2 truth_at(const std::vector<TimedTruth>& track, int64_t utime)
 }
 
 }  // namespace
+
+sensors::LaserScan as_laser_front(const sensors::LaserScan& s)
+{
+  sensors::LaserScan out = sensors::with_message_precision(s);
+  out.scan_id = s.scan_id + 1;  // ids start at 1 like LASER_FRONT's
+  return out;
+}
 
 SimRgMapRun run_sim_rgmap(sim::World world, const sim::SimulatorOptions& sim_options, LoadedPipeline loaded,
                           const SimTourOptions& options)
@@ -91,7 +90,7 @@ SimRgMapRun run_sim_rgmap(sim::World world, const sim::SimulatorOptions& sim_opt
       for (const auto& s : out.scans) {
         if (track.empty()) continue;   // no pose before the first odometry sample
         pipeline.add_odometry({s.utime, truth_at(track, s.utime)});
-        pipeline.add_scan(to_scan(s));
+        pipeline.add_scan(as_laser_front(s));
       }
       continue;
     }
@@ -100,7 +99,7 @@ SimRgMapRun run_sim_rgmap(sim::World world, const sim::SimulatorOptions& sim_opt
     for (const auto& s : out.scans) {
       for (; oi < out.odometry.size() && out.odometry[oi].utime <= s.utime; ++oi)
         pipeline.add_odometry({out.odometry[oi].utime, to_sm(out.odometry[oi].odom_from_base)});
-      pipeline.add_scan(to_scan(s));
+      pipeline.add_scan(as_laser_front(s));
     }
     for (; oi < out.odometry.size(); ++oi) pipeline.add_odometry({out.odometry[oi].utime, to_sm(out.odometry[oi].odom_from_base)});
   }

@@ -43,6 +43,10 @@ struct SimRgMapRun
   std::vector<Eigen::Vector2d> true_path;       // true positions, every 5 cm
 };
 
+// A simulated scan as the mapper would get it from LASER_FRONT: header rounded to float, ids
+// from 1.
+sensors::LaserScan as_laser_front(const sensors::LaserScan& simulated);
+
 // The laser mounting pose of `loaded` is replaced by the simulated robot's.
 SimRgMapRun run_sim_rgmap(sim::World world, const sim::SimulatorOptions& sim_options, LoadedPipeline loaded,
                           const SimTourOptions& options);

@@ -250,6 +250,23 @@ TEST(PlannerNode, TheScanMappersPoseInTheCurrentRegionWhileThereIsNoLocalizer)
   for (const auto& q : targets) EXPECT_TRUE(inside_rooms(q.translation())) << q.x() << ", " << q.y();
 }
 
+TEST(PlannerNode, TheScanMappersPoseHeardBeforeTheFirstMapIsPlacedInIt)
+{
+  // A robot standing at its start: the scan mapper's first pose comes before the kernel's first
+  // map, and no other comes until the robot moves.
+  Fixture f;
+  slam_pose_t s{};
+  s.utime = f.t;
+  s.scan_id = 1;
+  s.map_from_base = msg::to_msg(Pose2(1.0, 1.5, 0.0));
+  s.map_from_odom = msg::to_msg(kMapFromOdom);
+  ASSERT_TRUE(bus::publish(*f.fake.bus, "SLAM_POSE", s));
+  f.publish_map();
+  f.goal(5, f.world.room_b, "", Pose2(2.5, 1.0, 0.0));
+  ASSERT_EQ(f.paths().back().status, global_path_t::STATUS_OK) << f.paths().back().reason;
+  EXPECT_FALSE(f.targets().empty());
+}
+
 TEST(PlannerNode, OdometryKeepsAStandingRobotsPoseFresh)
 {
   Fixture f;
@@ -432,6 +449,8 @@ TEST(PlannerNode, ShippedConfigHasTheHeadersDefaults)
   EXPECT_EQ(o.grid.comfort_cost, d.grid.comfort_cost);
   EXPECT_EQ(o.grid.neighbour_margin, d.grid.neighbour_margin);
   EXPECT_EQ(o.grid.passage_depth, d.grid.passage_depth);
+  EXPECT_EQ(o.grid.beyond_known_reach, d.grid.beyond_known_reach);
+  EXPECT_EQ(o.grid.unknown_overlap, d.grid.unknown_overlap);
   EXPECT_EQ(o.global.crossing_reach, d.global.crossing_reach);
   EXPECT_EQ(o.execution.max_accel, d.execution.max_accel);
   EXPECT_EQ(o.execution.max_omega, d.execution.max_omega);

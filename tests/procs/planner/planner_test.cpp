@@ -361,6 +361,30 @@ TEST(GlobalPlanner, UnknownRegionsAndBlockedGoalsAreRefusedWithAReason)
   EXPECT_TRUE(gp.region_planner(r.b)->grid().free(gp.region_planner(r.b)->grid().cell_of(*p)));
 }
 
+// Exploring (NavGoal::beyond_known): a goal a metre past a doorway the room's freespace ends at
+// is reached straight through the doorway; one as far past the wall beside it is not.
+TEST(GlobalPlanner, GoalBeyondTheKnownIsReachedThroughAnOpeningNotAWall)
+{
+  rgmap::RgMap map;
+  const auto room = add_region(&map, "room", V(0, 0), V(4, 3),
+                               {{V(0, 0), V(4, 0)}, {V(4, 0), V(4, 1)}, {V(4, 2), V(4, 3)}, {V(4, 3), V(0, 3)}, {V(0, 3), V(0, 0)}})
+                        .id;
+  map.version = 1;
+  PlannerOptions o = options();
+  GlobalPlanner gp(o);
+  gp.set_map(map);
+  std::string why;
+  PlanRequest through{room, V(1, 1.5), room, V(5.0, 1.5)};
+  EXPECT_FALSE(gp.plan(through, &why)) << "without beyond_known the goal is blocked";
+  through.goal_reach = o.grid.beyond_known_reach;
+  const auto route = gp.plan(through, &why);
+  ASSERT_TRUE(route) << why;
+  EXPECT_LT((route->legs.back().points.back() - V(5.0, 1.5)).norm(), 1e-9);
+  PlanRequest behind_wall{room, V(1, 1.5), room, V(5.0, 0.5)};
+  behind_wall.goal_reach = o.grid.beyond_known_reach;
+  EXPECT_FALSE(gp.plan(behind_wall, &why));
+}
+
 TEST(EdgeCosts, SavesAndRestoresWhatWasLearned)
 {
   Ring r = ring();
@@ -589,6 +613,36 @@ TEST(Planner, TargetsAreInTheOdometryFrameAndCancelStopsThem)
   EXPECT_EQ(after.path->status, GoalStatus::kCancelled);
   ASSERT_TRUE(after.targets);
   EXPECT_TRUE(after.targets->odom_from_target.empty());
+}
+
+// While a replan is due (the map's current region is one the route does not cross, before the
+// next replan may run) the targets stay where they are: the pose's region is placed through
+// the map frame, not taken for the leg's.
+TEST(Planner, TargetsStayPutWhileThePoseIsInAnotherRegionThanTheRoute)
+{
+  Ring r = ring();
+  Planner planner(options());
+  planner.set_map(r.map);
+  FollowingRobot robot;
+  robot.map_from_base = Pose2(1.6, 0.3, 0);   // in room A's box and in the hallway's
+  int64_t utime = kUtime;
+  planner.set_goal(pose_goal(3, r.a, 3.5, 1.5), utime);
+  RobotPose pose = pose_of(r, robot, utime);
+  pose.region_id = r.a;
+  pose.region_from_base = r.map.region(r.a)->map_from_region.inverse() * robot.map_from_base;
+  planner.on_pose(pose);
+  ASSERT_TRUE(planner.update(utime).targets);
+  // The map now says the robot is in the hallway.
+  utime += 600'000;
+  pose.utime = utime;
+  pose.region_id = r.h;
+  pose.region_from_base = r.map.region(r.h)->map_from_region.inverse() * robot.map_from_base;
+  planner.on_pose(pose);
+  const auto out = planner.update(utime);
+  ASSERT_TRUE(out.targets);
+  ASSERT_FALSE(out.targets->odom_from_target.empty());
+  const V last_map = robot.odom_from_map.inverse() * out.targets->odom_from_target.back().translation();
+  EXPECT_LT((last_map - V(3.5, 1.5)).norm(), 1e-6);
 }
 
 }  // namespace

@@ -439,6 +439,48 @@ TEST(RegionBuilder, ScansOfOneTimestampKeepTheirOrder)
   }
 }
 
+// Someone who walks into space the region has seen empty is no wall: with the robot standing in
+// room A, a person (a 0.4 m face) in the middle of the room draws no segment there; scans taken
+// before the place was seen empty are filtered too once the region is described afresh. Off,
+// the person is part of the line map.
+TEST(RegionBuilder, WhatMovesIntoSeenFreeSpaceIsNoPartOfTheLineMap)
+{
+  using V = Eigen::Vector2d;
+  auto segments_near = [](const RegionBuilder& b, const V& p) {
+    int n = 0;
+    for (const auto& seg : b.segments())
+      if (geometry::point_segment_distance(p, seg.a, seg.b) < 0.3) ++n;
+    return n;
+  };
+  auto room = testing::two_rooms();
+  auto with_person = room;
+  with_person.push_back({V(2.0, 1.3), V(2.0, 1.7)});
+  for (const bool drop : {true, false}) {
+    RegionBuildOptions o;
+    o.drop_points_in_free_space = drop;
+    RegionBuilder b{o};
+    int64_t id = 0;
+    for (const double x : {0.6, 0.8, 1.0}) {   // the room seen empty
+      StoredScan s;
+      s.scan_id = ++id;
+      s.utime = id * 100'000;
+      s.region_from_laser = geometry::Pose2(x, 1.5, 0);
+      s.laser_points = testing::cast(room, s.region_from_laser);
+      b.add_scan(s);
+    }
+    for (int k = 0; k < 5; ++k) {   // then the person stands in it
+      StoredScan s;
+      s.scan_id = ++id;
+      s.utime = id * 100'000;
+      s.region_from_laser = geometry::Pose2(1.0, 1.5, 0);
+      s.laser_points = testing::cast(with_person, s.region_from_laser);
+      b.add_scan(s);
+    }
+    EXPECT_EQ(segments_near(b, V(1.95, 1.5)) > 0, !drop) << (drop ? "filtered" : "unfiltered");
+    EXPECT_GT(segments_near(b, V(4.0, 0.5)), 0) << "the room's own wall stays";
+  }
+}
+
 TEST(RgKernel, AbsurdPoseRefused)
 {
   Drive d;

@@ -1,0 +1,371 @@
+#include "explorer/explorer.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace rgnav::explorer {
+
+using Eigen::Vector2d;
+
+namespace {
+
+constexpr double kSamePlace = 0.5;   // [m] a newly chosen goal this near the running one is the same goal
+
+nlohmann::json point_json(const Vector2d& p) { return {p.x(), p.y()}; }
+
+Vector2d point_from(const nlohmann::json& j)
+{
+  if (!j.is_array() || j.size() != 2) throw std::invalid_argument("a point is not [x, y]");
+  const Vector2d p(j[0].get<double>(), j[1].get<double>());
+  if (!p.allFinite()) throw std::invalid_argument("a point is not finite");
+  return p;
+}
+
+}  // namespace
+
+const char* to_string(Phase p)
+{
+  switch (p) {
+    case Phase::kWaiting: return "waiting";
+    case Phase::kExploring: return "exploring";
+    case Phase::kDone: return "done";
+  }
+  return "waiting";
+}
+
+Explorer::Explorer(ExplorerOptions options) : options_(options), stack_(options.stack) {}
+
+void Explorer::set_map(std::shared_ptr<const rgmap::RgMap> map) { map_ = std::move(map); }
+
+void Explorer::set_pose(const RobotPose& pose) { pose_ = pose; }
+
+void Explorer::add_sightings(const std::vector<GatewaySighting>& sightings, int64_t utime)
+{
+  if (!map_ || map_->current_region == 0 || phase_ == Phase::kDone) return;
+  const int64_t region = map_->resolve(map_->current_region);
+  for (const auto& s : sightings) stack_.add(s, region, utime, *map_);
+}
+
+void Explorer::goal_report(int64_t goal_id, GoalOutcome outcome, const std::string& reason, int64_t utime)
+{
+  if (!goal_ || goal_id != goal_->goal_id) return;
+  switch (outcome) {
+    case GoalOutcome::kActive: return;
+    case GoalOutcome::kReached: end_goal(true, "reached", utime); return;
+    case GoalOutcome::kNoPath: end_goal(false, reason.empty() ? "no path" : "no path: " + reason, utime); return;
+    case GoalOutcome::kCancelled: end_goal(false, "cancelled", utime); return;
+  }
+}
+
+bool Explorer::visited(const Vector2d& map_point) const
+{
+  return std::any_of(visited_.begin(), visited_.end(),
+                     [&](const Vector2d& v) { return (v - map_point).norm() < options_.visited_radius; });
+}
+
+bool Explorer::failed_here(const Vector2d& map_point, int64_t utime) const
+{
+  return std::any_of(failed_.begin(), failed_.end(), [&](const FailedPlace& f) {
+    return (f.map_point - map_point).norm() < options_.visited_radius &&
+           (f.attempts >= options_.max_attempts || utime < f.retry_utime);
+  });
+}
+
+std::vector<Frontier> Explorer::open_frontiers(int64_t region_id) const
+{
+  std::vector<Frontier> open;
+  const rgmap::Region* r = map_->region(region_id);
+  if (!r) return open;
+  for (auto& f : find_frontiers(*map_, region_id, options_.frontier).frontiers) {
+    // The opening of a gateway waiting on the stack (or gone through) is the stack's, not the
+    // region's: it is taken when the region is complete.
+    const Vector2d at = r->map_from_region * f.goal;
+    const bool stacked = std::any_of(stack_.entries().begin(), stack_.entries().end(), [&](const StackEntry& e) {
+      return (e.crossing - at).norm() < options_.stack.merge_distance;
+    });
+    if (!stacked) open.push_back(std::move(f));
+  }
+  return open;
+}
+
+std::optional<ExploreGoal> Explorer::frontier_goal(int64_t region_id, int64_t utime)
+{
+  const rgmap::Region* r = map_->region(region_id);
+  if (!r) return std::nullopt;
+  const Vector2d robot = pose_->map_from_base.translation();
+  std::optional<ExploreGoal> best;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (const Frontier& f : open_frontiers(region_id)) {
+    const Vector2d at = r->map_from_region * f.goal;
+    if (visited(at)) {
+      // The robot stood there and the region's freespace still ends in the unknown: the
+      // region's map does not take in what lies beyond (the RG kernel ends a region's freespace
+      // at a narrow passage), so it is a way out of the region — the stack's, to be gone through.
+      GatewaySighting s;
+      s.crossing = at;
+      const Vector2d out = r->map_from_region.rotation() * f.outward;
+      s.headings = {std::atan2(out.y(), out.x())};
+      s.observations = options_.stack.min_observations;
+      stack_.add(s, region_id, utime, *map_);
+      continue;
+    }
+    if (failed_here(at, utime)) continue;
+    const double d = (at - robot).norm();
+    if (d >= best_d) continue;
+    best_d = d;
+    ExploreGoal g;
+    g.kind = ExploreGoal::Kind::kFrontier;
+    g.region_id = region_id;
+    g.region_point = f.goal;
+    g.heading = std::atan2(f.outward.y(), f.outward.x());
+    g.tolerance = options_.goal_tolerance;
+    g.map_point = at;
+    best = g;
+  }
+  return best;
+}
+
+std::optional<ExploreGoal> Explorer::gateway_goal(int64_t utime)
+{
+  const Vector2d robot = pose_->map_from_base.translation();
+  for (const StackEntry* e : stack_.order(*map_, start_region_, robot, utime)) {
+    const int64_t rid = map_->resolve(e->region_id);
+    const rgmap::Region* r = map_->region(rid);
+    if (!r || r->state == rgmap::Region::State::kMerged) continue;
+    ExploreGoal g;
+    g.kind = ExploreGoal::Kind::kGateway;
+    g.region_id = rid;
+    g.map_point = e->beyond(options_.stack.beyond_m);
+    g.region_point = r->map_from_region.inverse() * g.map_point;
+    g.heading = geometry::normalize_angle(e->heading - r->map_from_region.theta());
+    g.tolerance = options_.gateway_goal_tolerance;
+    g.beyond_known = true;
+    g.entry_id = e->id;
+    return g;
+  }
+  return std::nullopt;
+}
+
+std::optional<ExploreGoal> Explorer::choose(int64_t utime)
+{
+  const int64_t cur = map_->resolve(map_->current_region);
+  // Region by region: the current region until it is complete ...
+  if (auto g = frontier_goal(cur, utime)) return g;
+  // ... then the next gateway not gone through ...
+  if (auto g = gateway_goal(utime)) return g;
+  // ... and, with none left, a region left incomplete: the nearest of their frontiers.
+  std::optional<ExploreGoal> best;
+  const Vector2d robot = pose_->map_from_base.translation();
+  for (const auto& [id, r] : map_->regions()) {
+    if (id == cur || r.state == rgmap::Region::State::kMerged) continue;
+    auto g = frontier_goal(id, utime);
+    if (g && (!best || (g->map_point - robot).norm() < (best->map_point - robot).norm())) best = g;
+  }
+  if (best) best->kind = ExploreGoal::Kind::kRegion;
+  return best;
+}
+
+bool Explorer::goal_still_open() const
+{
+  if (goal_->kind == ExploreGoal::Kind::kGateway) {
+    const StackEntry* e = stack_.entry(goal_->entry_id);
+    return e && e->state != StackEntry::State::kDone;
+  }
+  const rgmap::Region* r = map_->region(map_->resolve(goal_->region_id));
+  if (!r) return false;
+  for (const Frontier& f : open_frontiers(r->id))
+    if ((r->map_from_region * f.goal - goal_->map_point).norm() < options_.visited_radius) return true;
+  return false;
+}
+
+void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime)
+{
+  if (!goal_) return;
+  if (reached) ++goals_reached_;
+  else ++goals_failed_;
+  if (goal_->kind == ExploreGoal::Kind::kGateway) {
+    if (reached) {
+      const StackEntry* e = stack_.entry(goal_->entry_id);
+      if (e && e->state != StackEntry::State::kDone) stack_.done(goal_->entry_id, reason);
+    } else {
+      stack_.failed(goal_->entry_id, reason, utime + static_cast<int64_t>(options_.retry_after_s * 1e6),
+                    options_.max_attempts, static_cast<int64_t>(map_ ? map_->regions().size() : 0));
+    }
+  } else if (reached) {
+    visited_.push_back(goal_->map_point);
+  } else {
+    auto it = std::find_if(failed_.begin(), failed_.end(), [&](const FailedPlace& f) {
+      return (f.map_point - goal_->map_point).norm() < options_.visited_radius;
+    });
+    if (it == failed_.end()) it = failed_.insert(failed_.end(), FailedPlace{goal_->map_point, 0, 0});
+    ++it->attempts;
+    it->retry_utime = utime + static_cast<int64_t>(options_.retry_after_s * 1e6);
+  }
+  last_goal_end_ = fmt::format("goal {} {}: {}", goal_->goal_id, reached ? "ended" : "failed", reason);
+  goal_.reset();
+  decide_now_ = true;
+}
+
+bool Explorer::waiting_to_retry(int64_t utime) const
+{
+  for (const auto& e : stack_.entries())
+    if (e.state == StackEntry::State::kSetAside && e.retry_utime > 0) return true;
+  return std::any_of(failed_.begin(), failed_.end(), [&](const FailedPlace& f) {
+    return f.attempts < options_.max_attempts && utime < f.retry_utime;
+  });
+}
+
+Command Explorer::step(int64_t utime)
+{
+  Command cmd;
+  if (phase_ == Phase::kDone) return cmd;
+  if (!map_ || !pose_ || map_->current_region == 0 || !map_->region(map_->resolve(map_->current_region))) {
+    activity_ = "waiting for the RG map and the robot's pose";
+    return cmd;
+  }
+  phase_ = Phase::kExploring;
+  const int64_t cur = map_->resolve(map_->current_region);
+  if (start_region_ == 0) start_region_ = cur;
+  const Vector2d robot = pose_->map_from_base.translation();
+  stack_.update(robot, *map_);
+
+  // A region left with no frontier open is finished (and can be named).
+  if (last_region_ != 0 && map_->resolve(last_region_) != cur) {
+    const int64_t left = map_->resolve(last_region_);
+    if (map_->region(left) && open_frontiers(left).empty()) finished_regions_.insert(left);
+  }
+  last_region_ = cur;
+
+  if (goal_) {
+    if (!goal_still_open()) end_goal(true, goal_->kind == ExploreGoal::Kind::kGateway ? "gone through" : "explored", utime);
+    else if ((robot - goal_->map_point).norm() <= goal_->tolerance) end_goal(true, "reached", utime);
+    else if (utime - goal_sent_utime_ > static_cast<int64_t>(options_.goal_timeout_s * 1e6)) end_goal(false, "timed out", utime);
+  }
+  if (!decide_now_ && utime - last_decision_utime_ < static_cast<int64_t>(options_.decide_period_s * 1e6)) return cmd;
+  last_decision_utime_ = utime;
+  decide_now_ = false;
+
+  std::optional<ExploreGoal> next = choose(utime);
+  if (goal_) {
+    // A gateway goal runs until it ends; a frontier goal gives way to a better choice: a region
+    // that became current, or a frontier much nearer than the one driven to.
+    if (goal_->kind == ExploreGoal::Kind::kGateway || !next) return cmd;
+    if ((next->map_point - goal_->map_point).norm() < kSamePlace) return cmd;
+    if (next->region_id == goal_->region_id && next->kind == goal_->kind) {
+      const double dn = (next->map_point - robot).norm(), dc = (goal_->map_point - robot).norm();
+      if (dn > (1.0 - options_.switch_gain) * dc) return cmd;
+    }
+  }
+  if (!next) {
+    if (waiting_to_retry(utime)) {
+      activity_ = "waiting to try again what could not be reached";
+      return cmd;
+    }
+    phase_ = Phase::kDone;
+    activity_ = fmt::format("done: {} regions, {} gateways gone through, {} set aside", map_->regions().size(),
+                            stack_.count(StackEntry::State::kDone), stack_.count(StackEntry::State::kSetAside));
+    for (const auto& [id, r] : map_->regions())
+      if (r.state != rgmap::Region::State::kMerged) finished_regions_.insert(id);
+    return cmd;
+  }
+  next->goal_id = next_goal_id_++;
+  goal_ = next;
+  goal_sent_utime_ = utime;
+  ++goals_sent_;
+  const char* kind = next->kind == ExploreGoal::Kind::kGateway  ? "through a gateway"
+                     : next->kind == ExploreGoal::Kind::kRegion ? "back to a frontier of"
+                                                                : "to a frontier of";
+  activity_ = fmt::format("goal {}: {} region {} at ({:.2f}, {:.2f})", next->goal_id, kind, next->region_id,
+                          next->map_point.x(), next->map_point.y());
+  cmd.goal = next;
+  return cmd;
+}
+
+ExplorerStatus Explorer::status() const
+{
+  ExplorerStatus s;
+  s.phase = phase_;
+  s.activity = activity_;
+  s.goal = goal_;
+  s.goals_sent = goals_sent_;
+  s.goals_reached = goals_reached_;
+  s.goals_failed = goals_failed_;
+  s.stack_pending = stack_.count(StackEntry::State::kPending);
+  s.stack_done = stack_.count(StackEntry::State::kDone);
+  s.stack_set_aside = stack_.count(StackEntry::State::kSetAside);
+  if (!map_) return s;
+  s.current_region = map_->current_region ? map_->resolve(map_->current_region) : 0;
+  for (const auto& [id, r] : map_->regions()) {
+    if (r.state == rgmap::Region::State::kMerged) continue;
+    ++s.regions;
+    if (open_frontiers(id).empty()) ++s.complete_regions;
+  }
+  if (s.current_region) s.current_completeness = find_frontiers(*map_, s.current_region, options_.frontier).completeness();
+  return s;
+}
+
+std::vector<int64_t> Explorer::take_finished_regions()
+{
+  std::vector<int64_t> out;
+  for (const int64_t id : finished_regions_)
+    if (offered_regions_.insert(id).second) out.push_back(id);
+  return out;
+}
+
+nlohmann::json Explorer::save() const
+{
+  nlohmann::json visited = nlohmann::json::array(), failed = nlohmann::json::array();
+  for (const auto& v : visited_) visited.push_back(point_json(v));
+  for (const auto& f : failed_)
+    failed.push_back({{"at", point_json(f.map_point)}, {"retry_utime", f.retry_utime}, {"attempts", f.attempts}});
+  return {{"phase", to_string(phase_)},
+          {"start_region", start_region_},
+          {"next_goal_id", next_goal_id_},
+          {"stack", stack_.to_json()},
+          {"visited", visited},
+          {"failed", failed},
+          {"offered_regions", offered_regions_},
+          {"goals", {goals_sent_, goals_reached_, goals_failed_}}};
+}
+
+void Explorer::restore(const nlohmann::json& j)
+{
+  const std::string phase = j.at("phase").get<std::string>();
+  Phase p = Phase::kWaiting;
+  if (phase == "exploring") p = Phase::kExploring;
+  else if (phase == "done") p = Phase::kDone;
+  else if (phase != "waiting") throw std::invalid_argument("phase '" + phase + "' is not waiting, exploring or done");
+  const int64_t next_goal_id = j.at("next_goal_id").get<int64_t>();
+  if (next_goal_id < 1) throw std::invalid_argument("next_goal_id < 1");
+  GatewayStack stack(options_.stack);
+  stack.from_json(j.at("stack"));
+  std::vector<Vector2d> visited;
+  for (const auto& v : j.at("visited")) visited.push_back(point_from(v));
+  std::vector<FailedPlace> failed;
+  for (const auto& f : j.at("failed"))
+    failed.push_back({point_from(f.at("at")), f.at("retry_utime").get<int64_t>(), f.at("attempts").get<int>()});
+  const auto offered = j.at("offered_regions").get<std::set<int64_t>>();
+  const auto goals = j.at("goals").get<std::vector<int>>();
+  if (goals.size() != 3) throw std::invalid_argument("goals is not [sent, reached, failed]");
+
+  phase_ = p;
+  start_region_ = j.at("start_region").get<int64_t>();
+  next_goal_id_ = next_goal_id;
+  stack_ = std::move(stack);
+  visited_ = std::move(visited);
+  failed_ = std::move(failed);
+  offered_regions_ = offered;
+  finished_regions_ = offered;
+  goals_sent_ = goals[0];
+  goals_reached_ = goals[1];
+  goals_failed_ = goals[2];
+  // The goal that ran before the restart is chosen anew (the planner replaces it by the new id).
+  goal_.reset();
+  decide_now_ = true;
+}
+
+}  // namespace rgnav::explorer

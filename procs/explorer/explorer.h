@@ -1,0 +1,141 @@
+// The explorer (diss. 5.0's high-level planning, ch. 7): explores an unknown building region by
+// region. Inside the current region it goes to the frontiers of the region's freespace
+// (frontiers.h), nearest first, until none is left (the region is complete); then it takes the
+// next untraversed gateway from the stack (gateway_stack.h), breadth-first, and drives through
+// it; a region left incomplete is gone back to once the current one is complete and no gateway
+// is waiting. It ends when no frontier of any region and no stacked gateway is left that it can
+// still try. Goals go to the planner (NAV_GOAL); a goal beyond a gateway lies in unknown space
+// and is sent with beyond_known (the planner drives from the nearest known free place straight
+// on). Regions the robot has finished are offered for naming.
+//
+// Pure algorithm, message time only: the node feeds it the RG map, the robot's pose, the
+// detector's gateway sightings and the planner's goal status, and calls step() at its own pace.
+#pragma once
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "explorer/explorer_options.h"
+#include "explorer/frontiers.h"
+#include "explorer/gateway_stack.h"
+#include "geometry/pose2.h"
+#include "rgmap/rg_map.h"
+
+namespace rgnav::explorer {
+
+struct RobotPose
+{
+  int64_t utime = 0;
+  geometry::Pose2 map_from_base;   // the RG map's frame (the scan mapper's or the localizer's)
+};
+
+// A goal for the planner (NAV_GOAL), in a region's frame.
+struct ExploreGoal
+{
+  enum class Kind : int8_t { kFrontier = 1, kGateway = 2, kRegion = 3 };
+  int64_t goal_id = 0;
+  Kind kind = Kind::kFrontier;
+  int64_t region_id = 0;
+  Eigen::Vector2d region_point{0, 0};
+  double heading = 0;              // [rad] region frame (any heading is accepted)
+  double tolerance = 0.5;          // [m]
+  bool beyond_known = false;       // the point may lie in unknown space past the region's freespace
+  int64_t entry_id = 0;            // kGateway: the stack entry
+  Eigen::Vector2d map_point{0, 0}; // the same point in the map frame
+};
+
+// What the planner says of a goal (GLOBAL_PATH's status).
+enum class GoalOutcome : int8_t { kActive = 0, kNoPath = 1, kReached = 2, kCancelled = 3 };
+
+enum class Phase : int8_t { kWaiting = 0, kExploring = 1, kDone = 2 };
+const char* to_string(Phase p);
+
+// step()'s order to the node: send `goal`, or cancel the running goal, or nothing.
+struct Command
+{
+  std::optional<ExploreGoal> goal;
+  bool cancel = false;
+  int64_t cancel_goal_id = 0;
+};
+
+struct ExplorerStatus
+{
+  Phase phase = Phase::kWaiting;
+  std::string activity;            // what it does now, for people ("frontier 2.1 m wide in region 3", "done: ...")
+  int64_t current_region = 0;
+  double current_completeness = 0;
+  int regions = 0, complete_regions = 0;
+  int stack_pending = 0, stack_done = 0, stack_set_aside = 0;
+  int goals_sent = 0, goals_reached = 0, goals_failed = 0;
+  std::optional<ExploreGoal> goal;
+};
+
+class Explorer
+{
+ public:
+  explicit Explorer(ExplorerOptions options = {});
+
+  // The newest RG map (its current_region is where the robot is).
+  void set_map(std::shared_ptr<const rgmap::RgMap> map);
+  void set_pose(const RobotPose& pose);
+  // Sightings of the gateway detector at utime, map frame.
+  void add_sightings(const std::vector<GatewaySighting>& sightings, int64_t utime);
+  // The planner's status of goal `goal_id` (ignored for any goal but the running one).
+  void goal_report(int64_t goal_id, GoalOutcome outcome, const std::string& reason, int64_t utime);
+
+  // Decides; at most once per decide_period_s unless something ended the running goal.
+  Command step(int64_t utime);
+
+  ExplorerStatus status() const;
+  Phase phase() const { return phase_; }
+  const GatewayStack& stack() const { return stack_; }
+  // Regions finished since the last call (complete and left, or all at the end), for naming.
+  std::vector<int64_t> take_finished_regions();
+
+  // Everything a restarted explorer needs to go on where it was: the stack, visited frontier
+  // places, the start region, the phase, the goal counter.
+  nlohmann::json save() const;
+  // Throws std::invalid_argument on a malformed document.
+  void restore(const nlohmann::json& j);
+
+ private:
+  std::optional<ExploreGoal> choose(int64_t utime);
+  std::optional<ExploreGoal> frontier_goal(int64_t region_id, int64_t utime);
+  std::optional<ExploreGoal> gateway_goal(int64_t utime);
+  // The region's frontiers that are goals of its own: those at a stacked gateway's opening are not.
+  std::vector<Frontier> open_frontiers(int64_t region_id) const;
+  bool goal_still_open() const;
+  void end_goal(bool reached, const std::string& reason, int64_t utime);
+  bool visited(const Eigen::Vector2d& map_point) const;
+  bool failed_here(const Eigen::Vector2d& map_point, int64_t utime) const;
+  // Something set aside will be due again: not done yet.
+  bool waiting_to_retry(int64_t utime) const;
+
+  ExplorerOptions options_;
+  std::shared_ptr<const rgmap::RgMap> map_;
+  std::optional<RobotPose> pose_;
+  GatewayStack stack_;
+  Phase phase_ = Phase::kWaiting;
+  int64_t start_region_ = 0;
+  int64_t next_goal_id_ = 1;
+  std::optional<ExploreGoal> goal_;
+  int64_t goal_sent_utime_ = 0;
+  int64_t last_decision_utime_ = 0;
+  bool decide_now_ = true;
+  std::vector<Eigen::Vector2d> visited_;        // map frame: frontier goals reached
+  struct FailedPlace { Eigen::Vector2d map_point; int64_t retry_utime; int attempts; };
+  std::vector<FailedPlace> failed_;             // frontier goals the planner could not reach
+  std::set<int64_t> finished_regions_, offered_regions_;
+  int64_t last_region_ = 0;
+  int goals_sent_ = 0, goals_reached_ = 0, goals_failed_ = 0;
+  std::string activity_, last_goal_end_;
+};
+
+}  // namespace rgnav::explorer

@@ -1,0 +1,71 @@
+// Parameters of the explorer (diss. 5.0 high-level planning, ch. 7 region-by-region exploration
+// with a gateway stack), as config/explorer.yaml names them. Defaults are the values documented
+// there.
+#pragma once
+
+#include <string>
+
+namespace rgnav::config { class Config; struct RobotDescription; }
+
+namespace rgnav::explorer {
+
+// Where a region's freespace ends in unknown space (frontiers.h).
+struct FrontierOptions
+{
+  double wall_distance = 0.3;      // [m] a line of the region's map this far past a freespace edge, across the way out, is
+                                   // the wall that ends the freespace there (not a frontier)
+  double min_width = 0.6;          // [m] a frontier narrower than this is a shadow (behind a table leg, a corner)
+  double gateway_distance = 0.8;   // [m] a freespace edge this near a traversed door's line is its opening
+};
+
+// Untraversed gateways (gateway_stack.h): the gateway detector's sightings, kept in the map frame.
+struct StackOptions
+{
+  int min_observations = 3;        // a sighting tracked over fewer scans is not stacked
+  double merge_distance = 1.0;     // [m] a sighting this near a stacked entry, heading within merge_angle, is that entry
+  double merge_angle = 0.8;        // [rad]
+  double beyond_m = 1.0;           // [m] the goal lies this far past the gateway's crossing point
+  double passed_m = 0.4;           // [m] the robot this far past the crossing point has traversed it
+  bool breadth_first = true;       // order: fewest RG-graph hops from the start region first (else nearest first)
+};
+
+struct ExplorerOptions
+{
+  FrontierOptions frontier;
+  StackOptions stack;
+  double robot_radius = 0.26;      // [m] from the robot description
+  double goal_tolerance = 0.5;     // [m] NAV_GOAL position tolerance of a frontier goal
+  double gateway_goal_tolerance = 0.4;  // [m] ... of a goal beyond a gateway
+  double visited_radius = 1.0;     // [m] a frontier whose goal the robot reached is not a goal again within this
+  double retry_after_s = 60.0;     // [s] a goal the planner found no path for is tried again after this (and
+                                   // whenever the map gained a region since)
+  int max_attempts = 3;            // ... at most this many times; then it is set aside for good (with its reason)
+  double goal_timeout_s = 180.0;   // [s] a goal not reached in this long counts as failed
+  double decide_period_s = 1.0;    // [s] the choice of goal is looked at again this often
+  double switch_gain = 0.3;        // a new frontier replaces the running goal only if this much nearer (share)
+};
+
+struct ExplorerNodeOptions
+{
+  std::string name = "explorer";
+  ExplorerOptions explorer;
+  struct Channels
+  {
+    std::string rg_map = "RG_MAP";
+    std::string slam_pose = "SLAM_POSE";
+    std::string pose = "POSE";
+    std::string gateway_hypotheses = "GATEWAY_HYPOTHESES";
+    std::string global_path = "GLOBAL_PATH";
+    std::string nav_goal = "NAV_GOAL";
+    std::string region_name_request = "REGION_NAME_REQUEST";
+    std::string status = "EXPLORER_STATUS";
+  } channels;
+  double persist_period_s = 2.0;   // [s] the stack and visited frontiers saved at most this often
+};
+
+// Reads config/explorer.yaml (robot radius from the robot description); throws ConfigError naming
+// file and key for a missing key, a wrong type or a value out of range.
+ExplorerNodeOptions load_explorer_node_options(const config::Config& cfg, const config::RobotDescription& robot);
+ExplorerOptions load_explorer_options(const config::Config& cfg, const config::RobotDescription& robot);
+
+}  // namespace rgnav::explorer

@@ -1,0 +1,267 @@
+// The explorer's algorithm library on hand-made RG maps: where a region's freespace ends in the
+// unknown, the gateway stack's order and bookkeeping, and the explorer's goals region by region
+// up to its end, across a restart.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "explorer/explorer.h"
+#include "explorer/frontiers.h"
+#include "explorer/gateway_stack.h"
+
+namespace rgnav::explorer {
+namespace {
+
+using Eigen::Vector2d;
+using geometry::Pose2;
+using V = Vector2d;
+using Wall = std::pair<V, V>;
+
+constexpr int64_t kUtime = 1'700'000'000'000'000;
+constexpr int64_t kSecond = 1'000'000;
+
+// A region whose frame is the map frame shifted to `lo`: walls (map frame) as its line map and
+// freespace at 0.15 m over the box [lo, hi] (map frame).
+rgmap::Region& add_region(rgmap::RgMap* map, const V& lo, const V& hi, const std::vector<Wall>& walls)
+{
+  const Pose2 map_from_region(lo, 0.0);
+  rgmap::Region& r = map->add_region(map_from_region, kUtime);
+  for (const auto& [a, b] : walls) {
+    rgmap::LineSegment s;
+    s.a = map_from_region.inverse() * a;
+    s.b = map_from_region.inverse() * b;
+    r.segments.push_back(s);
+  }
+  constexpr double res = 0.15;
+  const V size = hi - lo;
+  const int w = static_cast<int>(std::lround(size.x() / res)), h = static_cast<int>(std::lround(size.y() / res));
+  r.freespace = rgmap::FreespaceBitmap(res, Pose2(0, 0, 0), w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) r.freespace.set_free(x, y, true);
+  r.bbox_max = size;
+  return r;
+}
+
+// A hallway [0, 6] x [0, 1.8]: walls along both sides and the left end; the right end open
+// unless `closed`.
+std::shared_ptr<rgmap::RgMap> hallway(bool closed)
+{
+  auto map = std::make_shared<rgmap::RgMap>();
+  std::vector<Wall> walls = {{V(0, 0), V(6, 0)}, {V(0, 1.8), V(6, 1.8)}, {V(0, 0), V(0, 1.8)}};
+  if (closed) walls.push_back({V(6, 0), V(6, 1.8)});
+  map->current_region = add_region(map.get(), V(0, 0), V(6, 1.8), walls).id;
+  map->version = 1;
+  return map;
+}
+
+TEST(Frontiers, AnOpenEndIsAFrontierAndAWalledOneIsNot)
+{
+  const auto open = hallway(false);
+  const RegionFrontiers f = find_frontiers(*open, open->current_region, FrontierOptions{});
+  ASSERT_EQ(f.frontiers.size(), 1u);
+  EXPECT_NEAR(f.frontiers[0].centroid.x(), 5.9, 0.1);
+  EXPECT_GT(f.frontiers[0].outward.x(), 0.9);
+  EXPECT_NEAR(f.frontiers[0].width, 1.8, 0.2);
+  EXPECT_LT(f.completeness(), 0.95);
+
+  const auto closed = hallway(true);
+  const RegionFrontiers g = find_frontiers(*closed, closed->current_region, FrontierOptions{});
+  EXPECT_TRUE(g.frontiers.empty());
+  EXPECT_DOUBLE_EQ(g.completeness(), 1.0);
+}
+
+TEST(Frontiers, SpaceKnownFromAnotherRegionIsNoFrontier)
+{
+  auto map = hallway(false);
+  add_region(map.get(), V(6, 0), V(9, 1.8), {{V(6, 0), V(9, 0)}, {V(6, 1.8), V(9, 1.8)}, {V(9, 0), V(9, 1.8)}});
+  EXPECT_TRUE(find_frontiers(*map, map->current_region, FrontierOptions{}).frontiers.empty());
+  EXPECT_TRUE(known_free(*map, V(7, 1)));
+  EXPECT_FALSE(known_free(*map, V(10, 1)));
+}
+
+TEST(Frontiers, AGapNarrowerThanMinWidthIsAShadow)
+{
+  // The right end walled but for a 0.3 m gap: too narrow for a frontier.
+  auto map = std::make_shared<rgmap::RgMap>();
+  map->current_region = add_region(map.get(), V(0, 0), V(6, 1.8),
+                                   {{V(0, 0), V(6, 0)}, {V(0, 1.8), V(6, 1.8)}, {V(0, 0), V(0, 1.8)},
+                                    {V(6, 0), V(6, 0.6)}, {V(6, 1.5), V(6, 1.8)}})
+                           .id;
+  FrontierOptions o;
+  const RegionFrontiers wide = find_frontiers(*map, map->current_region, o);
+  ASSERT_EQ(wide.frontiers.size(), 1u) << "a 0.9 m opening is a frontier";
+  o.min_width = 1.2;
+  EXPECT_TRUE(find_frontiers(*map, map->current_region, o).frontiers.empty());
+  EXPECT_GT(find_frontiers(*map, map->current_region, o).frontier_cells, 0) << "a shadow still counts as incomplete";
+}
+
+// A crossing traversed between two regions explains nothing of its other branches: the
+// hallway's open end beside it stays a frontier; a traversed door's strip does not.
+TEST(Frontiers, ACrossingsOutlineLeavesItsOtherBranchesOpen)
+{
+  auto map = hallway(false);
+  const int64_t a = map->current_region;
+  const int64_t b = add_region(map.get(), V(0, -3), V(6, -0.2), {}).id;   // south of the hallway, apart
+  rgmap::Gateway& crossing = map->add_gateway(rgmap::GatewayClass::kXCrossing, a, kUtime);
+  crossing.gateway_points = {V(5, 0), V(6.5, 0), V(6.5, 1.8), V(5, 1.8)};
+  map->connect(crossing.id, b, Pose2(0, -3, 0));
+  EXPECT_EQ(find_frontiers(*map, a, FrontierOptions{}).frontiers.size(), 1u) << "the east end stays open";
+  crossing.gateway_points = {V(6, 0), V(6, 1.8)};   // a door in the east end instead
+  EXPECT_TRUE(find_frontiers(*map, a, FrontierOptions{}).frontiers.empty());
+}
+
+GatewaySighting sighting(const V& at, double heading)
+{
+  GatewaySighting s;
+  s.cls = rgmap::GatewayClass::kDoor;
+  s.crossing = at;
+  s.headings = {heading};
+  s.observations = 5;
+  return s;
+}
+
+TEST(GatewayStack, BreadthFirstThenNearestAndDoneWhenPassed)
+{
+  // Two regions joined by a traversed gateway: region 1 (start) and region 2.
+  auto map = hallway(true);
+  const int64_t r1 = map->current_region;
+  const int64_t r2 = add_region(map.get(), V(0, 5), V(6, 7), {}).id;
+  rgmap::Gateway& g = map->add_gateway(rgmap::GatewayClass::kDoor, r1, kUtime);
+  map->connect(g.id, r2, Pose2(0, 5, 0));
+
+  GatewayStack stack;
+  stack.add(sighting(V(5, 6.5), M_PI / 2), r2, kUtime, *map);    // near the robot, one hop away
+  stack.add(sighting(V(1, 1.8), M_PI / 2), r1, kUtime, *map);  // far, in the start region
+  stack.add(sighting(V(1.2, 1.9), M_PI / 2 + 0.1), r1, kUtime, *map);   // the same gateway again
+  stack.add(sighting(V(3, 1.8), -M_PI / 2), r1, kUtime, *map);  // heading back into known space: not stacked
+  ASSERT_EQ(stack.entries().size(), 2u);
+  const V robot(5, 5.5);
+  auto order = stack.order(*map, r1, robot, kUtime);
+  ASSERT_EQ(order.size(), 2u);
+  EXPECT_EQ(order[0]->region_id, r1) << "breadth-first: the start region's gateway first";
+  StackOptions nearest;
+  nearest.breadth_first = false;
+  GatewayStack by_distance(nearest);
+  by_distance.from_json(stack.to_json());
+  EXPECT_EQ(by_distance.order(*map, r1, robot, kUtime)[0]->region_id, r2);
+
+  const int64_t far_id = order[0]->id;
+  EXPECT_EQ(stack.update(V(1.1, 2.5), *map), 1) << "the robot past the gateway has traversed it";
+  EXPECT_EQ(stack.entry(far_id)->state, StackEntry::State::kDone);
+
+  // Failed: set aside until the retry time or a new region, for good after max attempts.
+  const int64_t near_id = stack.order(*map, r1, robot, kUtime)[0]->id;
+  stack.failed(near_id, "no path", kUtime + 60 * kSecond, 2, 2);
+  EXPECT_TRUE(stack.order(*map, r1, robot, kUtime + kSecond).empty());
+  EXPECT_EQ(stack.order(*map, r1, robot, kUtime + 61 * kSecond).size(), 1u);
+  stack.failed(near_id, "no path", kUtime + 120 * kSecond, 2, 2);
+  EXPECT_TRUE(stack.order(*map, r1, robot, kUtime + 1000 * kSecond).empty());
+  EXPECT_EQ(stack.entry(near_id)->reason, "no path");
+
+  GatewayStack copy;
+  copy.from_json(stack.to_json());
+  EXPECT_EQ(copy.to_json(), stack.to_json());
+  nlohmann::json bad = stack.to_json();
+  bad["entries"][0]["state"] = "maybe";
+  EXPECT_THROW(copy.from_json(bad), std::invalid_argument);
+}
+
+// The explorer's goals in the open hallway: its frontier, then (the frontier still there once
+// the robot stood at it: the region's map ends there) through it as a gateway, then the end.
+TEST(Explorer, FrontierThenThroughItThenDone)
+{
+  ExplorerOptions o;
+  Explorer ex(o);
+  int64_t t = kUtime;
+  EXPECT_FALSE(ex.step(t).goal);
+  EXPECT_EQ(ex.phase(), Phase::kWaiting);
+  auto map = hallway(false);
+  ex.set_map(map);
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  Command c = ex.step(t);
+  ASSERT_TRUE(c.goal);
+  EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kFrontier);
+  EXPECT_NEAR(c.goal->map_point.x(), 5.9, 0.1);
+  EXPECT_FALSE(c.goal->beyond_known);
+
+  ex.goal_report(c.goal->goal_id, GoalOutcome::kReached, "", t += kSecond);
+  ex.set_pose({t, Pose2(5.5, 0.9, 0)});
+  c = ex.step(t);
+  ASSERT_TRUE(c.goal) << ex.status().activity;
+  EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kGateway);
+  EXPECT_TRUE(c.goal->beyond_known);
+  EXPECT_GT(c.goal->map_point.x(), 6.5);
+  EXPECT_EQ(ex.stack().count(StackEntry::State::kPending), 1);
+
+  // Through: the robot past the opening; the map now knows what lies beyond.
+  add_region(map.get(), V(6, 0), V(9, 1.8), {{V(6, 0), V(9, 0)}, {V(6, 1.8), V(9, 1.8)}, {V(9, 0), V(9, 1.8)}});
+  map->current_region = 2;
+  ex.set_pose({t += kSecond, Pose2(7, 0.9, 0)});
+  c = ex.step(t);
+  EXPECT_FALSE(c.goal);
+  EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
+  EXPECT_EQ(ex.stack().count(StackEntry::State::kDone), 1);
+  const auto finished = ex.take_finished_regions();
+  EXPECT_EQ(finished.size(), 2u);
+  EXPECT_TRUE(ex.take_finished_regions().empty()) << "each region is offered for naming once";
+}
+
+TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
+{
+  ExplorerOptions o;
+  o.max_attempts = 2;
+  o.retry_after_s = 30;
+  Explorer ex(o);
+  int64_t t = kUtime;
+  ex.set_map(hallway(false));
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  Command c = ex.step(t);
+  ASSERT_TRUE(c.goal);
+  ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "blocked", t);
+  c = ex.step(t += kSecond);
+  EXPECT_FALSE(c.goal);
+  EXPECT_EQ(ex.phase(), Phase::kExploring) << "not done while a retry is due: " << ex.status().activity;
+  c = ex.step(t += 31 * kSecond);
+  ASSERT_TRUE(c.goal) << "tried again after retry_after_s";
+  ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "blocked", t);
+  c = ex.step(t += 100 * kSecond);
+  EXPECT_FALSE(c.goal);
+  EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
+  EXPECT_EQ(ex.status().goals_failed, 2);
+}
+
+TEST(Explorer, ARestartedExplorerGoesOnWhereItWas)
+{
+  Explorer ex;
+  int64_t t = kUtime;
+  auto map = hallway(false);
+  ex.set_map(map);
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  Command c = ex.step(t);
+  ASSERT_TRUE(c.goal);
+  ex.goal_report(c.goal->goal_id, GoalOutcome::kReached, "", t);
+  ex.set_pose({t, Pose2(5.5, 0.9, 0)});
+  c = ex.step(t += kSecond);
+  ASSERT_TRUE(c.goal);
+  const nlohmann::json saved = ex.save();
+
+  Explorer again;
+  again.restore(saved);
+  again.set_map(map);
+  again.set_pose({t, Pose2(5.5, 0.9, 0)});
+  const Command d = again.step(t += kSecond);
+  ASSERT_TRUE(d.goal);
+  EXPECT_EQ(d.goal->kind, ExploreGoal::Kind::kGateway) << "the visited frontier is remembered";
+  EXPECT_GT(d.goal->goal_id, c.goal->goal_id) << "goal ids go on rising";
+  EXPECT_EQ(again.stack().entries().size(), ex.stack().entries().size());
+
+  nlohmann::json bad = saved;
+  bad["visited"] = {{1.0}};
+  Explorer broken;
+  EXPECT_THROW(broken.restore(bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rgnav::explorer
