@@ -14,6 +14,7 @@ using Eigen::Vector2d;
 namespace {
 
 constexpr double kSamePlace = 0.5;   // [m] a newly chosen goal this near the running one is the same goal
+constexpr double kMovedSinceFailure = 0.5;   // [m] the robot this far from the last failure's place is elsewhere
 
 nlohmann::json point_json(const Vector2d& p) { return {p.x(), p.y()}; }
 
@@ -187,13 +188,24 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime)
   if (!goal_) return;
   if (reached) ++goals_reached_;
   else ++goals_failed_;
+  // A failure counts toward max_attempts only when something could have made it come out
+  // otherwise since the last one: the robot got elsewhere or the map changed. Failing again from
+  // the same place on the same map says nothing new (the planner's answer then is the same), and
+  // counting it would set everything aside while the robot stands still, and end exploring early.
+  bool counts = true;
+  if (!reached && map_ && pose_) {
+    const Eigen::Vector2d here = pose_->map_from_base.translation();
+    counts = !last_failure_ || (here - last_failure_->first).norm() >= kMovedSinceFailure ||
+             map_->version != last_failure_->second;
+    last_failure_ = std::make_pair(here, map_->version);
+  }
   if (goal_->kind == ExploreGoal::Kind::kGateway) {
     if (reached) {
       const StackEntry* e = stack_.entry(goal_->entry_id);
       if (e && e->state != StackEntry::State::kDone) stack_.done(goal_->entry_id, reason);
     } else {
       stack_.failed(goal_->entry_id, reason, utime + static_cast<int64_t>(options_.retry_after_s * 1e6),
-                    options_.max_attempts, static_cast<int64_t>(map_ ? map_->regions().size() : 0));
+                    options_.max_attempts, static_cast<int64_t>(map_ ? map_->regions().size() : 0), counts);
     }
   } else if (reached) {
     visited_.push_back(goal_->map_point);
@@ -202,7 +214,7 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime)
       return (f.map_point - goal_->map_point).norm() < options_.visited_radius;
     });
     if (it == failed_.end()) it = failed_.insert(failed_.end(), FailedPlace{goal_->map_point, 0, 0});
-    ++it->attempts;
+    if (counts) ++it->attempts;
     it->retry_utime = utime + static_cast<int64_t>(options_.retry_after_s * 1e6);
   }
   last_goal_end_ = fmt::format("goal {} {}: {}", goal_->goal_id, reached ? "ended" : "failed", reason);

@@ -132,6 +132,7 @@ class Explorer
   std::vector<Eigen::Vector2d> visited_;        // map frame: frontier goals reached
   struct FailedPlace { Eigen::Vector2d map_point; int64_t retry_utime; int attempts; };
   std::vector<FailedPlace> failed_;             // frontier goals the planner could not reach
+  std::optional<std::pair<Eigen::Vector2d, int64_t>> last_failure_;   // robot position and map version then
   std::set<int64_t> finished_regions_, offered_regions_;
   int64_t last_region_ = 0;
   int goals_sent_ = 0, goals_reached_ = 0, goals_failed_ = 0;

@@ -39,7 +39,8 @@ struct ExplorerOptions
   double visited_radius = 1.0;     // [m] a frontier whose goal the robot reached is not a goal again within this
   double retry_after_s = 60.0;     // [s] a goal the planner found no path for is tried again after this (and
                                    // whenever the map gained a region since)
-  int max_attempts = 3;            // ... at most this many times; then it is set aside for good (with its reason)
+  int max_attempts = 3;            // ... at most this many times (a failure counts only if the robot moved or the map
+                                   // changed since the last one); then it is set aside for good (with its reason)
   double goal_timeout_s = 180.0;   // [s] a goal not reached in this long counts as failed
   double decide_period_s = 1.0;    // [s] the choice of goal is looked at again this often
   double switch_gain = 0.3;        // a new frontier replaces the running goal only if this much nearer (share)

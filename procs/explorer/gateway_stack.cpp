@@ -158,11 +158,11 @@ void GatewayStack::done(int64_t id, const std::string& reason)
 }
 
 void GatewayStack::failed(int64_t id, const std::string& reason, int64_t retry_utime, int max_attempts,
-                          int64_t map_regions)
+                          int64_t map_regions, bool counts)
 {
   for (auto& e : entries_) {
     if (e.id != id) continue;
-    ++e.attempts;
+    if (counts) ++e.attempts;
     e.state = StackEntry::State::kSetAside;
     e.reason = reason;
     e.map_regions_at_failure = map_regions;

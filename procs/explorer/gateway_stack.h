@@ -65,8 +65,10 @@ class GatewayStack
   std::vector<const StackEntry*> order(const rgmap::RgMap& map, int64_t start_region, const Eigen::Vector2d& robot,
                                        int64_t utime) const;
   void done(int64_t id, const std::string& reason);
-  // A goal for entry `id` failed: set aside until `retry_utime` (and for good after max attempts).
-  void failed(int64_t id, const std::string& reason, int64_t retry_utime, int max_attempts, int64_t map_regions);
+  // A goal for entry `id` failed: set aside until `retry_utime` (and for good after max attempts;
+  // `counts` false: not an attempt, the same failure again from the same place on the same map).
+  void failed(int64_t id, const std::string& reason, int64_t retry_utime, int max_attempts, int64_t map_regions,
+              bool counts = true);
 
   const StackEntry* entry(int64_t id) const;
   const std::vector<StackEntry>& entries() const { return entries_; }
