@@ -217,7 +217,6 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime)
     if (counts) ++it->attempts;
     it->retry_utime = utime + static_cast<int64_t>(options_.retry_after_s * 1e6);
   }
-  last_goal_end_ = fmt::format("goal {} {}: {}", goal_->goal_id, reached ? "ended" : "failed", reason);
   goal_.reset();
   decide_now_ = true;
 }

@@ -95,6 +95,8 @@ class Explorer
 
   ExplorerStatus status() const;
   Phase phase() const { return phase_; }
+  // The running goal (status() has it too, but works out every region's frontiers for the rest).
+  const std::optional<ExploreGoal>& goal() const { return goal_; }
   const GatewayStack& stack() const { return stack_; }
   // Regions finished since the last call (complete and left, or all at the end), for naming.
   std::vector<int64_t> take_finished_regions();
@@ -136,7 +138,7 @@ class Explorer
   std::set<int64_t> finished_regions_, offered_regions_;
   int64_t last_region_ = 0;
   int goals_sent_ = 0, goals_reached_ = 0, goals_failed_ = 0;
-  std::string activity_, last_goal_end_;
+  std::string activity_;
 };
 
 }  // namespace rgnav::explorer

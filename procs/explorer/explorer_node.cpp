@@ -205,7 +205,7 @@ void ExplorerNode::step()
     save_now_ = true;
   } else if (sent_ && !sent_answered_ && std::chrono::steady_clock::now() - sent_wall_ >= kResendGoal) {
     // Still the running goal: the planner has not heard it (or restarted without it).
-    const auto running = explorer_.status().goal;
+    const auto& running = explorer_.goal();
     if (running && running->goal_id == sent_->goal_id) node_.publish(ch.nav_goal, to_msg(*sent_, clock_.now()));
     else sent_.reset();
     sent_wall_ = std::chrono::steady_clock::now();
