@@ -29,6 +29,9 @@ class Bus
   virtual ~Bus() = default;
   // Returns false if the message could not be sent.
   virtual bool publish(const std::string& channel, const void* data, size_t size) = 0;
+  // True when publish() may be called from another thread than handle()'s (the heartbeat
+  // beside the loop); a bus that delivers synchronously (FakeBus) is not.
+  virtual bool thread_safe_publish() const { return false; }
   // channel is an LCM channel regex (anchored: "LASER_FRONT" matches only that channel).
   virtual SubscriptionId subscribe(const std::string& channel, RawHandler handler) = 0;
   virtual void unsubscribe(SubscriptionId id) = 0;

@@ -18,6 +18,7 @@ LcmBus::~LcmBus()
 
 bool LcmBus::publish(const std::string& channel, const void* data, size_t size)
 {
+  const std::lock_guard<std::mutex> lock(publish_mutex_);
   return lcm_publish(lcm_, channel.c_str(), data, static_cast<unsigned int>(size)) == 0;
 }
 

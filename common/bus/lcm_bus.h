@@ -6,6 +6,7 @@
 
 #include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 
 #include "bus/bus.h"
@@ -28,6 +29,7 @@ class LcmBus final : public Bus
   LcmBus& operator=(const LcmBus&) = delete;
 
   bool publish(const std::string& channel, const void* data, size_t size) override;
+  bool thread_safe_publish() const override { return true; }
   SubscriptionId subscribe(const std::string& channel, RawHandler handler) override;
   void unsubscribe(SubscriptionId id) override;
   int handle(std::chrono::milliseconds timeout) override;
@@ -47,6 +49,7 @@ class LcmBus final : public Bus
   static void on_message(const lcm_recv_buf_t* rbuf, const char* channel, void* user);
 
   lcm_t* lcm_ = nullptr;
+  std::mutex publish_mutex_;   // publishers on two threads (the heartbeat beside the loop)
   std::string url_;
   std::map<SubscriptionId, std::unique_ptr<Sub>> subs_;
   SubscriptionId next_id_ = 1;

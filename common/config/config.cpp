@@ -1,8 +1,9 @@
 #include "config/config.h"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
+
+#include "config/file_checks.h"
 
 namespace rgnav::config {
 
@@ -23,6 +24,18 @@ std::string range_text(double lo, double hi)
   return s.str();
 }
 
+// Nothing but comments and white space (YAML would read it as an empty mapping).
+bool only_comments(const std::string& text)
+{
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t at = line.find_first_not_of(" \t\r");
+    if (at != std::string::npos && line[at] != '#') return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 Config::Config(std::shared_ptr<State> state, YAML::Node node, std::string prefix)
@@ -31,11 +44,11 @@ Config::Config(std::shared_ptr<State> state, YAML::Node node, std::string prefix
 
 Config Config::load(const std::string& path)
 {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open config file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse(text.str(), path);
+  // Empty, binary or comment-only files are refused: a parser would read each as "all
+  // defaults" (or a scalar), and a file cut off inside its header comment is only comments.
+  const std::string text = read_text_file(path, "config");
+  if (only_comments(text)) throw ConfigError(path + ": no keys (the file holds only comments)");
+  return parse(text, path);
 }
 
 Config Config::parse(const std::string& yaml_text, const std::string& origin)

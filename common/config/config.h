@@ -27,7 +27,8 @@ class ConfigError : public std::runtime_error
 class Config
 {
  public:
-  // Throws ConfigError if the file is missing, unreadable, not YAML, or not a mapping.
+  // Throws ConfigError if the file is missing, unreadable, empty or only comments, binary, not
+  // YAML, or not a mapping (config/file_checks.h).
   static Config load(const std::string& path);
   // From YAML text (tests, embedded defaults); `origin` names it in messages.
   static Config parse(const std::string& yaml_text, const std::string& origin);

@@ -2,7 +2,9 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include "bus/typed.h"
@@ -12,6 +14,10 @@
 
 namespace rgnav::importers {
 namespace {
+
+// An event on disk: sync word, event number, timestamp, channel length, data length (lcm's
+// eventlog format), then the channel name and the data.
+constexpr long kEventHeaderBytes = 4 + 8 + 8 + 4 + 4;
 
 // A log scan as the laser would have sent it: numbered in log order, named by its channel.
 laser_scan_t to_message(const sensors::LaserScan& s, int64_t scan_id, const std::string& sensor)
@@ -110,54 +116,83 @@ WriteSummary write_lcm_log(const ImportedLog& log, const std::string& path, cons
   return sum;
 }
 
-ImportedLog read_lcm_log(const std::string& path, const LogChannels& ch)
+LogFraming for_each_lcm_event(const std::string& path, const std::function<void(const lcm::LogEvent&, int64_t)>& on_event)
 {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw std::runtime_error(path + ": cannot read LCM log: " + ec.message());
+  if (size == 0) throw std::runtime_error(path + ": empty file, not an LCM log");
   lcm::LogFile file(path, "r");
   if (!file.good()) throw std::runtime_error("cannot read LCM log " + path);
-  ImportedLog log;
-  log.format = "lcm";
-  int64_t n = 0;
+  LogFraming framing;
   FILE* fp = file.getFilePtr();
   long good_end = 0;  // file position after the last complete event
   for (const lcm::LogEvent* ev = file.readNextEvent(); ev; ev = file.readNextEvent()) {
-    ++n;
-    good_end = fp ? std::ftell(fp) : 0;
-    const auto* data = static_cast<const uint8_t*>(ev->data);
-    const size_t size = static_cast<size_t>(ev->datalen);
+    // lcm's reader may skip bytes up to the next sync word without a word: an event that does
+    // not begin where the last one ended had damage (or, before the first, no log at all) in front.
+    const long end = fp ? std::ftell(fp) : 0;
+    const long start = end - kEventHeaderBytes - static_cast<long>(ev->channel.size()) - static_cast<long>(ev->datalen);
+    if (fp && start != good_end) {
+      if (framing.events == 0)
+        throw std::runtime_error(path + ": not an LCM log (no LCM event at its start; the first sync word is at byte " +
+                                 std::to_string(start) + ")");
+      framing.issues.push_back({framing.events + 1, std::to_string(start - good_end) + " damaged bytes skipped before this event"});
+    }
+    ++framing.events;
+    good_end = end;
+    on_event(*ev, framing.events);
+  }
+  if (framing.events == 0)
+    throw std::runtime_error(path + ": not an LCM log (no complete LCM event in its " + std::to_string(size) + " bytes)");
+  // lcm's reader returns null both at the end and at a damaged event; a damaged tail shows as
+  // bytes after the last complete event.
+  framing.good_bytes = good_end;
+  if (fp) {
+    std::fseek(fp, 0, SEEK_END);
+    if (std::ftell(fp) > good_end) {
+      framing.truncated = true;
+      framing.issues.push_back({framing.events + 1, "damaged or truncated event at the end of the log (read up to byte " +
+                                                        std::to_string(good_end) + ")"});
+    }
+  }
+  return framing;
+}
+
+ImportedLog read_lcm_log(const std::string& path, const LogChannels& ch)
+{
+  ImportedLog log;
+  log.format = "lcm";
+  const LogFraming framing = for_each_lcm_event(path, [&](const lcm::LogEvent& ev, int64_t n) {
+    const auto* data = static_cast<const uint8_t*>(ev.data);
+    const size_t size = static_cast<size_t>(ev.datalen);
     std::string why;
-    if (ev->channel == ch.laser_front || ev->channel == ch.laser_rear) {
+    if (ev.channel == ch.laser_front || ev.channel == ch.laser_rear) {
       laser_scan_t m;
       if (!bus::decode(data, size, &m, &why)) {
-        log.issues.push_back({n, ev->channel + ": " + why});
-        continue;
+        log.issues.push_back({n, ev.channel + ": " + why});
+        return;
       }
-      if (ev->channel == ch.laser_front)
+      if (ev.channel == ch.laser_front)
         log.add_scan(msg::to_laser_scan(m));
       else
         log.add_rear_scan(msg::to_laser_scan(m));
-    } else if (ev->channel == ch.odometry || ev->channel == ch.reference) {
+    } else if (ev.channel == ch.odometry || ev.channel == ch.reference) {
       odometry_t m;
       if (!bus::decode(data, size, &m, &why)) {
-        log.issues.push_back({n, ev->channel + ": " + why});
-        continue;
+        log.issues.push_back({n, ev.channel + ": " + why});
+        return;
       }
       PoseRecord p{m.utime, m.seq, m.odom_from_base.x, m.odom_from_base.y, m.odom_from_base.theta};
-      if (ev->channel == ch.odometry)
+      if (ev.channel == ch.odometry)
         log.add_odometry(p);
       else
         log.add_reference(p);
     }
-  }
-  log.lines = n;
-  // lcm's reader returns null both at the end and at a damaged event; a damaged tail shows as
-  // bytes after the last complete event.
-  if (fp) {
-    std::fseek(fp, 0, SEEK_END);
-    if (std::ftell(fp) > good_end) {
-      log.truncated = true;
-      log.issues.push_back({n + 1, "damaged or truncated event at the end of the log"});
-    }
-  }
+  });
+  log.issues.insert(log.issues.end(), framing.issues.begin(), framing.issues.end());
+  std::stable_sort(log.issues.begin(), log.issues.end(), [](const ImportIssue& a, const ImportIssue& b) { return a.line < b.line; });
+  log.lines = framing.events;
+  log.truncated = framing.truncated;
   return log;
 }
 

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <thread>
 #include <chrono>
@@ -70,6 +71,7 @@ Journal::Journal(std::string path, bool fsync_each) : path_(std::move(path)), fs
     const uint32_t magic = get32(data, pos), tag = get32(data, pos + 4), len = get32(data, pos + 8), crc = get32(data, pos + 12);
     if (magic != kRecordMagic || len > kMaxRecord) {
       damage_ = "bad record header at byte " + std::to_string(pos);
+      corrupt_ = true;
       break;
     }
     if (data.size() - pos - kHeader < len) {
@@ -79,10 +81,20 @@ Journal::Journal(std::string path, bool fsync_each) : path_(std::move(path)), fs
     std::string bytes = data.substr(pos + kHeader, len);
     if (crc32_of(bytes) != crc) {
       damage_ = "CRC mismatch in record at byte " + std::to_string(pos);
+      corrupt_ = true;
       break;
     }
     recovered_.push_back({tag, std::move(bytes)});
     pos += kHeader + len;
+  }
+  // Bytes that were never records are evidence (a disk fault, a file of another kind put here):
+  // keep the file as found before cutting them off.
+  if (corrupt_) {
+    const std::string kept = path_ + ".damaged";
+    std::ofstream copy(kept, std::ios::binary | std::ios::trunc);
+    copy.write(data.data(), static_cast<std::streamsize>(data.size()));
+    copy.close();
+    damage_ += copy ? " (the file as found is kept as " + kept + ")" : " (no copy could be kept as " + kept + ")";
   }
   // Cut off a damaged tail so new records follow the last good one.
   if (::ftruncate(fd_, static_cast<off_t>(pos)) != 0 || ::lseek(fd_, static_cast<off_t>(pos), SEEK_SET) < 0)

@@ -1,7 +1,8 @@
 // An append-only journal of input records (write-ahead log): a process that owns state
 // appends each input before applying it, so that after a SIGKILL at any instant replaying
 // the journal rebuilds exactly the state it had. Each record is framed by its length, a tag
-// and a CRC-32; a torn or corrupted tail is detected, reported and cut off on open.
+// and a CRC-32; a torn or corrupted tail is detected, reported and cut off on open (a corrupted
+// one after a copy of the file was kept aside).
 #pragma once
 
 #include <cstdint>
@@ -29,6 +30,10 @@ class Journal
 
   const std::vector<JournalRecord>& recovered() const { return recovered_; }
   const std::string& damage() const { return damage_; }
+  // The damage is no torn end (what a kill in the middle of a write leaves) but bytes that were
+  // never a record: a bad header or a CRC mismatch, e.g. a file of another kind. The whole file
+  // as found is then kept as <path>.damaged before its tail is cut off (damage() says so).
+  bool corrupt() const { return corrupt_; }
 
   // Throws std::runtime_error if the record cannot be written durably.
   void append(uint32_t tag, const std::string& bytes);
@@ -45,6 +50,7 @@ class Journal
   int fd_ = -1;
   std::vector<JournalRecord> recovered_;
   std::string damage_;
+  bool corrupt_ = false;
   int64_t records_ = 0;
 };
 

@@ -3,12 +3,14 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <climits>
 #include <csignal>
 #include <stdexcept>
 
 #include "bus/lcm_bus.h"
 #include "rgnav/heartbeat_t.hpp"
+#include "runtime/fault_injection.h"
 
 namespace rgnav::runtime {
 
@@ -34,23 +36,41 @@ std::string host_name()
   return buf;
 }
 
+std::chrono::microseconds heartbeat_period(const NodeOptions& o)
+{
+  return std::chrono::microseconds(static_cast<int64_t>(1e6 / o.heartbeat_hz));
+}
+
+int64_t steady_ns(Node::Clock::time_point t)
+{
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
+}
+
 }  // namespace
 
 Node::Node(NodeOptions options) : options_(std::move(options)), signals_(std::make_unique<SignalWatcher>())
 {
   bus_ = std::make_unique<bus::LcmBus>(options_.lcm_url);
   host_ = host_name();
-  every(std::chrono::microseconds(static_cast<int64_t>(1e6 / options_.heartbeat_hz)), [this] { publish_heartbeat(); });
+  attach_fault_injection(*bus_, options_.name);  // only under the fault harness (fault_injection.h)
+  every(heartbeat_period(options_), [this] {
+    if (!beat_beside_loop_) publish_heartbeat();
+  });
+  // From here on: the process's own start-up (a journal replayed, a map loaded) is beaten
+  // through, and bounded by its progress like any other long work.
+  start_heartbeat_thread();
 }
 
 Node::Node(NodeOptions options, std::unique_ptr<bus::Bus> bus)
     : options_(std::move(options)), signals_(std::make_unique<SignalWatcher>()), bus_(std::move(bus))
 {
   host_ = host_name();
-  every(std::chrono::microseconds(static_cast<int64_t>(1e6 / options_.heartbeat_hz)), [this] { publish_heartbeat(); });
+  every(heartbeat_period(options_), [this] {
+    if (!beat_beside_loop_) publish_heartbeat();
+  });
 }
 
-Node::~Node() = default;
+Node::~Node() { stop_heartbeat_thread(); }
 
 void Node::every(std::chrono::microseconds period, std::function<void()> fn)
 {
@@ -71,9 +91,12 @@ void Node::watch_fd(std::function<int()> fd, std::function<void()> on_ready)
 
 void Node::on_input(int64_t utime)
 {
-  has_input_ = true;
-  last_input_ = Clock::now();
-  ++messages_in_;
+  {
+    const std::lock_guard<std::mutex> lock(state_mutex_);
+    has_input_ = true;
+    last_input_ = Clock::now();
+    ++messages_in_;
+  }
   if (!clock_.observe(time::from_utime(utime))) return;
   const time::Time now = clock_.now();
   for (auto& t : message_timers_) {
@@ -93,28 +116,49 @@ void Node::on_input(int64_t utime)
 
 void Node::set_status(int8_t state, const std::string& text)
 {
+  const std::lock_guard<std::mutex> lock(state_mutex_);
   status_override_ = true;
   override_state_ = state;
   override_text_ = text;
 }
 
-void Node::clear_status() { status_override_ = false; }
+void Node::clear_status()
+{
+  const std::lock_guard<std::mutex> lock(state_mutex_);
+  status_override_ = false;
+}
 
 void Node::publish_heartbeat()
 {
+  {
+    const std::lock_guard<std::mutex> lock(state_mutex_);
+    dropped_seen_ = drops_.total();
+  }
+  send_heartbeat();
+}
+
+void Node::send_heartbeat()
+{
+  // One sender at a time, so sequence numbers go out in order whichever thread sends; the state
+  // lock is not held while publishing (a synchronous bus delivers to this node's own handlers).
+  const std::lock_guard<std::mutex> sending(send_mutex_);
   heartbeat_t hb;
   hb.utime = time::wall_utime();
   hb.name = options_.name;
   hb.host = host_;
   hb.pid = static_cast<int32_t>(getpid());
-  hb.seq = ++heartbeat_seq_;
   const auto now = Clock::now();
+  hb.progress = progress_.load(std::memory_order_relaxed);
+  const int64_t busy_since = busy_since_ns_.load(std::memory_order_relaxed);
+  hb.busy_ms = busy_since == 0 ? 0 : static_cast<int32_t>(std::max<int64_t>(0, (steady_ns(now) - busy_since) / 1'000'000));
+  hb.rss_kb = ProcStats::rss_kb();
+  std::unique_lock<std::mutex> lock(state_mutex_);
+  hb.seq = ++heartbeat_seq_;
   hb.last_input_age_us =
       has_input_ ? std::chrono::duration_cast<std::chrono::microseconds>(now - last_input_).count() : -1;
   hb.cpu_percent = stats_.cpu_percent();
-  hb.rss_kb = ProcStats::rss_kb();
   hb.messages_in = messages_in_;
-  hb.messages_dropped = drops_.total();
+  hb.messages_dropped = dropped_seen_;
   if (stop_requested_) {
     hb.state = heartbeat_t::STATE_STOPPING;
     hb.status = "stopping";
@@ -132,7 +176,43 @@ void Node::publish_heartbeat()
     hb.state = heartbeat_t::STATE_RUNNING;
     hb.status = "ok";
   }
+  lock.unlock();
   bus::publish(*bus_, options_.heartbeat_channel, hb);
+}
+
+void Node::heartbeat_loop()
+{
+  const auto period = std::chrono::duration_cast<Clock::duration>(heartbeat_period(options_));
+  std::unique_lock<std::mutex> lock(beat_mutex_);
+  auto next = Clock::now() + period;
+  while (!beat_wake_.wait_until(lock, next, [this] { return beat_stop_; })) {
+    lock.unlock();
+    send_heartbeat();
+    lock.lock();
+    // Missed beats (the host stalled) are skipped, not sent in a burst.
+    const auto now = Clock::now();
+    next += period * (1 + std::max<Clock::rep>(0, (now - next) / period));
+  }
+}
+
+void Node::start_heartbeat_thread()
+{
+  if (!bus_->thread_safe_publish() || beat_thread_.joinable()) return;
+  beat_stop_ = false;
+  beat_thread_ = std::thread([this] { heartbeat_loop(); });
+  beat_beside_loop_ = true;
+}
+
+void Node::stop_heartbeat_thread()
+{
+  if (!beat_thread_.joinable()) return;
+  {
+    const std::lock_guard<std::mutex> lock(beat_mutex_);
+    beat_stop_ = true;
+  }
+  beat_wake_.notify_all();
+  beat_thread_.join();
+  beat_beside_loop_ = false;
 }
 
 void Node::run_due_timers()
@@ -171,7 +251,10 @@ bool Node::spin_once(std::chrono::milliseconds max_wait)
     fds[2 + watched] = {fd_watches_[watched].fd(), POLLIN, 0};  // poll ignores fd -1
   if (nfds == 1) fds[1].fd = -1;
   const nfds_t total = watched > 0 ? static_cast<nfds_t>(2 + watched) : static_cast<nfds_t>(nfds);
+  busy_since_ns_.store(0, std::memory_order_relaxed);
   const int r = poll(fds, total, static_cast<int>(wait.count()));
+  busy_since_ns_.store(steady_ns(Clock::now()), std::memory_order_relaxed);
+  note_progress();
   if (r > 0 && (fds[0].revents & POLLIN)) {
     const int sig = signals_->take();
     if (sig != 0) {
@@ -194,6 +277,11 @@ bool Node::spin_once(std::chrono::milliseconds max_wait)
   for (size_t i = 0; r > 0 && i < watched; ++i)
     if (fds[2 + i].fd >= 0 && (fds[2 + i].revents & (POLLIN | POLLERR | POLLHUP | POLLNVAL)))
       fd_watches_[i].on_ready();
+  {
+    // For the heartbeat beside the loop (the drop counter is the loop's alone).
+    const std::lock_guard<std::mutex> lock(state_mutex_);
+    dropped_seen_ = drops_.total();
+  }
   run_due_timers();
   return !stop_requested_;
 }
@@ -202,7 +290,9 @@ int Node::run()
 {
   spdlog::info("{} running on {}", options_.name, bus_->url());
   publish_heartbeat();
+  start_heartbeat_thread();
   while (!stop_requested_) spin_once(std::chrono::milliseconds(100));
+  stop_heartbeat_thread();
   spdlog::info("{} stopped ({} inputs, {} dropped)", options_.name, messages_in_, drops_.total());
   return bus_failed_ ? 1 : 0;
 }

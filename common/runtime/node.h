@@ -1,14 +1,25 @@
 // The process runtime every rgnav process runs in: one bus, typed and validated
 // publish/subscribe, message time, wall-time and message-time timers, a HEARTBEAT at 5 Hz,
-// and a loop that ends cleanly on SIGINT/SIGTERM. Single-threaded: handlers and timers run
-// in run()'s thread, one at a time, so node adapters need no locks.
+// and a loop that ends cleanly on SIGINT/SIGTERM. Handlers and timers run in run()'s thread,
+// one at a time, so node adapters need no locks.
+//
+// Under run() on a real bus the heartbeat is sent by a thread of its own beside the loop: a
+// handler busy with long work (a region described again, a loop closure, a global search)
+// does not silence it. What shows a stuck loop instead is the heartbeat's progress counter
+// (loop turns, plus note_progress() from long work) and busy_ms; the supervisor bounds the
+// time without progress per process. SIGSTOP, a crash or a deadlock of the whole process
+// still silence the heartbeat. Tests driving spin_once() beat on the loop as before.
 #pragma once
 
+#include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -76,13 +87,17 @@ class Node
   void set_status(int8_t state, const std::string& text);
   void clear_status();
   void publish_heartbeat();
+  // Long work calls this between its steps (thread-safe, cheap): the heartbeat's progress
+  // counter moves on, so the supervisor sees "busy and progressing", not "hung".
+  void note_progress() { progress_.fetch_add(1, std::memory_order_relaxed); }
+  int64_t progress() const { return progress_.load(std::memory_order_relaxed); }
 
   const std::string& name() const { return options_.name; }
   const time::MessageClock& clock() const { return clock_; }
   bus::Bus& bus() { return *bus_; }
   bus::DropCounter& drops() { return drops_; }
   int64_t messages_in() const { return messages_in_; }
-  int64_t heartbeat_seq() const { return heartbeat_seq_; }
+  int64_t heartbeat_seq() const { return heartbeat_seq_.load(); }
 
  private:
   struct WallTimer
@@ -102,6 +117,10 @@ class Node
   void on_input(int64_t utime);
   void run_due_timers();
   Clock::time_point next_deadline() const;
+  void heartbeat_loop();
+  void send_heartbeat();
+  void start_heartbeat_thread();
+  void stop_heartbeat_thread();
 
   NodeOptions options_;
   std::unique_ptr<SignalWatcher> signals_;  // before bus_: threads LCM may start inherit the mask
@@ -119,16 +138,29 @@ class Node
   };
   std::vector<FdWatch> fd_watches_;
   std::string host_;
-  bool stop_requested_ = false;
+  std::atomic<bool> stop_requested_{false};
   bool bus_failed_ = false;
   bool has_subscriptions_ = false;
   bool has_input_ = false;
   Clock::time_point last_input_{};
   int64_t messages_in_ = 0;
-  int64_t heartbeat_seq_ = 0;
+  std::atomic<int64_t> heartbeat_seq_{0};
   bool status_override_ = false;
   int8_t override_state_ = 0;
   std::string override_text_;
+  int64_t dropped_seen_ = 0;    // drops_.total() as of the loop's last turn (state_mutex_)
+  // Liveness of the loop, read by the heartbeat thread.
+  std::atomic<int64_t> progress_{0};
+  std::atomic<int64_t> busy_since_ns_{0};   // steady clock; 0 = waiting in poll
+  // The heartbeat beside the loop (run() on a bus whose publish is thread-safe). state_mutex_
+  // guards what publish_heartbeat() reads that the loop writes.
+  std::mutex state_mutex_;
+  std::mutex send_mutex_;   // one heartbeat sender at a time
+  std::mutex beat_mutex_;
+  std::condition_variable beat_wake_;
+  bool beat_stop_ = false;
+  std::thread beat_thread_;
+  std::atomic<bool> beat_beside_loop_{false};
 };
 
 template <class T>
@@ -140,6 +172,7 @@ bus::SubscriptionId Node::subscribe(const std::string& channel, std::function<vo
       [this, handler = std::move(handler)](const T& msg, const bus::RawMessage&) {
         on_input(msg.utime);
         handler(msg);
+        note_progress();   // one turn of the loop may handle many messages
       },
       &drops_);
 }

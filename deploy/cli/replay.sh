@@ -21,6 +21,9 @@ while [[ $# -gt 0 ]]; do
 done
 if [[ -d "$log" ]]; then mapfile -t files < <(ls -1 "$log"/*.lcmlog* | sort); else files=("$log"); fi
 [[ ${#files[@]} -gt 0 && -f "${files[0]}" ]] || { echo "replay: no log at $log" >&2; exit 2; }
+# A file that is no LCM log is refused here, naming it, before anything starts (lcm-logplayer
+# would play nothing); a cut-off one gets a warning and is played up to the damage.
+"$BUILD/bin/rgnav_log_check" "${files[@]}" >/dev/null || { echo "replay: refused (see above); nothing was started" >&2; exit 1; }
 host="replay-$$"
 state=${state_dir:-$(mktemp -d /tmp/rgnav-replay.XXXXXX)}
 "$BUILD/bin/supervisor" --launch "$launch" --host "$host" --state-dir "$state" "${extra[@]}" &

@@ -5,16 +5,27 @@
 #include <opencv2/imgproc.hpp>
 
 #include "config/config.h"
+#include "config/file_checks.h"
 
 namespace rgnav::sim {
 
 namespace {
 
+// The image as 8-bit grey; throws ConfigError naming the file when it is empty, cut off
+// (a decoder would fill the missing rows) or cannot be decoded.
+cv::Mat read_gray(const std::string& file)
+{
+  const std::string bytes = config::read_image_file(file, "occupancy image");
+  const cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data()));
+  cv::Mat gray = cv::imdecode(raw, cv::IMREAD_GRAYSCALE);
+  if (gray.empty()) throw config::ConfigError(file + ": cannot decode occupancy image");
+  return gray;
+}
+
 // 255 where the pixel is free, 0 elsewhere.
 cv::Mat free_mask(const OccupancyImage& image, const std::string& file)
 {
-  const cv::Mat gray = cv::imread(file, cv::IMREAD_GRAYSCALE);
-  if (gray.empty()) throw config::ConfigError(file + ": cannot read occupancy image");
+  const cv::Mat gray = read_gray(file);
   cv::Mat mask(gray.size(), CV_8U);
   for (int r = 0; r < gray.rows; ++r)
     for (int c = 0; c < gray.cols; ++c) {
@@ -79,7 +90,7 @@ Pose2 add_occupancy_image(const OccupancyImage& image, World* world)
   add_boundary_walls(mask, image.resolution, image.origin, image.wall_height, world);
   if (!image.gt_segmentation.empty()) {
     auto rooms = rooms_from_segmentation(image);
-    const cv::Mat labels = cv::imread(image.gt_segmentation, cv::IMREAD_GRAYSCALE);
+    const cv::Mat labels = read_gray(image.gt_segmentation);
     if (labels.rows != rows || labels.cols != cols)
       throw config::ConfigError(image.gt_segmentation + ": size differs from " + image.file);
     for (auto& r : rooms) world->regions.push_back(std::move(r));

@@ -10,6 +10,7 @@ namespace {
 // Salts give each random consumer its own stream, so adding noise to one never shifts another.
 constexpr uint64_t kLaserSalt = 1;
 constexpr uint64_t kOdometrySalt = 2;
+constexpr uint64_t kPeopleSalt = 4;  // 3: the protocol laser (protocol_hardware.cpp)
 
 int64_t event_time_us(int64_t k, double rate_hz) { return std::llround(static_cast<double>(k) * 1e6 / rate_hz); }
 
@@ -22,7 +23,7 @@ Simulator::Simulator(World world, const SimulatorOptions& options)
       drive_(options.drive),
       odometry_(options.odometry, Rng::derive(options.seed, kOdometrySalt)),
       laser_(options.laser, Rng::derive(options.seed, kLaserSalt)),
-      people_(world_.people),
+      people_(world_.people, Rng::derive(options.seed, kPeopleSalt)),
       door_open_(world_.doors.size(), 1),
       truth_(world_.start)
 {

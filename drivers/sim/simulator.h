@@ -135,6 +135,8 @@ class Simulator
   const World& world() const { return world_; }
   const SimulatorOptions& options() const { return options_; }
   std::vector<Circle> people() const { return people_.discs(); }
+  // What the people chose when they met the robot (benchmarks of encounters).
+  const People& people_model() const { return people_; }
   const std::vector<uint8_t>& doors_open() const { return door_open_; }
   int64_t collisions() const { return collision_count_; }
   // Nearest obstacle the robot body could hit (walls, furniture, closed doors, people), from

@@ -85,6 +85,7 @@ struct Person
   std::vector<Vec2> path;  // >= 1 point; one point = standing still
   double speed = 0.8;      // [m/s]
   bool loop = true;        // true: back to path[0] after the last point; false: walk back and forth
+  bool once = false;       // walk the path once and stay at its end, their destination (loop is then unused)
   double radius = 0.22;
   double height = 1.75;
   double start_delay = 0.0;  // [s] stands at path[0] until then
@@ -96,6 +97,20 @@ struct Person
   // room (and passes it closer than the personal space), as people do with a robot that stands
   // in a hallway; no room: waits on. Infinite (the default): waits for the robot, however long.
   double patience = std::numeric_limits<double>::infinity();  // [s]
+  // Meeting the robot in a doorway or a narrow hallway, people do one of several things; which
+  // one is drawn at random for every encounter (seeded from the simulator's seed, people.h):
+  // step aside where the walls leave the robot room to pass, and wait there until it has
+  // (stand_aside_share); walk around it at once where there is room (go_around_share); or wait
+  // where they are (the rest). No room for what they chose: they wait. Both 0 (the default):
+  // they always wait, as above, and nothing is drawn.
+  double stand_aside_share = 0.0;
+  double go_around_share = 0.0;
+  // Above `patience`: the patience of each encounter is drawn in [patience, patience_max].
+  double patience_max = 0.0;  // [s]
+  // Patience run out (waiting, or standing aside for a robot that does not come) and no room to
+  // walk around it: they turn back the way they came (false: wait on); walking `once`, back at
+  // the start of their path they try again. Two parties waiting for each other cannot wait for ever.
+  bool turn_back = false;
 };
 
 enum class RegionKind { kRoom, kHallway, kLobby, kOther };

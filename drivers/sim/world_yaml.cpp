@@ -204,11 +204,19 @@ World parse_world_yaml(const config::Config& cfg, const std::string& base_dir)
     p.path = read_points(c, "path", 1);
     p.speed = c.number("speed", p.speed, 0.0, 3.0);
     p.loop = c.boolean("loop", p.loop);
+    p.once = c.boolean("once", p.once);
     p.radius = c.number("radius", p.radius, 0.05, 1.0);
     p.height = c.number("height", p.height, 0.5, 2.5);
     p.start_delay = c.number("start_delay", p.start_delay, 0.0, 1e7);
     p.personal_space = c.number("personal_space", p.personal_space, 0.0, 5.0);
     if (c.has("patience")) p.patience = c.required_number("patience", 0.0, 1e9);  // absent: waits for good
+    // Doorway encounters (world.h): what they do when the robot is in their way, drawn per encounter.
+    p.stand_aside_share = c.number("stand_aside_share", p.stand_aside_share, 0.0, 1.0);
+    p.go_around_share = c.number("go_around_share", p.go_around_share, 0.0, 1.0);
+    if (p.stand_aside_share + p.go_around_share > 1.0 + 1e-9)
+      c.fail("go_around_share", "stand_aside_share + go_around_share must not exceed 1");
+    p.patience_max = c.number("patience_max", p.patience_max, 0.0, 1e9);
+    p.turn_back = c.boolean("turn_back", p.turn_back);
     world.people.push_back(p);
   }
   std::set<std::string> region_names;
@@ -315,7 +323,11 @@ std::string world_to_yaml(const World& w)
       << ", loop: " << (p.loop ? "true" : "false") << ", radius: " << num(p.radius) << ", height: " << num(p.height)
       << ", start_delay: " << num(p.start_delay)
       << (p.personal_space > 0.0 ? ", personal_space: " + num(p.personal_space) : std::string())
-      << (std::isfinite(p.patience) ? ", patience: " + num(p.patience) : std::string()) << "}\n";
+      << (std::isfinite(p.patience) ? ", patience: " + num(p.patience) : std::string())
+      << (p.stand_aside_share > 0.0 ? ", stand_aside_share: " + num(p.stand_aside_share) : std::string())
+      << (p.go_around_share > 0.0 ? ", go_around_share: " + num(p.go_around_share) : std::string())
+      << (p.patience_max > 0.0 ? ", patience_max: " + num(p.patience_max) : std::string())
+      << (p.turn_back ? ", turn_back: true" : "") << (p.once ? ", once: true" : "") << "}\n";
   if (!w.regions.empty()) o << "regions:\n";
   for (const auto& r : w.regions)
     o << "  - {name: " << quoted(r.name) << ", kind: " << to_string(r.kind) << ", polygon: " << points_text(r.polygon) << "}\n";

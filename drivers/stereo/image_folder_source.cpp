@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "config/config.h"
+#include "config/file_checks.h"
 #include "time/message_time.h"
 
 namespace rgnav::stereo {
@@ -30,6 +32,35 @@ ImageFolderSource::ImageFolderSource(ImageFolderOptions options) : options_(std:
   if (pairs_.empty())
     throw std::runtime_error("stereo folder '" + options_.folder + "' holds no pair named by '" + options_.left_token +
                              "' / '" + options_.right_token + "'");
+  // Refuse at start-up, naming the file, a folder whose first pair is no pair of images;
+  // later damaged files are reported frame by frame (error()).
+  std::string why;
+  if (!read_pair(pairs_.front(), &why)) throw std::runtime_error("stereo folder '" + options_.folder + "': " + why);
+}
+
+std::optional<StereoFrame> ImageFolderSource::read_pair(const std::pair<std::string, std::string>& files,
+                                                        std::string* why) const
+{
+  const int flags = options_.grayscale ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR;
+  const auto read = [&](const std::string& file) {
+    const std::string bytes = config::read_image_file(file, "image");   // whole, not cut off
+    cv::Mat m = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data())), flags);
+    if (m.empty()) throw config::ConfigError(file + ": cannot decode image");
+    return m;
+  };
+  StereoFrame f;
+  try {
+    f.left = read(files.first);
+    f.right = read(files.second);
+  } catch (const config::ConfigError& e) {
+    *why = e.what();
+    return std::nullopt;
+  }
+  if (f.left.size() != f.right.size()) {
+    *why = "left and right differ in size: " + files.first;
+    return std::nullopt;
+  }
+  return f;
 }
 
 std::optional<StereoFrame> ImageFolderSource::next()
@@ -41,21 +72,10 @@ std::optional<StereoFrame> ImageFolderSource::next()
     }
     index_ = 0;
   }
-  const auto& [l, r] = pairs_[index_++];
-  const int flags = options_.grayscale ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR;
-  StereoFrame f;
-  f.left = cv::imread(l, flags);
-  f.right = cv::imread(r, flags);
-  if (f.left.empty() || f.right.empty()) {
-    error_ = "cannot decode " + (f.left.empty() ? l : r);
-    return std::nullopt;
-  }
-  if (f.left.size() != f.right.size()) {
-    error_ = "left and right differ in size: " + l;
-    return std::nullopt;
-  }
+  auto f = read_pair(pairs_[index_++], &error_);
+  if (!f) return std::nullopt;
   // Replayed files have no capture time of their own: stamp them when served.
-  f.utime = time::wall_utime();
+  f->utime = time::wall_utime();
   ++served_;
   return f;
 }

@@ -23,7 +23,9 @@ struct ImageFolderOptions
 class ImageFolderSource final : public StereoSource
 {
  public:
-  // Throws std::runtime_error if the folder is missing or holds no complete pair.
+  // Throws std::runtime_error if the folder is missing or holds no complete pair, or if its
+  // first pair cannot be read (an image empty, cut off, not decodable, or the two of different
+  // sizes: the message names the file).
   explicit ImageFolderSource(ImageFolderOptions options);
   std::optional<StereoFrame> next() override;
   std::string error() const override { return error_; }
@@ -32,6 +34,9 @@ class ImageFolderSource final : public StereoSource
 
  private:
   const ImageFolderOptions options_;
+  // Both images of a pair, whole and decoded; nullopt with `why` naming the file otherwise.
+  std::optional<StereoFrame> read_pair(const std::pair<std::string, std::string>& files, std::string* why) const;
+
   std::vector<std::pair<std::string, std::string>> pairs_;
   size_t index_ = 0;
   int64_t served_ = 0;

@@ -27,6 +27,8 @@ double required(double clearance, double c0, double s_from, double s)
 
 }  // namespace
 
+double required_clearance(double clearance, double c0, double s) { return required(clearance, c0, 0.0, s); }
+
 std::optional<double> first_collision(const Chain& chain, const LocalMap& map, double clearance, double step,
                                       double s_from)
 {

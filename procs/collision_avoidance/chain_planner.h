@@ -37,6 +37,10 @@ struct PlannerOptions
   double slow_speed = 0.2;        // [m/s]
 };
 
+// The clearance a chain needs at arc length s when it starts with clearance c0: the full
+// `clearance`, except that a robot already closer than that to something may leave (first_collision).
+double required_clearance(double clearance, double c0, double s);
+
 // Where the footprint first touches the map along a chain (arc length), if anywhere, from
 // s_from on; turns in place are checked at their position. Where the chain starts closer
 // than `clearance` to something, it may move away (clearance growing with the distance

@@ -177,6 +177,10 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
     return std::nullopt;
   }
 
+  // Out of a person's way sideways, until they have passed (yielding.cpp): nothing else decides
+  // meanwhile, but a new goal ends it.
+  if (auto yielding = yield_under_way(now)) return *yielding;
+
   // A back-off manoeuvre runs to its end: re-deciding every 100 ms on a clearance that
   // flickers around the threshold (scan noise) made the robot twitch between turning away
   // and turning back. New targets end a plain back-off (the robot decides anew toward them;

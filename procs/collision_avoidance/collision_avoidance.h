@@ -6,8 +6,9 @@
 // free it looks for a detour on the grid (grid_path.h) and builds primitives along it; when
 // that fails too it falls back to Holz et al.'s reactive behaviours (wait, back off from what
 // is too close, turn or steer toward free space), expressed as short trajectories too (the
-// drive stays the only one commanding the base). Stale scans: stop. Runs on message time;
-// knows no LCM.
+// drive stays the only one commanding the base). A person in its way in a doorway or a narrow
+// hallway, whose way the robot blocks in turn, gets it out of their way sideways until they
+// have passed (give_way.h, yielding.cpp). Stale scans: stop. Runs on message time; knows no LCM.
 #pragma once
 
 #include <optional>
@@ -45,9 +46,24 @@ struct CaOptions
   double headway = 0.3;            // [m] moving this far counts as headway ...
   double yield_after = 8.0;        // [s] ... none for this long: back away (yield) ...
   double yield_reach = 0.5;        // [m] ... from what is this much farther than the clearance
-  GiveWayOptions give_way;         // ... first by driving back, away from the target (give_way.h)
+  GiveWayOptions give_way;         // ... by driving back, away from the target (give_way.h)
   double give_way_speed = 0.25;    // [m/s]
   double give_way_timeout = 20.0;  // [s] giving way ends after this even if not done
+  // A person in the way (walking toward the robot with it on their path, within yield_notice,
+  // or stopped there) and no headway for yield_sideways_after: leave their path sideways
+  // (give_way.yield) at yield_speed, wait there until nobody is left to pass for pass_settle,
+  // or yield_wait_timeout; the whole of it ends after yield_timeout.
+  double yield_sideways_after = 2.0;  // [s]
+  double yield_head_on_after = 0.5;   // [s] someone coming straight down the robot's way
+  double yield_notice = 4.0;          // [m] walking toward the robot
+  double yield_notice_stopped = 2.0;  // [m] stopped in front of it
+  double yield_speed = 0.45;          // [m/s]
+  double pass_settle = 1.5;           // [s]
+  // Only someone standing on the path for standing_go_after, waiting for the robot in turn, and
+  // a chain past them to the targets free: go on (two parties waiting for each other).
+  double standing_go_after = 4.0;     // [s]
+  double yield_wait_timeout = 25.0;   // [s]
+  double yield_timeout = 60.0;        // [s]
   double a_max = 0.4;              // [m/s^2] sent with every trajectory
   double omega_max = 1.0;          // [rad/s]
 };
@@ -105,6 +121,7 @@ class CollisionAvoidance
   int64_t replans() const { return replans_; }
   int64_t fallbacks() const { return fallbacks_; }
   int64_t detours() const { return detours_; }
+  int64_t yields() const { return yields_; }  // times it began to leave a person's path sideways
 
  private:
   std::optional<trajectory::Trajectory> send_new(trajectory::Chain chain, time::Time now, double predicted, Mode mode);
@@ -118,6 +135,23 @@ class CollisionAvoidance
   // A person who walked up and stopped stands within `reach` (people_tracker.h LastSeenMover).
   bool someone_waits_near(double reach) const;
   bool targets_changed_goal() const { return targets_.goal_id != give_way_goal_id_; }
+  // Leaving a person's path sideways (yielding.cpp). The person in the way, if any: someone
+  // walking toward the robot with it on their path, or someone who stopped in front of it.
+  std::optional<PersonPath> person_in_the_way() const;
+  std::optional<trajectory::Trajectory> start_yield(time::Time now, const PersonPath& path);
+  // From where the robot is: to the yield point (or a look behind first, or waiting where it is).
+  // Nothing: the yield ended (no place to go).
+  std::optional<trajectory::Trajectory> leave_path(time::Time now);
+  // The yield under way: what to send (maybe nothing); nullopt: it ended, decide normally.
+  std::optional<std::optional<trajectory::Trajectory>> yield_under_way(time::Time now);
+  // `done`: it ran its course (the headway clock starts again); otherwise it found no way out
+  // of the person's path, and the older fallbacks get their turn before the next try.
+  void end_yield(time::Time now, bool done);
+  // Back to where the yield began (nothing: near it already, or no free way there).
+  std::optional<trajectory::Trajectory> return_to_way(time::Time now);
+  // Something there now on what remains of the yield's manoeuvre (first_collision's rule on the
+  // observed points: where a mover is only predicted to walk does not count).
+  bool yield_way_blocked() const;
   // A reactive turn on the spot, sent now, runs to its end (kept alive for the lld) unless a
   // chain to the targets turns up first.
   std::optional<trajectory::Trajectory> send_reactive_turn(double angle, time::Time now, const std::string& why);
@@ -153,6 +187,7 @@ class CollisionAvoidance
   int64_t replans_ = 0;
   int64_t fallbacks_ = 0;
   int64_t detours_ = 0;
+  int64_t yields_ = 0;
   std::optional<int64_t> backoff_id_;  // the back-off manoeuvre under way, run to its end
   int64_t backoff_goal_id_ = 0;        // ... unless the goal changes
   bool giving_way_now_ = false;        // the manoeuvre under way gives way
@@ -171,6 +206,36 @@ class CollisionAvoidance
   time::Time reactive_turn_until_{};         // ... and when it should have ended
   bool blocked_since_set_ = false;
   time::Time blocked_since_{};
+  enum class YieldPhase
+  {
+    kNone,
+    kLooking,  // turning on the spot: nothing known behind the robot, where the way out may be
+    kLeaving,  // on the way to the yield point
+    kWaiting,  // there, until nobody is left to pass
+    kReturning,  // back the way it came, to where it left its way
+  };
+  struct Yield
+  {
+    YieldPhase phase = YieldPhase::kNone;
+    PersonPath path;
+    Eigen::Vector2d point = Eigen::Vector2d::Zero();
+    int64_t goal_id = 0;
+    Eigen::Vector2d goal_at = Eigen::Vector2d::Zero();  // the last target when it began
+    time::Time since{};        // the phase began
+    time::Time phase_until{};  // the phase's manoeuvre should have ended by then
+    time::Time until{};        // the whole yield ends then
+    bool clear = false;        // waiting: nobody to pass since clear_since
+    time::Time clear_since{};
+    bool standing = false;     // waiting: only someone standing since standing_since
+    time::Time standing_since{};
+    int64_t trajectory_id = 0;  // the manoeuvre under way (0: none yet, stopping first)
+    bool looked = false;
+    int plans = 0;             // yield points chosen (blocked ways re-plan, a few times)
+    std::vector<Eigen::Vector2d> trail;  // where the robot drove since it began (odom frame, 0.1 m apart; the first: where it left its way)
+    double start_heading = 0.0;          // [rad] its heading on its way when it began
+  };
+  Yield yield_;
+  time::Time yield_retry_after_{};  // no new yield before (after one that found no way out)
   Mode mode_ = Mode::kIdle;
   std::string status_ = "idle";
 };

@@ -1,10 +1,181 @@
 #include "collision_avoidance/give_way.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <queue>
 
 #include "collision_avoidance/chain_planner.h"
+#include "collision_avoidance/local_grid.h"
 
 namespace rgnav::collision_avoidance {
+
+double PersonPath::distance(const Eigen::Vector2d& p) const
+{
+  const double s = std::clamp(along(p), 0.0, length);
+  return (p - (from + s * direction)).norm();
+}
+
+namespace {
+
+// Corners along the search's cells (`cells.front()` the robot) whose straight legs keep what
+// first_collision asks of a chain from the robot: the clearance (plus `margin`, for what the
+// scans add on the way), or where the robot starts closer than that to something (the person
+// who walked up), growing as it leaves. Each leg is grown from its corner as far along the
+// cells as it stays free.
+std::vector<Eigen::Vector2d> leaving_corners(const LocalMap& map, const std::vector<Eigen::Vector2d>& cells,
+                                             double clearance, double margin)
+{
+  const double c0 = map.clearance(cells.front(), clearance);
+  auto leg_free = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b, double s0, double need) {
+    const double len = (b - a).norm();
+    const int n = std::max(1, static_cast<int>(std::ceil(len / 0.05)));
+    for (int i = 1; i <= n; ++i) {
+      const double f = static_cast<double>(i) / n;
+      if (map.clearance(a + (b - a) * f, need) < required_clearance(need, c0, s0 + f * len) - 1e-9) return false;
+    }
+    return true;
+  };
+  std::vector<Eigen::Vector2d> corners;
+  size_t i = 0;
+  double s = 0.0;  // arc length to cells[i] along the corners so far
+  while (i + 1 < cells.size()) {
+    size_t best = i + 1;  // the search's own step is trusted when nothing longer is free
+    for (size_t j = i + 2; j < cells.size() && leg_free(cells[i], cells[j], s, clearance + margin); ++j) best = j;
+    // Between walls closer than that (a narrow hallway), straight legs keep the plain clearance:
+    // the grid's steps zigzag from cell to cell, and a drive cannot stop and turn at each.
+    if (best == i + 1)
+      for (size_t j = i + 2; j < cells.size() && leg_free(cells[i], cells[j], s, clearance); ++j) best = j;
+    s += (cells[best] - cells[i]).norm();
+    corners.push_back(cells[best]);
+    i = best;
+  }
+  return corners;
+}
+
+}  // namespace
+
+std::optional<YieldPoint> choose_yield_point(const LocalMap& map, const Eigen::Vector2d& robot, const PersonPath& path,
+                                             double clearance, const YieldOptions& o)
+{
+  const double reach = o.max_travel + 0.5;
+  const LocalGrid grid(map, robot.array() - reach, robot.array() + reach, o.cell);
+  const int w = grid.width(), h = grid.height();
+  const Eigen::Vector2i s = grid.cell_of(robot);
+  const double c0 = map.clearance(robot, clearance);
+  const double off_needed = clearance + o.path_half_width + o.extra;
+  // Never nearer the person than clearance + person_keep, nor nearer than the robot is now.
+  const double keep = std::min(clearance + o.person_keep, (robot - path.from).norm());
+  // `len`: the way's length to the cell. Tight (the person walked up to the robot): the way may
+  // leave, as first_collision lets a chain, never get closer.
+  // `from`: where the step into the cell starts (the robot, or a cell's centre).
+  auto passable = [&](int x, int y, const Eigen::Vector2d& from, double len) {
+    const Eigen::Vector2d c = grid.centre(x, y);
+    if (!grid.in_view(x, y) && (c - robot).norm() > 0.5) return false;  // unknown: behind the robot
+    if ((c - path.from).norm() < keep) return false;
+    if (grid.clearance(x, y) >= clearance) return true;  // the grid's is on the safe side
+    const double step = (c - from).norm();
+    for (const double f : {0.5, 1.0})
+      if (map.clearance(from + f * (c - from), clearance) < required_clearance(clearance, c0, len - (1.0 - f) * step) + 0.01)
+        return false;
+    return true;
+  };
+  auto goal = [&](int x, int y) {
+    const Eigen::Vector2d c = grid.centre(x, y);
+    return grid.seen(x, y) && grid.clearance(x, y) >= clearance + o.spot_margin && path.distance(c) >= off_needed;
+  };
+
+  const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
+  std::vector<double> cost(n, std::numeric_limits<double>::infinity()), length(n, 0.0);
+  std::vector<int> parent(n, -1);
+  std::vector<uint8_t> closed(n, 0);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  const int start = grid.index(s.x(), s.y());
+  cost[static_cast<size_t>(start)] = 0.0;
+  open.emplace(0.0, start);
+  int found = -1;
+  while (!open.empty()) {
+    const int cur = open.top().second;
+    open.pop();
+    if (closed[static_cast<size_t>(cur)]) continue;
+    closed[static_cast<size_t>(cur)] = 1;
+    const int cx = cur % w, cy = cur / w;
+    if (goal(cx, cy)) {
+      found = cur;
+      break;
+    }
+    const Eigen::Vector2d here = cur == start ? robot : grid.centre(cx, cy);
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0) continue;
+        const int nx = cx + dx, ny = cy + dy;
+        if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+        const int ni = grid.index(nx, ny);
+        if (closed[static_cast<size_t>(ni)]) continue;
+        const Eigen::Vector2d next = grid.centre(nx, ny);
+        const double step = (next - here).norm();
+        const double len = length[static_cast<size_t>(cur)] + step;
+        if (len > o.max_travel || !passable(nx, ny, here, len)) continue;
+        // Leave the person's path at once, and not down it farther than needed (give_way.h).
+        double factor = path.distance(next) < clearance + o.path_half_width ? o.in_path_cost : 1.0;
+        // Keep way_margin more than the clearance where there is room (between walls that close
+        // in, it cannot: a narrow hallway stays passable).
+        if (o.way_margin > 0.0)
+          factor *= 1.0 + 2.0 * std::clamp((clearance + o.way_margin - grid.clearance(nx, ny)) / o.way_margin, 0.0, 1.0);
+        if ((next - here).dot(path.direction) > 0.3 * step) factor *= o.downstream_cost;
+        const double c = cost[static_cast<size_t>(cur)] + step * factor;
+        if (c < cost[static_cast<size_t>(ni)]) {
+          cost[static_cast<size_t>(ni)] = c;
+          length[static_cast<size_t>(ni)] = len;
+          parent[static_cast<size_t>(ni)] = cur;
+          open.emplace(c, ni);
+        }
+      }
+  }
+  if (found < 0) return std::nullopt;
+  std::vector<Eigen::Vector2d> cells;
+  for (int i = found; i >= 0; i = parent[static_cast<size_t>(i)]) cells.push_back(grid.centre(i % w, i / w));
+  std::reverse(cells.begin(), cells.end());
+  cells.front() = robot;
+  YieldPoint y;
+  y.point = cells.back();
+  y.off_path = path.distance(y.point);
+  if (cells.size() < 2) return y;  // already out of the way
+  y.corners = leaving_corners(map, cells, clearance, o.way_margin);
+  Eigen::Vector2d prev = robot;
+  for (const auto& c : y.corners) {
+    y.travel += (c - prev).norm();
+    prev = c;
+  }
+  return y;
+}
+
+ToPass someone_to_pass(const LocalMap& map, const PersonPath& path, const Eigen::Vector2d& robot, const YieldOptions& o)
+{
+  const double robot_along = path.along(robot);
+  auto watched = [&](const Eigen::Vector2d& p) {
+    const double a = path.along(p);
+    const Eigen::Vector2d d = p - path.from;
+    const double lateral = std::fabs(d.x() * path.direction.y() - d.y() * path.direction.x());
+    return a >= -o.watch_behind && a <= robot_along && lateral <= o.watch_half_width;
+  };
+  // Walking: only tracks that moved count (a wall face coming into view as the robot turns is
+  // young too, but does not move); someone who turned back walks away along the path.
+  for (const Track& t : map.tracker().tracks()) {
+    if (!t.moved || t.moving_steady <= 0.0 || t.centroids.empty() || !watched(t.centroids.back().second)) continue;
+    if (t.velocity.dot(path.direction) < -0.2) continue;
+    return ToPass::kWalking;
+  }
+  // Standing: a mover that stopped, and something still stands where it did (the newest scan
+  // does not look through its place; out of view, what the map remembers there).
+  constexpr double kPersonRadius = 0.3;
+  for (const auto& m : map.tracker().last_seen_movers())
+    if (m.moving_steady > 0.0 && watched(m.position) && map.seen_now(m.position) != SeenNow::kFreeNow &&
+        map.clearance(m.position, kPersonRadius) < kPersonRadius)
+      return ToPass::kStanding;
+  return ToPass::kNobody;
+}
 
 std::optional<GiveWay> choose_give_way(const LocalMap& map, const Eigen::Vector2d& from, double away, double clearance,
                                        double step, const GiveWayOptions& o)

@@ -8,6 +8,10 @@
 
 namespace rgnav::collision_avoidance {
 
+namespace {
+constexpr double kTurningRate = 0.15;  // [rad/s] the robot turns faster than this: tracks' motion may be its own
+}  // namespace
+
 void LocalMap::add_scan(ScanPoints scan)
 {
   const bool memory = options_.memory > 0.0;
@@ -29,7 +33,14 @@ void LocalMap::add_scan(ScanPoints scan)
     else if (memory)
       remembered_[memory_key(p)] = {p, scan.stamp};
   }
-  tracker_.update(scan.stamp, young, [&view](const Eigen::Vector2d& p) { return view.look(p); });
+  // Turning: the robot's heading changed since the scan before (more than scan noise).
+  bool turning = false;
+  if (!scans_.empty()) {
+    const double dt = time::to_seconds(scan.stamp - scans_.back().stamp);
+    const double dth = std::fabs(geometry::normalize_angle(scan.odom_from_base.theta() - scans_.back().odom_from_base.theta()));
+    turning = dt > 0.0 && dth > kTurningRate * dt;
+  }
+  tracker_.update(scan.stamp, young, [&view](const Eigen::Vector2d& p) { return view.look(p); }, turning);
   if (memory && !scan.outline.empty() &&
       (views_.empty() || time::to_seconds(scan.stamp - views_.back().stamp) >= options_.view_interval)) {
     ScanPoints field_of_view;
@@ -65,6 +76,13 @@ SeenNow BeamView::look(const Eigen::Vector2d& odom_point) const
   if (std::min(hi->second, lo->second) > d + margin_) return SeenNow::kFreeNow;
   if (std::max(hi->second, lo->second) < d - margin_) return SeenNow::kHidden;
   return SeenNow::kStillThere;
+}
+
+SeenNow LocalMap::seen_now(const Eigen::Vector2d& p) const
+{
+  if (scans_.empty()) return SeenNow::kUnknown;
+  const BeamView view(scans_.back(), options_.clear_margin);
+  return view.empty() ? SeenNow::kUnknown : view.look(p);
 }
 
 void LocalMap::forget_seen_through(const BeamView& view)
@@ -132,7 +150,9 @@ void LocalMap::rebuild(time::Time now)
     }
   }
   predicted_ = tracker_.predicted(now);
+  predicted_begin_ = points_.size();
   points_.insert(points_.end(), predicted_.begin(), predicted_.end());
+  predicted_end_ = points_.size();
   moving_.insert(moving_.end(), predicted_.begin(), predicted_.end());
   points_.insert(points_.end(), grid_points_.begin(), grid_points_.end());
   index_.clear();
@@ -170,7 +190,11 @@ void LocalMap::build_field()
   field_origin_ = lo;
 }
 
-double LocalMap::clearance(const Eigen::Vector2d& p, double radius) const
+double LocalMap::clearance(const Eigen::Vector2d& p, double radius) const { return nearest(p, radius, false); }
+
+double LocalMap::clearance_observed(const Eigen::Vector2d& p, double radius) const { return nearest(p, radius, true); }
+
+double LocalMap::nearest(const Eigen::Vector2d& p, double radius, bool observed_only) const
 {
   if (!field_.empty()) {
     const int x = static_cast<int>(std::floor((p.x() - field_origin_.x()) / field_cell_));
@@ -193,6 +217,7 @@ double LocalMap::clearance(const Eigen::Vector2d& p, double radius) const
       auto it = index_.find(key(cx + dx, cy + dy));
       if (it == index_.end()) continue;
       for (uint32_t i : it->second) {
+        if (observed_only && i >= predicted_begin_ && i < predicted_end_) continue;
         const double d2 = (points_[i] - p).squaredNorm();
         if (d2 <= best2) {
           best2 = d2;

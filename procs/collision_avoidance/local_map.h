@@ -99,6 +99,8 @@ class LocalMap
   // Distance from p (odom frame) to the nearest obstacle point, searching up to `radius`
   // (infinity if none).
   double clearance(const Eigen::Vector2d& p, double radius) const;
+  // The same, leaving out where tracked movers are only predicted to be: what is there now.
+  double clearance_observed(const Eigen::Vector2d& p, double radius) const;
   size_t size() const { return points_.size(); }
   const std::vector<Eigen::Vector2d>& points() const { return points_; }
   // Distance from p to the nearest possibly moving point within `radius` (infinity if none).
@@ -114,10 +116,13 @@ class LocalMap
   // (infinity if none): standing there means standing in someone's way.
   double clearance_predicted(const Eigen::Vector2d& p, double radius) const;
   const PeopleTracker& tracker() const { return tracker_; }
+  // What the newest scan says about p (odom frame): unknown without scans.
+  SeenNow seen_now(const Eigen::Vector2d& p) const;
   double max_range() const { return options_.max_range; }
 
  private:
   void build_field();
+  double nearest(const Eigen::Vector2d& p, double radius, bool observed_only) const;
   void forget_seen_through(const BeamView& view);
   int64_t memory_key(const Eigen::Vector2d& p) const
   {
@@ -152,6 +157,7 @@ class LocalMap
   std::vector<Eigen::Vector2d> moving_;         // points in young cells, and the predicted ones
   PeopleTracker tracker_;
   std::vector<Eigen::Vector2d> predicted_;      // where tracked movers will be (odom frame)
+  size_t predicted_begin_ = 0, predicted_end_ = 0;  // ... and where they are in points_
   // Distance field: distance from each field cell's centre to the nearest point [m], over
   // field_origin_ + [0, cols) x [0, rows) cells of field_cell_.
   cv::Mat field_;

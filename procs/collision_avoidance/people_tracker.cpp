@@ -63,7 +63,7 @@ bool PeopleTracker::left_its_place(const Track& t, const SeenNowFn& seen_now) co
 }
 
 void PeopleTracker::update(time::Time stamp, const std::vector<Eigen::Vector2d>& moving_points,
-                           const SeenNowFn& seen_now)
+                           const SeenNowFn& seen_now, bool robot_turning)
 {
   std::vector<char> continued(tracks_.size(), 0);
   for (auto& cluster : clusters(moving_points)) {
@@ -108,13 +108,15 @@ void PeopleTracker::update(time::Time stamp, const std::vector<Eigen::Vector2d>&
     t.left_its_place = left_its_place(t, seen_now);
     if (predicts(t)) {
       t.moved = true;
+      t.walking = t.velocity;
       if (was_predicting) t.moving_for += since_seen;
+      if (was_predicting && !robot_turning) t.moving_steady += since_seen;
     }
   }
   auto lost = [&](const Track& t) { return time::to_seconds(stamp - t.last_seen) > options_.lost_after; };
   for (const Track& t : tracks_)
     if (lost(t) && t.moved && t.travelled >= options_.stopped_min_travel && t.moving_for >= options_.stopped_min_moving)
-      last_seen_.push_back({t.last_seen, t.centroids.back().second});
+      last_seen_.push_back({t.last_seen, t.centroids.back().second, t.walking, t.moving_steady, t.first});
   tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(), lost), tracks_.end());
   while (!last_seen_.empty() && time::to_seconds(stamp - last_seen_.front().stamp) > options_.stopped_memory)
     last_seen_.pop_front();

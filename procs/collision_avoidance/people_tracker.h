@@ -50,6 +50,11 @@ struct LastSeenMover
 {
   time::Time stamp{};
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  // odom frame, the track's last centroid
+  // [m/s] the last velocity it predicted with: the way they were walking before they stopped
+  // (their velocity fit decays to nothing while they stand, before the track ends).
+  Eigen::Vector2d walking = Eigen::Vector2d::Zero();
+  double moving_steady = 0.0;  // [s] Track::moving_steady
+  Eigen::Vector2d first = Eigen::Vector2d::Zero();  // Track::first: where its track began
 };
 
 // What the newest scan says about a place (odom frame): its beams there end at it, short of
@@ -73,7 +78,11 @@ struct Track
   Eigen::Vector2d first = Eigen::Vector2d::Zero();  // ... and got this far from its first centroid:
   double travelled = 0.0;      // [m] a person walking, not a box face coming into view
   double moving_for = 0.0;     // [s] predicted motion this long in all
+  // [s] of it while the robot held its heading: a wall coming into view as the robot turns
+  // moves too, where the places it was fall out of view (nothing tells that it is still there).
+  double moving_steady = 0.0;
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();           // [m/s]
+  Eigen::Vector2d walking = Eigen::Vector2d::Zero();            // [m/s] the last velocity it predicted with
   time::Time last_seen{};
 };
 
@@ -83,8 +92,10 @@ class PeopleTracker
   explicit PeopleTracker(const PeopleTrackerOptions& options) : options_(options) {}
 
   // The possibly moving points of one scan (odom frame) at its time; `seen_now` answers for
-  // that scan (none: every track counts as having left its place).
-  void update(time::Time stamp, const std::vector<Eigen::Vector2d>& moving_points, const SeenNowFn& seen_now = {});
+  // that scan (none: every track counts as having left its place). robot_turning: the robot
+  // turned since the scan before.
+  void update(time::Time stamp, const std::vector<Eigen::Vector2d>& moving_points, const SeenNowFn& seen_now = {},
+              bool robot_turning = false);
   // Points where the tracked movers will be over the horizon (odom frame), from `now`.
   std::vector<Eigen::Vector2d> predicted(time::Time now) const;
   const std::vector<Track>& tracks() const { return tracks_; }

@@ -84,6 +84,14 @@ GatewayModels load_gateway_models(const std::string& path)
     }
   }
   if (m.classifier.empty()) cfg.fail("models", "no class model");
+  // A file cut off between two class models is valid YAML with fewer models: the count written
+  // with them tells (files written before it was recorded have none).
+  if (cfg.has("classes")) {
+    const auto written = cfg.integer("classes", 0, 1, kNumSequenceClasses);
+    if (written != static_cast<int64_t>(models.keys().size()))
+      cfg.fail("classes", "says " + std::to_string(written) + " class models, the file holds " +
+                              std::to_string(models.keys().size()) + " (cut off?)");
+  }
   cfg.finish();
   return m;
 }
@@ -117,6 +125,9 @@ void save_gateway_models(const GatewayModels& m, const std::string& path)
   e << YAML::Key << "over_line_setback_m" << YAML::Value << m.over_line_setback;
   e << YAML::Key << "features" << YAML::Value << hmm_features_name(m.classifier.features());
   e << YAML::Key << "dimension" << YAML::Value << feature_dimension(m.classifier.features());
+  int classes = 0;
+  for (const auto& h : m.classifier.models()) classes += h ? 1 : 0;
+  e << YAML::Key << "classes" << YAML::Value << classes;   // checked on load: a cut-off file has fewer
   e << YAML::Key << "models" << YAML::Value << YAML::BeginMap;
   for (int c = 0; c < kNumSequenceClasses; ++c) {
     const auto& h = m.classifier.models()[static_cast<size_t>(c)];

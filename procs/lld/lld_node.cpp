@@ -28,6 +28,7 @@ LldNode::LldNode(runtime::Node& node, const LldOptions& options, bool start_thre
     : node_(node),
       options_(options),
       follower_(options.follower),
+      stall_credit_(options.stall_excuse_max_s),
       loop_(std::chrono::nanoseconds(static_cast<int64_t>(1e9 / options.loop.rate_hz)))
 {
   cmd_msg_.source = node_.name();
@@ -155,6 +156,12 @@ void LldNode::control_step(time::Time now, double dt, double jitter_ms)
     if (!inbox_.retired) inbox_.retired = std::move(old);
   }
   if (has_refresh) follower_.refresh(refresh_id, now);
+  if (has_odometry) {
+    // The loop's own lateness since this odometry came in was the host's (the base driver stalled
+    // with it): not held against the odometry's age.
+    stall_credit_.on_tick(dt, 1.0 / options_.loop.rate_hz, odometry.stamp);
+    odometry.stamp += time::Duration(static_cast<int64_t>(stall_credit_.credit_s() * 1e6));
+  }
 
   const FollowerStatus& st = follower_.step(now, dt, has_odometry ? &odometry : nullptr);
   v_command_.store(st.command.v);
@@ -203,8 +210,13 @@ void LldNode::update_heartbeat()
   const auto state = static_cast<FollowerState>(state_.load());
   const auto reason = static_cast<StopReason>(stop_reason_.load());
   const int64_t overruns = loop_.overruns();
-  if (state == FollowerState::kStopping &&
-      (reason == StopReason::kStaleOdometry || reason == StopReason::kStaleTrajectory)) {
+  const bool stale_stop = state == FollowerState::kStopping &&
+                          (reason == StopReason::kStaleOdometry || reason == StopReason::kStaleTrajectory);
+  // In the log too: a stop for stale input while driving is what a stalled host looks like
+  // from here (the fault bench's stress section counts them).
+  if (stale_stop && !stale_stop_logged_) spdlog::warn("controlled stop: {}", reason_text(reason));
+  stale_stop_logged_ = stale_stop;
+  if (stale_stop) {
     node_.set_status(heartbeat_t::STATE_DEGRADED, std::string("controlled stop: ") + reason_text(reason));
   } else if (overruns > 0) {
     node_.set_status(heartbeat_t::STATE_RUNNING, "control loop overruns: " + std::to_string(overruns));

@@ -19,6 +19,7 @@
 #include "lld/follower.h"
 #include "lld/lld_options.h"
 #include "lld/periodic_loop.h"
+#include "lld/stall_credit.h"
 #include "rgnav/lld_status_t.hpp"
 #include "rgnav/odometry_t.hpp"
 #include "rgnav/trajectory_t.hpp"
@@ -68,6 +69,7 @@ class LldNode
   runtime::Node& node_;
   const LldOptions options_;
   Follower follower_;
+  StallCredit stall_credit_;   // control thread only
   PeriodicLoop loop_;
 
   std::mutex inbox_mutex_;
@@ -75,6 +77,7 @@ class LldNode
   std::atomic<double> v_command_{0.0};   // for profiles of new plans
   std::atomic<int> state_{0};
   std::atomic<int> stop_reason_{0};
+  bool stale_stop_logged_ = false;   // a stop for stale input is logged once, when it begins
   int64_t last_trajectory_id_ = 0;       // Node's thread only
 
   // Control thread only: reused messages and buffers.

@@ -54,6 +54,7 @@ LldOptions load_lld_options(const config::Config& root, const config::RobotDescr
   const auto to = root.section("timeouts");
   o.follower.odometry_timeout = to.number("odometry_s", o.follower.odometry_timeout, 0.02, 5.0);
   o.follower.trajectory_timeout = to.number("trajectory_s", o.follower.trajectory_timeout, 0.1, 60.0);
+  o.stall_excuse_max_s = to.number("stall_excuse_max_s", o.stall_excuse_max_s, 0.0, 5.0);
   return o;
 }
 

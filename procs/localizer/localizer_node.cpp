@@ -54,8 +54,13 @@ LocalizerNode::LocalizerNode(runtime::Node& node, const LocalizerNodeOptions& op
       spdlog::info("saved estimate in {}: region {} at ({:.2f}, {:.2f}, {:.1f} deg), map version {}", files_.state_file,
                    saved_->region, saved_->region_from_base.x(), saved_->region_from_base.y(),
                    saved_->region_from_base.theta() / kDeg, saved_->map_version);
-    else if (!problem.empty())
-      spdlog::warn("saved estimate not used: {}", problem);
+    else if (!problem.empty()) {
+      // Kept for a look, out of the way of the next save: global localization instead.
+      const std::string aside = files_.state_file + ".damaged";
+      std::error_code ec;
+      std::filesystem::rename(files_.state_file, aside, ec);
+      spdlog::error("saved estimate not used ({}), moved to {}: global localization with the first scan", problem, aside);
+    }
     else
       spdlog::info("no saved estimate in {}: global localization with the first scan", files_.state_file);
   }

@@ -3,9 +3,8 @@
 
 #include <iostream>
 
-#include "persist/atomic_file.h"
 #include "render/rgmap_picture.h"
-#include "rgmap/rgmap_json.h"
+#include "rgmap/saved_map.h"
 
 int main(int argc, char** argv)
 {
@@ -15,7 +14,7 @@ int main(int argc, char** argv)
   std::vector<std::string> outs;
   std::string export_base;
   double ppm = 40, resolution = 0.05;
-  app.add_option("rgmap", in, "rgmap.json (as written by rg_kernel or ./rgnav map)")->required();
+  app.add_option("rgmap", in, "rgmap.json (as written by rg_kernel or ./rgnav map), or a folder holding one")->required();
   app.add_option("--out", outs, "picture(s) to write: .svg or .png");
   app.add_option("--export-pgm", export_base, "write <base>.pgm + <base>.yaml (global metric map)");
   app.add_option("--pixels-per-metre", ppm, "picture scale")->check(CLI::Range(1.0, 500.0));
@@ -26,9 +25,9 @@ int main(int argc, char** argv)
     return 2;
   }
   try {
-    const auto text = persist::read_checked(in);
-    if (!text) throw std::runtime_error(in + ": no such file");
-    const rgmap::RgMap map = rgmap::from_json(nlohmann::json::parse(*text));
+    // Every defect is named with the file (damaged framing, not JSON, not an RG map), and
+    // nothing is written for a map that did not load.
+    const rgmap::RgMap map = rgmap::load_saved_map(in);
     for (const auto& o : outs) {
       render::render_rgmap(map, o, ppm);
       std::cout << "wrote " << o << "\n";

@@ -37,7 +37,10 @@ NodeConfig load_node_config(const config::Config& cfg, const config::RobotDescri
 RgKernelNode::RgKernelNode(runtime::Node& node, NodeConfig config)
     : node_(node), config_(std::move(config)), kernel_(config_.kernel)
 {
-  kernel_.set_progress([this] { heartbeat_while_busy(); });
+  // Long work on the message thread (a journal replay, a gateway traversal, describing a loop
+  // closure's regions again) counts its steps: the heartbeat goes on beside the loop, and the
+  // supervisor's work bound sees progress instead of a hang.
+  kernel_.set_progress([this] { node_.note_progress(); });
   if (!config_.state_dir.empty()) restore();
   node_.subscribe<aligned_scan_t>(config_.aligned_scan, [this](const aligned_scan_t& m) { on_scan(m, true); });
   node_.subscribe<gateway_event_t>(config_.gateway_events, [this](const gateway_event_t& m) { on_event(m, true); });
@@ -113,7 +116,7 @@ void RgKernelNode::restore()
   // a fallback) takes a while.
   replaying_ = true;
   for (const auto& rec : store_->open_from(loaded_generation_)) {
-    heartbeat_while_busy();
+    node_.note_progress();
     std::string why;
     const auto* data = reinterpret_cast<const uint8_t*>(rec.bytes.data());
     if (rec.tag == kAlignedScan) {
@@ -161,14 +164,6 @@ void RgKernelNode::maybe_snapshot()
     spdlog::error("snapshot failed: {}", e.what());
     node_.set_status(heartbeat_t::STATE_DEGRADED, "snapshot failed");
   }
-}
-
-void RgKernelNode::heartbeat_while_busy()
-{
-  const auto now = std::chrono::steady_clock::now();
-  if (now - last_busy_beat_ < std::chrono::milliseconds(100)) return;
-  node_.publish_heartbeat();
-  last_busy_beat_ = now;
 }
 
 void RgKernelNode::snapshot_now()
@@ -240,12 +235,12 @@ void RgKernelNode::changed(int64_t utime)
 void RgKernelNode::publish()
 {
   // After a loop closure every corrected region is described again (line map, freespace,
-  // objects): seconds for a large map on a busy machine. Heartbeats go on meanwhile, else the
-  // supervisor takes the kernel for hung and restarts it (seen in the demo after a closure that
-  // corrected 1135 scans).
+  // objects): seconds for a large map on a busy machine. Each region counts as progress, else
+  // the supervisor takes the kernel for hung and restarts it (seen in the demo after a closure
+  // that corrected 1135 scans).
   const auto start = std::chrono::steady_clock::now();
   const size_t stale = kernel_.stale_regions();
-  const rgmap::RgMap& map = kernel_.refreshed_map([this] { heartbeat_while_busy(); });
+  const rgmap::RgMap& map = kernel_.refreshed_map([this] { node_.note_progress(); });
   const double refresh_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (refresh_ms > 200.0) spdlog::info("{} region(s) described again in {:.0f} ms", stale, refresh_ms);
   if (map.current_region == 0) return;

@@ -80,10 +80,6 @@ class RgKernelNode
   void maybe_snapshot();
   std::string snapshot_payload() const;
   void apply_snapshot(const std::string& payload);
-  // Long work on the message thread (a journal replay, describing a loop closure's regions
-  // again) calls this between steps: a heartbeat every 100 ms, so the supervisor (500 ms
-  // timeout) sees progress instead of a hang.
-  void heartbeat_while_busy();
 
   runtime::Node& node_;
   const NodeConfig config_;
@@ -98,7 +94,6 @@ class RgKernelNode
   bool replaying_ = false;
   bool export_pending_ = false;
   std::chrono::steady_clock::time_point last_export_{};
-  std::chrono::steady_clock::time_point last_busy_beat_{};
 };
 
 }  // namespace rgnav::rg_kernel

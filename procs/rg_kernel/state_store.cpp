@@ -148,7 +148,11 @@ std::vector<persist::JournalRecord> StateStore::open_from(int64_t g)
   for (; k <= newest; ++k) {
     auto j = std::make_unique<persist::Journal>(journal_path(k), false);
     records.insert(records.end(), j->recovered().begin(), j->recovered().end());
-    if (!j->damage().empty() && k == newest) {
+    if (!j->damage().empty() && k == newest && j->corrupt()) {
+      // Bytes that were never records (a file of another kind, a disk fault): no torn write,
+      // a loss to report as one. The journal keeps what was intact; a copy as found is kept.
+      problems_.push_back(journal_path(k) + ": " + j->damage() + " (the damaged tail was cut off)");
+    } else if (!j->damage().empty() && k == newest) {
       // The newest journal torn at its end: what a kill in the middle of a write leaves.
       tail_damage_ = journal_path(k) + ": " + j->damage() + " (the torn tail was cut off)";
     } else if (!j->damage().empty()) {

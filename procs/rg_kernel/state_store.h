@@ -65,7 +65,8 @@ class StateStore
   // returns their records in order; the newest stays open for appending. Throws
   // std::runtime_error if the chain cannot rebuild the state (a journal is missing). A damaged
   // journal that is not the newest ends the replay there; later ones are renamed *.orphaned and
-  // the damage is listed in problems(); a torn end of the newest is cut off (tail_damage()).
+  // the damage is listed in problems(); a torn end of the newest is cut off (tail_damage()),
+  // and so is a corrupt one (bytes that were never records), but that is listed in problems().
   std::vector<persist::JournalRecord> open_from(int64_t g);
   // Damage that lost or set aside data (corrupt snapshots, a damaged older journal).
   const std::vector<std::string>& problems() const { return problems_; }

@@ -101,7 +101,8 @@ void MapperStore::recover()
   report_.snapshot_scans = st.mapper.nodes.size();
   size_t replayed = 0;
   if (!fresh) {
-    if (!journal_->damage().empty()) report_.damage = "journal: " + journal_->damage() + " (tail dropped)";
+    if (!journal_->damage().empty())
+      report_.damage = "journal " + options_.snapshot_path + ".journal: " + journal_->damage() + " (tail dropped)";
     for (const auto& rec : journal_->recovered()) {
       persist::ByteReader peek(rec.bytes);
       uint64_t seq = 0;

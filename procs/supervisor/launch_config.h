@@ -35,6 +35,9 @@ struct CommandSpec
   bool heartbeat = true;         // watched by HEARTBEAT; false for tools (lcm-logger)
   int heartbeat_timeout_ms = 0;  // 0 = the supervisor default
   int startup_timeout_ms = 0;    // time to the first heartbeat; 0 = the supervisor default
+  // Longest time the heartbeat's progress counter may stand still while heartbeats go on
+  // (long work without progress = hung); 0 = the supervisor default.
+  int work_timeout_ms = 0;
   std::vector<std::string> inputs;  // input channels (fault injection, documentation)
   bool safety_critical = false;  // failing it stops and holds the robot
   // A job rather than a service (a tour, a planning step): exit 0 means done, not a failure;

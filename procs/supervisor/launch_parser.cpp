@@ -4,6 +4,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "config/config.h"
+#include "config/file_checks.h"
+
 namespace rgnav::supervisor {
 
 const CommandSpec* LaunchConfig::find(const std::string& name) const
@@ -340,6 +343,8 @@ class Parser
         cmd.heartbeat_timeout_ms = static_cast<int>(number_value(key, value, 50, 600000));
       } else if (k == "startup_timeout_ms") {
         cmd.startup_timeout_ms = static_cast<int>(number_value(key, value, 50, 600000));
+      } else if (k == "work_timeout_ms") {
+        cmd.work_timeout_ms = static_cast<int>(number_value(key, value, 50, 600000));
       } else if (k == "depends") {
         cmd.depends = split_list(v);
       } else if (k == "inputs") {
@@ -446,11 +451,15 @@ LaunchConfig parse_launch_text(const std::string& text, const std::string& origi
 
 LaunchConfig parse_launch_file(const std::string& path)
 {
-  std::ifstream in(path);
-  if (!in) throw LaunchError(path + ": cannot open launch config");
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return parse_launch_text(buf.str(), path);
+  std::string text;
+  try {
+    text = config::read_text_file(path, "launch config");   // empty or binary: refused, named
+  } catch (const config::ConfigError& e) {
+    throw LaunchError(e.what());
+  }
+  LaunchConfig c = parse_launch_text(text, path);
+  if (c.commands.empty()) throw LaunchError(path + ": no commands (a launch config cut off, or not one)");
+  return c;
 }
 
 }  // namespace rgnav::supervisor

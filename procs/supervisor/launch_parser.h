@@ -9,7 +9,7 @@
 //
 // plus the rgnav attributes of a cmd (values are strings unless noted):
 //   depends = "sim,laser_driver";  env = "K=V,K2=V2";  config = "config/x.yaml";
-//   heartbeat = "false";  heartbeat_timeout_ms = 800;  startup_timeout_ms = 5000;
+//   heartbeat = "false";  heartbeat_timeout_ms = 800;  startup_timeout_ms = 5000;  work_timeout_ms = 3000;
 //   inputs = "LASER_FRONT,ODOMETRY";  safety_critical = "true";
 //   oneshot = "true";   (a job: exit 0 is "done", never restarted; dependents may then start)
 // config and exec expand ${VAR} from the supervisor's environment (RGNAV_ROOT, RGNAV_BUILD, ...).
@@ -29,6 +29,8 @@ class LaunchError : public std::runtime_error
   using std::runtime_error::runtime_error;
 };
 
+// Throws LaunchError naming the file: missing, empty, binary, a syntax error (with its line), or
+// no command at all (a file cut off in its header, or no launch config).
 LaunchConfig parse_launch_file(const std::string& path);
 // `origin` names the text in messages.
 LaunchConfig parse_launch_text(const std::string& text, const std::string& origin);

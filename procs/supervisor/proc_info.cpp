@@ -7,9 +7,11 @@
 
 namespace rgnav::supervisor {
 
-std::optional<ProcStat> read_proc_stat(pid_t pid)
+namespace {
+
+std::optional<ProcStat> read_stat_file(const std::string& path)
 {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::ifstream in(path);
   std::string line;
   if (!std::getline(in, line)) return std::nullopt;
   // The command name is in parentheses and may itself hold spaces and ')'.
@@ -29,6 +31,17 @@ std::optional<ProcStat> read_proc_stat(pid_t pid)
   if (!rest) return std::nullopt;
   s.cpu_ticks = utime + stime;
   return s;
+}
+
+}  // namespace
+
+std::optional<ProcStat> read_proc_stat(pid_t pid) { return read_stat_file("/proc/" + std::to_string(pid) + "/stat"); }
+
+char main_thread_state(pid_t pid)
+{
+  // The main thread's task has the process's id.
+  const auto s = read_stat_file("/proc/" + std::to_string(pid) + "/task/" + std::to_string(pid) + "/stat");
+  return s ? s->state : '?';
 }
 
 std::vector<std::string> read_cmdline(pid_t pid)

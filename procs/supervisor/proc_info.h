@@ -23,6 +23,9 @@ struct ProcStat
 };
 
 std::optional<ProcStat> read_proc_stat(pid_t pid);
+// The state letter of the process's main thread (the one running its event loop): 'D' while
+// it waits on the disk (an fsync on a loaded disk), '?' if unknown.
+char main_thread_state(pid_t pid);
 std::vector<std::string> read_cmdline(pid_t pid);
 int64_t read_rss_kb(pid_t pid);
 

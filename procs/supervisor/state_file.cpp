@@ -6,20 +6,22 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 #include <stdexcept>
+
+#include "config/file_checks.h"
 
 namespace rgnav::supervisor {
 
 SupervisorState load_state(const std::string& path)
 {
   SupervisorState s;
-  std::ifstream in(path);
-  if (!in) return s;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return s;
   try {
-    const auto j = nlohmann::json::parse(in);
+    const auto j = nlohmann::json::parse(config::read_text_file(path, "supervisor state"));
     s.host = j.value("host", "");
     s.launch_config = j.value("launch_config", "");
     for (const auto& c : j.at("children")) {
@@ -34,7 +36,11 @@ SupervisorState load_state(const std::string& path)
     }
     if (j.contains("done")) s.done = j.at("done").get<std::vector<std::string>>();
   } catch (const std::exception& e) {
-    spdlog::warn("ignoring unreadable supervisor state {}: {}", path, e.what());
+    // Kept for a look, out of the way of the next save; without it no child can be adopted,
+    // so a successor starts every process afresh.
+    const std::string aside = path + ".damaged";
+    std::filesystem::rename(path, aside, ec);
+    spdlog::error("supervisor state {} not used ({}), moved to {}: no child is adopted", path, e.what(), aside);
     return SupervisorState{};
   }
   return s;

@@ -31,7 +31,8 @@ struct SupervisorState
   std::vector<std::string> done;
 };
 
-// Missing or unreadable file: empty state (and a warning in the log for a corrupt one).
+// Missing file: empty state. A damaged one (not JSON, not a state, empty, binary) is moved to
+// <path>.damaged with an error in the log naming it, and the state is empty.
 SupervisorState load_state(const std::string& path);
 // Write to path.tmp, fsync, rename. Throws std::runtime_error.
 void save_state(const std::string& path, const SupervisorState& state);

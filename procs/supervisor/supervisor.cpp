@@ -43,6 +43,7 @@ Supervisor::Supervisor(LaunchPlan plan, std::string host, SupervisorOptions opti
                                                          : options_.heartbeat_timeout;
     e.startup_timeout = c.spec.startup_timeout_ms > 0 ? std::chrono::milliseconds(c.spec.startup_timeout_ms)
                                                      : options_.startup_timeout;
+    e.work_timeout = c.spec.work_timeout_ms > 0 ? std::chrono::milliseconds(c.spec.work_timeout_ms) : options_.work_timeout;
     entries_.push_back(std::move(e));
   }
 }
@@ -160,6 +161,7 @@ void Supervisor::adopt(Entry& e, pid_t pid, uint64_t start_ticks, Clock::time_po
   e.want_running = true;
   e.started = now;
   e.last_heartbeat.reset();
+  e.progress = -1;
   e.intent = StopIntent::kNone;
   set_state(e, e.cmd->spec.heartbeat ? ProcState::kStarting : ProcState::kRunning);
 }
@@ -299,6 +301,7 @@ void Supervisor::spawn(Entry& e, Clock::time_point now)
   e.adopted = false;
   e.started = now;
   e.last_heartbeat.reset();
+  e.progress = -1;
   e.intent = StopIntent::kNone;
   e.killed = false;
   if (c.spec.heartbeat) {
@@ -337,7 +340,8 @@ void Supervisor::begin_stop(Entry& e, StopIntent intent, Clock::time_point now)
   e.kill_at = now + grace;
 }
 
-void Supervisor::on_heartbeat(const std::string& name, pid_t pid, Clock::time_point now, bool same_machine)
+void Supervisor::on_heartbeat(const std::string& name, pid_t pid, Clock::time_point now, bool same_machine,
+                              int64_t progress)
 {
   auto it = std::find_if(seen_.begin(), seen_.end(), [&](const auto& s) { return s.first == name; });
   if (it == seen_.end()) {
@@ -355,7 +359,42 @@ void Supervisor::on_heartbeat(const std::string& name, pid_t pid, Clock::time_po
     e->name_warned = true;
   }
   e->last_heartbeat = now;
+  if (progress != e->progress) {
+    e->progress = progress;
+    e->progress_at = now;
+    e->disk_wait_logged = false;
+  }
   if (e->state == ProcState::kStarting) running_again(*e);
+}
+
+bool Supervisor::waiting_on_disk(Entry& e, Clock::time_point now)
+{
+  if (now - e.progress_at > e.work_timeout + options_.disk_wait_timeout) return false;
+  if (main_thread_state(e.pid) != 'D') return false;
+  if (!e.disk_wait_logged)
+    spdlog::warn("{} (pid {}) has made no progress for {} ms, waiting on the disk: allowed {} ms more", e.cmd->spec.name,
+                 e.pid, std::chrono::duration_cast<std::chrono::milliseconds>(now - e.progress_at).count(),
+                 options_.disk_wait_timeout.count());
+  e.disk_wait_logged = true;
+  return true;
+}
+
+void Supervisor::on_host_stall(Clock::duration gap, Clock::time_point now)
+{
+  if (gap <= Clock::duration::zero()) return;
+  ++stalls_.count;
+  stalls_.total += std::chrono::duration_cast<std::chrono::milliseconds>(gap);
+  stalls_.longest = std::max(stalls_.longest, std::chrono::duration_cast<std::chrono::milliseconds>(gap));
+  spdlog::warn("host stalled for {} ms (the supervisor's own tick was late): deadlines moved on by that much",
+               std::chrono::duration_cast<std::chrono::milliseconds>(gap).count());
+  // Every clock the hang checks read moves on by the gap, never past now.
+  const auto later = [&](Clock::time_point t) { return std::min(t + gap, now); };
+  for (auto& e : entries_) {
+    if (e.last_heartbeat) e.last_heartbeat = later(*e.last_heartbeat);
+    e.progress_at = later(e.progress_at);
+    e.started = later(e.started);
+  }
+  for (auto& s : seen_) s.second = later(s.second);
 }
 
 void Supervisor::running_again(Entry& e)
@@ -395,6 +434,7 @@ void Supervisor::exited(Entry& e, const std::string& how, Clock::time_point now)
   e.start_ticks = 0;
   e.adopted = false;
   e.last_heartbeat.reset();
+  e.progress = -1;
   const StopIntent intent = std::exchange(e.intent, StopIntent::kNone);
   save();
   switch (intent) {
@@ -494,6 +534,15 @@ void Supervisor::tick(Clock::time_point now)
       case ProcState::kRunning:
         if (e.cmd->spec.heartbeat && e.last_heartbeat && now - *e.last_heartbeat > e.heartbeat_timeout) {
           e.hung_reason = "heartbeat timeout";
+          begin_stop(e, StopIntent::kHung, now);
+        } else if (e.cmd->spec.heartbeat && e.progress > 0 && now - e.progress_at > e.work_timeout &&
+                   !waiting_on_disk(e, now)) {
+          // Heartbeats come (beside the loop) but the loop has not moved on: stuck in its work.
+          e.hung_reason = "no progress for " + std::to_string(e.work_timeout.count()) + " ms while beating";
+          begin_stop(e, StopIntent::kHung, now);
+        } else if (e.cmd->spec.heartbeat && e.progress <= 0 && now - e.started > e.startup_timeout) {
+          // Beating from its first moments, but its loop never turned: stuck in its start-up.
+          e.hung_reason = "no progress within " + std::to_string(e.startup_timeout.count()) + " ms of start";
           begin_stop(e, StopIntent::kHung, now);
         }
         break;

@@ -68,7 +68,21 @@ class Supervisor
 
   // A heartbeat from this machine (same_machine) is matched to a child by its pid, whatever
   // name the process gives itself; its name alone also counts as a (remote) dependency's.
-  void on_heartbeat(const std::string& name, pid_t pid, Clock::time_point now, bool same_machine = true);
+  // progress: the heartbeat's work counter (0 until the process's loop first turns); standing
+  // still longer than the command's work_timeout while heartbeats go on is a hang, and so is
+  // still 0 after startup_timeout.
+  void on_heartbeat(const std::string& name, pid_t pid, Clock::time_point now, bool same_machine = true,
+                    int64_t progress = 0);
+  // The supervisor's own schedule was `gap` late (the host stalled, everyone with it): no
+  // process is blamed for it. The node measures the gap; counted in host_stalls().
+  void on_host_stall(Clock::duration gap, Clock::time_point now);
+  struct HostStalls
+  {
+    int count = 0;
+    std::chrono::milliseconds longest{0};
+    std::chrono::milliseconds total{0};
+  };
+  const HostStalls& host_stalls() const { return stalls_; }
   void on_child_exit(pid_t pid, int wait_status, Clock::time_point now);
   // Reaps exited children (waitpid, non-blocking).
   void reap(Clock::time_point now);
@@ -82,6 +96,8 @@ class Supervisor
   const std::string& alert() const { return alert_; }
   // New alerts since the previous call (for logging).
   std::vector<std::string> take_alerts();
+  // An alert from the node (a refused order): logged, and the status's alert.
+  void note_alert(const std::string& text) { raise_alert(text); }
   // True once after any state change (publish status promptly).
   bool take_changed();
 
@@ -101,6 +117,7 @@ class Supervisor
     bool auto_respawn = true;
     std::chrono::milliseconds heartbeat_timeout{500};
     std::chrono::milliseconds startup_timeout{5000};
+    std::chrono::milliseconds work_timeout{1000};
     ProcState state = ProcState::kStopped;
     bool want_running = false;
     pid_t pid = 0;
@@ -108,6 +125,9 @@ class Supervisor
     bool adopted = false;
     Clock::time_point started{};
     std::optional<Clock::time_point> last_heartbeat;
+    int64_t progress = -1;           // the newest heartbeat's work counter (-1: none yet)
+    Clock::time_point progress_at{};  // when it last moved on
+    bool disk_wait_logged = false;    // since then
     StopIntent intent = StopIntent::kNone;
     Clock::time_point kill_at{};
     bool killed = false;
@@ -144,6 +164,8 @@ class Supervisor
   void set_state(Entry& e, ProcState s);
   void running_again(Entry& e);
   void raise_alert(const std::string& text);
+  // Its loop stands still in a disk wait (slow, not stuck), within disk_wait_timeout.
+  bool waiting_on_disk(Entry& e, Clock::time_point now);
   void save();
 
   LaunchPlan plan_;
@@ -160,6 +182,7 @@ class Supervisor
   std::vector<std::string> new_alerts_;
   Clock::time_point last_adopted_check_{};
   CpuMeter cpu_;
+  HostStalls stalls_;
 };
 
 }  // namespace rgnav::supervisor

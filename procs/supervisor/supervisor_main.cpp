@@ -5,10 +5,12 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include "child_process.h"
 #include "launch_parser.h"
 #include "launch_plan.h"
+#include "order_auth.h"
 #include "recording.h"
 #include "runtime/process_main.h"
 #include "supervisor.h"
@@ -35,6 +37,20 @@ int main(int argc, char** argv)
   return rgnav::runtime::process_main(argc, argv, "supervisor", [&](rgnav::runtime::ProcessContext& ctx) -> std::shared_ptr<void> {
     auto options = sup::load_supervisor_options(ctx.config.section("supervisor"));
     const auto channels = sup::load_supervisor_channels(ctx.config.section("channels"));
+    // Orders are carried out only when signed with the shared key. Without a key file the
+    // watchdog still runs (the safety net must not hang on a credential) and refuses every
+    // order; a key file that is there but unsafe or broken is a config error.
+    const auto order_options = sup::load_order_auth_options(ctx.config.section("orders"));
+    const std::string key_path = sup::order_key_path(order_options.key_file);
+    std::optional<sup::OrderKey> order_key;
+    std::string no_key;
+    try {
+      order_key = sup::load_order_key(key_path);
+    } catch (const sup::OrderKeyMissing& e) {
+      no_key = std::string(e.what()) + ": every order is refused";
+    } catch (const sup::OrderKeyError& e) {
+      throw rgnav::config::ConfigError(ctx.config_path + ": orders.key_file: " + e.what());
+    }
     if (host.empty()) {
       char buf[256] = {0};
       gethostname(buf, sizeof buf - 1);
@@ -60,10 +76,12 @@ int main(int argc, char** argv)
     sup::make_dirs(dir);
     auto self_lock = std::make_shared<sup::SelfLock>(dir + "/supervisor.lock");
     auto supervisor = std::make_unique<sup::Supervisor>(std::move(plan), host, options, dir);
+    if (!no_key.empty()) supervisor->note_alert(no_key);
     const auto now = std::chrono::steady_clock::now();
     supervisor->recover(now);
     supervisor->start_all(now);
-    auto node = std::make_shared<sup::SupervisorNode>(ctx.node, std::move(supervisor), options, channels);
+    sup::OrderGate orders(sup::OrderVerifier(order_key, key_path, order_options.max_age));
+    auto node = std::make_shared<sup::SupervisorNode>(ctx.node, std::move(supervisor), options, channels, std::move(orders));
     // The node (which stops the children) goes before the lock is released.
     return std::make_shared<std::pair<std::shared_ptr<sup::SupervisorNode>, std::shared_ptr<sup::SelfLock>>>(node, self_lock);
   }, flags);

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <spdlog/spdlog.h>
 
+#include "order_conversions.h"
 #include "rgnav/heartbeat_t.hpp"
-#include "rgnav/supervisor_order_t.hpp"
 #include "rgnav/supervisor_status_t.hpp"
 #include "rgnav/velocity_cmd_t.hpp"
 #include "time/message_time.h"
@@ -14,24 +14,28 @@
 namespace rgnav::supervisor {
 
 SupervisorNode::SupervisorNode(runtime::Node& node, std::unique_ptr<Supervisor> supervisor, SupervisorOptions options,
-                               SupervisorChannels channels)
-    : node_(node), sup_(std::move(supervisor)), options_(std::move(options)), channels_(std::move(channels))
+                               SupervisorChannels channels, OrderGate orders)
+    : node_(node), sup_(std::move(supervisor)), options_(std::move(options)), channels_(std::move(channels)),
+      orders_(std::move(orders))
 {
   // Heartbeats carry the sender's hostname(2): only those of this machine have pids of ours.
   char buf[256] = {0};
   gethostname(buf, sizeof buf - 1);
   hostname_ = buf;
   node_.subscribe<heartbeat_t>(channels_.heartbeat, [this](const heartbeat_t& hb) {
-    sup_->on_heartbeat(hb.name, hb.pid, Clock::now(), hb.host == hostname_);
+    sup_->on_heartbeat(hb.name, hb.pid, Clock::now(), hb.host == hostname_, hb.progress);
   });
   node_.subscribe<supervisor_order_t>(channels_.orders, [this](const supervisor_order_t& o) {
     if (!o.host.empty() && o.host != sup_->host()) return;
-    const auto key = std::make_pair(o.order_id, o.utime);
-    if (std::find(seen_orders_.begin(), seen_orders_.end(), key) != seen_orders_.end()) return;  // a repeat
-    seen_orders_.push_back(key);
-    if (seen_orders_.size() > 256) seen_orders_.pop_front();
+    // Unsigned, forged, stale and replayed orders are refused (and reported); copies of one
+    // already carried out are dropped.
+    const OrderDecision d = orders_.on_order(to_order_fields(o), time::wall_utime(), Clock::now());
+    if (!d.log.empty()) spdlog::warn("{}", d.log);
+    if (!d.alert.empty()) sup_->note_alert(d.alert);
+    if (!d.execute) return;
     static const char* names[] = {"?", "start", "stop", "restart", "shutdown"};
-    spdlog::info("order {} {} \"{}\"", o.order_id, names[o.order >= 1 && o.order <= 4 ? o.order : 0], o.target);
+    spdlog::info("order {} {} \"{}\" from {}", o.order_id, names[o.order >= 1 && o.order <= 4 ? o.order : 0], o.target,
+                 printable_source(o.source));
     std::string why;
     if (!sup_->order(static_cast<Order>(o.order), o.target, Clock::now(), &why)) {
       // Broadcast orders name processes of other hosts too; only a named host's miss is news.
@@ -56,6 +60,14 @@ SupervisorNode::~SupervisorNode()
 void SupervisorNode::on_tick()
 {
   const auto now = Clock::now();
+  // The tick is due every options_.tick: later than that by more than the threshold, the
+  // whole host (the supervisor with it) was not running, and the processes' silence in that
+  // gap is not theirs.
+  if (last_tick_ != Clock::time_point{}) {
+    const auto late = now - last_tick_ - options_.tick;
+    if (late > options_.stall_threshold) sup_->on_host_stall(late, now);
+  }
+  last_tick_ = now;
   sup_->reap(now);
   sup_->tick(now);
   if (sup_->shutting_down() && sup_->finished()) node_.request_stop();
@@ -86,6 +98,10 @@ void SupervisorNode::publish_status()
   s.nprocesses = static_cast<int32_t>(s.processes.size());
   s.robot_held = sup_->robot_held();
   s.alert = sup_->alert();
+  const auto& stalls = sup_->host_stalls();
+  s.host_stalls = stalls.count;
+  s.host_stall_max_ms = static_cast<int32_t>(stalls.longest.count());
+  s.host_stall_total_ms = stalls.total.count();
   node_.publish(channels_.status, s);
 }
 

@@ -10,6 +10,7 @@
 #include <memory>
 #include <utility>
 
+#include "order_auth.h"
 #include "runtime/node.h"
 #include "supervisor.h"
 #include "supervisor_options.h"
@@ -19,8 +20,9 @@ namespace rgnav::supervisor {
 class SupervisorNode
 {
  public:
+  // orders: only what it lets through is carried out (signed orders, order_auth.h).
   SupervisorNode(runtime::Node& node, std::unique_ptr<Supervisor> supervisor, SupervisorOptions options,
-                 SupervisorChannels channels);
+                 SupervisorChannels channels, OrderGate orders);
   ~SupervisorNode();
   SupervisorNode(const SupervisorNode&) = delete;
   SupervisorNode& operator=(const SupervisorNode&) = delete;
@@ -37,8 +39,9 @@ class SupervisorNode
   std::unique_ptr<Supervisor> sup_;
   const SupervisorOptions options_;
   const SupervisorChannels channels_;
-  std::deque<std::pair<int64_t, int64_t>> seen_orders_;  // (order_id, utime) of recent orders
+  OrderGate orders_;
   Clock::time_point last_status_{};
+  Clock::time_point last_tick_{};   // the previous on_tick(): its lateness is the host's stall
   int64_t hold_seq_ = 0;
   std::string hostname_;
 };

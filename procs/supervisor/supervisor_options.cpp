@@ -21,6 +21,9 @@ SupervisorOptions load_supervisor_options(const config::Config& s)
   SupervisorOptions o;
   o.heartbeat_timeout = ms(s, "heartbeat_timeout_ms", o.heartbeat_timeout, 50, 600000);
   o.startup_timeout = ms(s, "startup_timeout_ms", o.startup_timeout, 100, 600000);
+  o.work_timeout = ms(s, "work_timeout_ms", o.work_timeout, 50, 600000);
+  o.disk_wait_timeout = ms(s, "disk_wait_timeout_ms", o.disk_wait_timeout, 0, 600000);
+  o.stall_threshold = ms(s, "stall_threshold_ms", o.stall_threshold, 5, 60000);
   o.hung_grace = ms(s, "hung_grace_ms", o.hung_grace, 0, 60000);
   o.tick = ms(s, "tick_ms", o.tick, 1, 1000);
   o.status_period = ms(s, "status_period_ms", o.status_period, 50, 60000);

@@ -15,6 +15,13 @@ struct SupervisorOptions
 {
   std::chrono::milliseconds heartbeat_timeout{500};   // hung when heartbeats stop this long
   std::chrono::milliseconds startup_timeout{5000};    // to the first heartbeat after start
+  std::chrono::milliseconds work_timeout{1000};       // hung when heartbeats come but progress stands still this long
+  // ... unless its loop is waiting on the disk (main thread in state D): that is slow, not
+  // stuck, and is allowed this much longer.
+  std::chrono::milliseconds disk_wait_timeout{10000};
+  // A gap in the supervisor's own tick this much longer than the tick is a stall of the
+  // whole host: its length is added to every process's deadlines.
+  std::chrono::milliseconds stall_threshold{50};
   std::chrono::milliseconds hung_grace{300};          // stop signal → SIGKILL for a hung process
   std::chrono::milliseconds tick{10};                 // exit reaping and timeout checks
   std::chrono::milliseconds status_period{1000};      // SUPERVISOR_STATUS

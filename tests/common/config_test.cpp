@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include "bad_files.h"
+
 namespace rgnav::config {
 namespace {
 
@@ -99,6 +101,35 @@ TEST(Config, MissingFileAndBadYaml)
               HasSubstr("/nonexistent/rgnav.yaml: cannot open"));
   EXPECT_THAT(error_of([] { Config::parse("a: [1, 2\n", "bad.yaml"); }), HasSubstr("bad.yaml: not valid YAML"));
   EXPECT_THAT(error_of([] { Config::parse("- 1\n- 2\n", "seq.yaml"); }), HasSubstr("top level must be a mapping"));
+}
+
+// Issue 35: random bytes, an empty file, white space or comments only (a file cut off inside its
+// header comment), and a file cut off inside a key are refused naming the file: none of them is
+// read as "all defaults".
+TEST(Config, RandomBytesEmptyCommentsOnlyAndCutOffFilesAreRefusedNamingThem)
+{
+  testing::TempDir dir("config_bad");
+  const std::string valid = "# a process config\nnode:\n  name: x\n  heartbeat_hz: 5\nmatcher:\n  max_range_m: 30\n";
+  auto files = testing::write_bad_files(dir.path(), "p.yaml", valid, valid.find("heartbeat_hz") + 5);
+  files.push_back({"white space", dir.file("space.yaml")});
+  testing::write_bytes(files.back().path, "\n  \n\t\n");
+  files.push_back({"comments only", dir.file("comments.yaml")});
+  testing::write_bytes(files.back().path, valid.substr(0, 10));
+  files.push_back({"NUL bytes", dir.file("nul.yaml")});
+  testing::write_bytes(files.back().path, std::string("node:\n  name: x\0\0\0", 19));
+  for (const auto& f : files) {
+    SCOPED_TRACE(f.kind);
+    const std::string e = error_of([&] {
+      const auto c = Config::load(f.path);
+      c.section("node").string("name", "");
+      c.section("node").number("heartbeat_hz", 1, 0, 100);
+      c.section("matcher").number("max_range_m", 30, 1, 80);
+      c.finish();
+    });
+    EXPECT_THAT(e, ::testing::StartsWith(f.path + ": "));
+  }
+  testing::write_bytes(dir.file("valid.yaml"), valid);
+  EXPECT_EQ(Config::load(dir.file("valid.yaml")).section("node").string("name", ""), "x");
 }
 
 TEST(Config, MissingSectionsReadAsDefaults)

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <thread>
 
 #include "bus/fake_bus.h"
+#include "bus/lcm_bus.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "rgnav/odometry_t.hpp"
 
@@ -133,6 +135,65 @@ TEST_F(NodeFixture, HeartbeatTimerAtConfiguredRate)
   // 5 Hz over 0.45 s: two timer heartbeats (loose bound, no timing flake on a loaded machine).
   EXPECT_GE(fake->published_on("HEARTBEAT").size(), 1u);
   EXPECT_LE(fake->published_on("HEARTBEAT").size(), 3u);
+}
+
+// A synchronous bus delivers a heartbeat to this node's own handler while it is being sent
+// (the supervisor hears HEARTBEAT and beats itself): no lock may be held across the publish.
+TEST_F(NodeFixture, OwnHeartbeatIsHandledOnASynchronousBus)
+{
+  int heard = 0;
+  node->subscribe<heartbeat_t>("HEARTBEAT", [&](const heartbeat_t& hb) { heard += hb.name == "unit"; });
+  node->publish_heartbeat();
+  EXPECT_EQ(heard, 1);
+  EXPECT_EQ(node->messages_in(), 1);
+}
+
+// Long work in a handler: the heartbeat goes on beside the loop, says how long the loop has
+// been busy, and its progress counter moves on only while the work reports steps.
+TEST(NodeHeartbeatBesideTheLoop, BeatsThroughLongWorkAndCountsItsProgress)
+{
+  NodeOptions o;
+  o.name = "worker";
+  o.heartbeat_hz = 20.0;
+  Node node(o, std::make_unique<bus::LcmBus>("memq://"));
+  std::vector<heartbeat_t> beats;
+  node.subscribe<heartbeat_t>("HEARTBEAT", [&](const heartbeat_t& hb) { beats.push_back(hb); });
+  int64_t progress_before = 0, progress_after_steps = 0;
+  int turns_after = 0;
+  node.every(std::chrono::milliseconds(50), [&] {
+    // The beats sent meanwhile are handled on the turns after the work.
+    if (progress_before != 0) {
+      if (++turns_after == 4) node.request_stop();
+      return;
+    }
+    progress_before = node.progress();
+    // 400 ms of work in steps that report progress, then 400 ms stuck without a report.
+    for (int i = 0; i < 8; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      node.note_progress();
+    }
+    progress_after_steps = node.progress();
+    std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  });
+  const char junk[] = "not a heartbeat";
+  ASSERT_TRUE(node.bus().publish("HEARTBEAT", junk, sizeof junk));
+  ASSERT_EQ(node.run(), 0);
+  EXPECT_EQ(progress_after_steps - progress_before, 8);
+  ASSERT_FALSE(beats.empty());
+  EXPECT_EQ(beats.back().messages_dropped, 1) << "the loop's drop count reaches the beats sent beside it";
+  // Beats sent while the loop was stuck in the handler: busy, and the progress they carry
+  // never passes what the handler reported.
+  int busy = 0;
+  for (const auto& hb : beats) {
+    if (hb.busy_ms == 0) continue;
+    ++busy;
+    EXPECT_LE(hb.progress, progress_after_steps);
+  }
+  EXPECT_GE(busy, 4) << "heartbeats sent during 800 ms of work at 20 Hz";
+  const auto longest = std::max_element(beats.begin(), beats.end(), [](auto& a, auto& b) { return a.busy_ms < b.busy_ms; });
+  ASSERT_NE(longest, beats.end());
+  EXPECT_GE(longest->busy_ms, 300);
+  for (size_t i = 1; i < beats.size(); ++i) EXPECT_EQ(beats[i].seq, beats[i - 1].seq + 1);
 }
 
 TEST(NodeOptions, LoadedAndValidated)

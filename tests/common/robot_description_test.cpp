@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "bad_files.h"
+
 namespace rgnav::config {
 namespace {
 
@@ -117,6 +119,22 @@ TEST(RobotDescription, AMissingFileIsAnErrorNamingIt)
     FAIL() << "no error";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/robot.yaml"), std::string::npos) << e.what();
+  }
+}
+
+// Issue 35: random bytes, an empty file and one cut off inside a key are refused naming the file.
+TEST(RobotDescription, RandomBytesEmptyAndCutOffFilesAreRefusedNamingThem)
+{
+  testing::TempDir dir("robot_bad");
+  const std::string good(kGood);
+  for (const auto& f : testing::write_bad_files(dir.path(), "robot.yaml", good, good.find("max_v_mps") + 3)) {
+    SCOPED_TRACE(f.kind);
+    try {
+      load_robot_description_file(f.path);
+      ADD_FAILURE() << f.path << " was loaded";
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(f.path + ": ", 0), 0u) << e.what();
+    }
   }
 }
 

@@ -10,8 +10,25 @@
 #include "rgnav/odometry_t.hpp"
 #include "rgnav/rg_map_t.hpp"
 #include "rgnav/velocity_cmd_t.hpp"
+#include "time/message_time.h"
 
 namespace rgnav::fault {
+
+namespace {
+
+// When a drive-chain message was made, on the harness's steady clock: its utime (wall time on
+// this host: commands, odometry, the simulator's real-time clock) mapped back from the age it has
+// now, so a harness that was not scheduled for a while does not see old samples as new ones.
+// Arrival time where utime is no recent wall time.
+Clock::time_point made_at(int64_t utime)
+{
+  const auto now = Clock::now();
+  const int64_t age = time::wall_utime() - utime;
+  if (age < 0 || age > 2'000'000) return now;
+  return now - std::chrono::microseconds(age);
+}
+
+}  // namespace
 
 BusObserver::BusObserver(const std::string& url, const std::string& host, const std::vector<std::string>& input_channels,
                          const std::map<std::string, std::string>& state_channels, const Channels& channels)
@@ -55,19 +72,28 @@ BusObserver::BusObserver(const std::string& url, const std::string& host, const 
   for (const auto& ch : input_channels) {
     bus_.subscribe(ch, [this](const bus::RawMessage& m) {
       // Keep a valid copy: flood material must be what the process normally reads.
-      if (m.size >= 8) inputs_[m.channel].assign(m.data, m.data + m.size);
+      if (capture_inputs_ && m.size >= 8) inputs_[m.channel].assign(m.data, m.data + m.size);
     });
   }
   bus::subscribe<velocity_cmd_t>(
       bus_, channels.base_cmd,
       [this](const velocity_cmd_t& m, const bus::RawMessage&) {
-        cmd_log_.push_back({Clock::now(), m.v, m.omega, m.source == "supervisor", m.deadline_us});
+        cmd_log_.push_back({made_at(m.utime), m.v, m.omega, m.source == "supervisor", m.deadline_us});
       },
       &drops_);
   bus::subscribe<odometry_t>(
       bus_, channels.drive_odometry,
-      [this](const odometry_t& m, const bus::RawMessage&) { drive_log_.push_back({Clock::now(), m.v, m.omega, false, 0}); },
+      [this](const odometry_t& m, const bus::RawMessage&) {
+        drive_log_.push_back({made_at(m.utime), m.v, m.omega, false, 0, m.status == odometry_t::STATUS_FAULT});
+      },
       &drops_);
+  if (!channels.truth.empty()) {
+    has_truth_ = true;
+    bus::subscribe<odometry_t>(
+        bus_, channels.truth,
+        [this](const odometry_t& m, const bus::RawMessage&) { truth_log_.push_back({made_at(m.utime), m.v, m.omega, false, 0}); },
+        &drops_);
+  }
   bus::subscribe<rg_map_t>(
       bus_, channels.rg_map,
       [this](const rg_map_t& m, const bus::RawMessage&) {

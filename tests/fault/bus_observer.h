@@ -1,7 +1,7 @@
 // What the fault harness sees on the bus: every HEARTBEAT (per process: newest pid, gaps
 // between heartbeats, dropped-input counts), every SUPERVISOR_STATUS (a timeline of process
 // states), the state counters probes publish, raw copies of each process's inputs (to
-// flood them with), the drive chain (BASE_CMD, ODOMETRY), and the stateful processes' published
+// flood them with), the drive chain (BASE_CMD, ODOMETRY, the simulator's true motion), and the stateful processes' published
 // state (RG_MAP, ALIGNED_SCAN, the planner's GLOBAL_PATH, the explorer's EXPLORER_STATUS).
 #pragma once
 
@@ -48,6 +48,10 @@ class BusObserver
     std::string aligned_scan = "ALIGNED_SCAN";
     std::string global_path = "GLOBAL_PATH";   // the planner's goal and status
     std::string explorer_status = "EXPLORER_STATUS";   // the explorer's phase, stack and goals
+    // The simulator's ground truth (odometry_t of the true motion) when the drives are emulated
+    // inside it (protocol mode): the robot's real velocity, observable whichever process is
+    // down. "" = none (the drive's own odometry is the only measure).
+    std::string truth;
   };
   BusObserver(const std::string& url, const std::string& host, const std::vector<std::string>& input_channels,
               const std::map<std::string, std::string>& state_channels, const Channels& channels);
@@ -79,9 +83,11 @@ class BusObserver
   std::optional<int64_t> first_state_since(const std::string& name, Clock::time_point t) const;
 
   const std::vector<uint8_t>* captured_input(const std::string& channel) const;
+  // Off while the harness injects into inputs: it hears its own messages.
+  void capture_inputs(bool on) { capture_inputs_ = on; }
 
   // Drive chain: every BASE_CMD (commanded) and every odometry of the drive under test
-  // (measured, from base_driver), in arrival order.
+  // (measured, from base_driver), in arrival order, each stamped when it was made (its utime).
   struct VelocitySample
   {
     Clock::time_point when;
@@ -89,10 +95,14 @@ class BusObserver
     double omega = 0;
     bool from_supervisor = false;  // the supervisor's hold
     int64_t deadline_us = 0;        // a command is void this long after it was sent
+    bool fault = false;             // odometry: the base driver reports a drive fault (STATUS_FAULT)
     bool zero() const { return std::fabs(v) < 1e-3 && std::fabs(omega) < 1e-3; }
   };
   const std::vector<VelocitySample>& commands() const { return cmd_log_; }
   const std::vector<VelocitySample>& drive_odometry() const { return drive_log_; }
+  // The robot's true velocity (Channels::truth), in arrival order; empty without a truth channel.
+  const std::vector<VelocitySample>& truth() const { return truth_log_; }
+  bool has_truth() const { return has_truth_; }
 
   // Stateful processes' published state: RG_MAP (rg_kernel) and ALIGNED_SCAN (scan_mapper).
   struct MapSample
@@ -149,8 +159,11 @@ class BusObserver
   std::map<std::string, std::string> state_channel_of_;  // channel -> process
   std::map<std::string, std::vector<std::pair<Clock::time_point, int64_t>>> state_log_;
   std::map<std::string, std::vector<uint8_t>> inputs_;
+  bool capture_inputs_ = true;
   std::vector<VelocitySample> cmd_log_;
   std::vector<VelocitySample> drive_log_;
+  std::vector<VelocitySample> truth_log_;
+  bool has_truth_ = false;
   std::vector<MapSample> map_log_;
   std::vector<AlignedSample> aligned_log_;
   std::vector<PathSample> path_log_;

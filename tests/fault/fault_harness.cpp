@@ -14,6 +14,7 @@
 #include <regex>
 #include <random>
 #include <set>
+#include <thread>
 #include <spdlog/spdlog.h>
 
 #include "bus/typed.h"
@@ -21,11 +22,15 @@
 #include "child_process.h"
 #include "launch_parser.h"
 #include "launch_plan.h"
+#include "order_auth.h"
+#include "order_conversions.h"
 #include "proc_info.h"
 #include "recording.h"
 #include "rgnav/explorer_status_t.hpp"
+#include "rgnav/fault_inject_t.hpp"
 #include "rgnav/global_path_t.hpp"
 #include "rgnav/supervisor_order_t.hpp"
+#include "runtime/fault_injection.h"
 #include "time/message_time.h"
 
 namespace rgnav::fault {
@@ -34,13 +39,16 @@ namespace sup = rgnav::supervisor;
 
 const std::vector<std::string>& all_faults()
 {
-  static const std::vector<std::string> f = {"sigkill", "sigstop", "crash_loop", "flood", "malformed", "loss_dup_delay"};
+  static const std::vector<std::string> f = {"sigkill", "sigstop", "busy_loop", "crash_loop", "flood", "malformed", "loss_dup_delay"};
   return f;
 }
 
 namespace {
 
 const std::set<std::string> kDriveChain = {"lld", "base_driver", "collision_avoidance"};
+// Added to a braking time: the commander's period (a ramp goes down in steps) and the sampling
+// of the measured speed.
+constexpr double kBrakeSlackMs = 50.0;
 
 double ms_between(Clock::time_point a, Clock::time_point b)
 {
@@ -80,6 +88,8 @@ class Harness
     const char* build = std::getenv("RGNAV_BUILD");
     // The supervisor's run folder for this host: exec lines may name files in it.
     setenv("RGNAV_RUN_DIR", (o_.state_dir + "/" + o_.host).c_str(), 1);
+    // The stack's processes (the supervisor's children inherit it) take faults on FAULT_INJECT.
+    setenv(runtime::kFaultInjectionEnv, "1", 1);
     sup::PlanOptions po{root ? root : "", build ? std::string(build) + "/bin" : "", true};
     plan_ = sup::make_plan(sup::parse_launch_file(o_.launch), po);
     std::vector<std::string> inputs;
@@ -140,6 +150,13 @@ class Harness
     obs_->spin(std::chrono::milliseconds(2000));
     for (const auto* c : running_commands()) baseline_gap_[c->spec.name] = obs_->gap_now(c->spec.name);
 
+    // Host stalls first, on the fresh stack (a robot that later faults left stuck cannot show
+    // whether a stall stops it).
+    for (const int ms : o_.host_stall_ms) {
+      rows.push_back(host_stall(std::chrono::milliseconds(ms)));
+      const auto& r = rows.back();
+      spdlog::info("{:<16} {:<15} {:<7} {}", r.process, r.fault, r.status, r.note);
+    }
     for (const auto* c : local_) {
       // Every process is watched; only the selected ones get faults.
       if (!o_.processes.empty() && std::find(o_.processes.begin(), o_.processes.end(), c->spec.name) == o_.processes.end()) continue;
@@ -224,6 +241,36 @@ class Harness
     }
     const auto chs = y["channels"];
     if (chs && chs.IsMap() && chs["base_cmd"]) channels.base_cmd = "BASE_CMD";  // the hold's channel
+    // The simulator in protocol mode (sim + drive sections, a truth channel): the drives are its
+    // emulated CiA 402 drives, its truth is the robot's real motion, observable whichever process
+    // is down, and its body brakes no faster than its drive's own limits.
+    const auto sim = y["sim"], body = y["drive"];
+    if (sim && sim.IsMap() && body && body.IsMap() && !str("channels", "truth").empty()) {
+      const std::string flag = arg_after(c.argv, "--interface");
+      if ((flag.empty() ? str("sim", "interface") : flag) == "protocol") {
+        channels.truth = str("channels", "truth");
+        if (body["accel"]) sim_accel_ = body["accel"].as<double>();
+        if (body["alpha"]) sim_alpha_ = body["alpha"].as<double>();
+      }
+    }
+    // The lld (a trajectory in, commands out, a control loop): its controlled stop brakes at
+    // max(limits.stop_decel_mps2, the robot's max acceleration), turns at the robot's max angular
+    // acceleration, and it follows a trajectory nobody re-sends for timeouts.trajectory_s.
+    if (!str("channels", "trajectory").empty() && !str("channels", "command").empty() && y["loop"] && y["timeouts"]) {
+      lld_proc_ = c.spec.name;
+      double a = y["limits"] && y["limits"]["stop_decel_mps2"] ? y["limits"]["stop_decel_mps2"].as<double>() : 0.0;
+      const char* root = std::getenv("RGNAV_ROOT");
+      try {
+        const YAML::Node d = YAML::LoadFile(std::string(root ? root : ".") + "/config/robot.yaml")["robot"]["drive"];
+        if (d && d["max_accel_mps2"]) a = std::max(a, d["max_accel_mps2"].as<double>());
+        if (d && d["max_alpha_radps2"]) lld_decel_w_ = d["max_alpha_radps2"].as<double>();
+      } catch (const std::exception&) {
+      }
+      if (a > 0) lld_decel_v_ = a;
+      if (y["timeouts"]["trajectory_s"]) lld_trajectory_timeout_s_ = y["timeouts"]["trajectory_s"].as<double>();
+    }
+    // Collision avoidance: targets in, trajectories out.
+    if (!str("channels", "targets").empty() && !str("channels", "trajectory").empty() && y["planner"]) ca_proc_ = c.spec.name;
     // The planner: goals in, their state and targets out, kept across restarts with --state-file.
     if (!str("channels", "nav_goal").empty() && !str("channels", "global_path").empty() &&
         !str("channels", "targets").empty() && !arg_after(c.argv, "--state-file").empty()) {
@@ -345,18 +392,97 @@ class Harness
     gaps_ok_ = jittery.empty();
   }
 
+  bool is_drive_row(const sup::PlannedCommand& c) const { return c.spec.safety_critical || kDriveChain.count(c.spec.name) > 0; }
+
+  // Waits until the robot moves (the simulator's truth: >= 0.15 m/s, or >= 0.3 rad/s turning).
+  bool wait_moving(std::chrono::milliseconds timeout)
+  {
+    return obs_->wait_until([&] {
+      const auto& t = obs_->truth();
+      if (t.empty() || Clock::now() - t.back().when > std::chrono::milliseconds(100)) return false;
+      return std::fabs(t.back().v) >= 0.15 || std::fabs(t.back().omega) >= 0.3;
+    }, timeout);
+  }
+
+  // Decelerations the robot can be expected to brake at: the slowest stop of the chain (the
+  // base driver's ramps, the lld's controlled stop) and never faster than the simulated body.
+  double stop_decel_v() const
+  {
+    double a = decel_v_;
+    if (lld_decel_v_ > 0) a = std::min(a, lld_decel_v_);
+    if (sim_accel_ > 0) a = std::min(a, sim_accel_);
+    return a;
+  }
+  double stop_decel_w() const
+  {
+    double a = decel_w_;
+    if (lld_decel_w_ > 0) a = std::min(a, lld_decel_w_);
+    if (sim_alpha_ > 0) a = std::min(a, sim_alpha_);
+    return a;
+  }
+
+  // When the measured speed started falling for good before sample k: walking back from k over
+  // samples no faster than the one before, in v, or in omega for a robot turning in place
+  // (`rotation`). A ramp commanded in steps holds its speed between them, so up to kFlatSamples
+  // equal samples in a row belong to the fall; more are a cruise. Returns the first slower
+  // sample of the earliest fall (late by up to one sample period: conservative).
+  static std::optional<Clock::time_point> brake_onset(const std::vector<BusObserver::VelocitySample>& s, size_t k,
+                                                      Clock::time_point from, bool rotation)
+  {
+    constexpr int kFlatSamples = 3;
+    std::optional<size_t> first_fall;
+    int flat = 0;
+    for (size_t j = k; j > 0 && s[j - 1].when >= from; --j) {
+      const double d = rotation ? std::fabs(s[j].omega) - std::fabs(s[j - 1].omega) : std::fabs(s[j].v) - std::fabs(s[j - 1].v);
+      if (d < -1e-3) {
+        first_fall = j;
+        flat = 0;
+      } else if (d > 1e-3 || ++flat > kFlatSamples) {
+        break;
+      }
+    }
+    if (!first_fall) return std::nullopt;
+    return s[*first_fall].when;
+  }
+
   // The drive chain after a fault of one of its processes: the commanded velocity (BASE_CMD:
   // the dead commander's last command expiring, or the supervisor's hold) at zero within
-  // stop_bound, and the drive's measured velocity (the base driver's odometry) at zero within
-  // stop_bound plus the braking time from the velocity at the fault at the configured
-  // deceleration. `back`: when the process was running again (the window ends there).
+  // stop_bound, and the measured velocity at zero within stop_bound plus the braking time from
+  // the velocity at the fault at the chain's slowest stop deceleration; with the simulator's
+  // truth, also the moment braking began (<= stop_bound). Measured: the simulator's true motion
+  // where the drives are emulated inside it (observable while the base driver is down), else
+  // the base driver's odometry. Collision avoidance's bound starts when the lld gives up the
+  // trajectory it no longer re-sends. `back`: when the process was running again (the window
+  // ends there).
   void measure_drive(const sup::PlannedCommand& c, Clock::time_point t0, std::optional<Clock::time_point> back, FaultRow& row)
   {
-    if (!c.spec.safety_critical && !kDriveChain.count(c.spec.name)) return;
+    if (!is_drive_row(c)) return;
     const auto end = back ? *back : t0 + o_.restart_bound;
-    obs_->wait_until([&] { return Clock::now() >= end + std::chrono::milliseconds(100); }, o_.restart_bound + std::chrono::seconds(1));
+    obs_->wait_until([&] { return Clock::now() >= end + std::chrono::milliseconds(100); },
+                     std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()) + std::chrono::seconds(1));
     const bool consumer = c.spec.name == base_proc_;
+    const bool truth = obs_->has_truth();
+    const double stop_bound = static_cast<double>(o_.stop_bound.count()) +
+                              (c.spec.name == ca_proc_ ? 1000.0 * lld_trajectory_timeout_s_ : 0.0);
     const auto& cmds = obs_->commands();
+    const auto& odo = truth ? obs_->truth() : obs_->drive_odometry();
+    const BusObserver::VelocitySample* at_fault = nullptr;
+    for (const auto& m : odo)
+      if (m.when < t0) at_fault = &m;
+    // Braking time from the speed at the fault (measured; else commanded) at the slowest stop.
+    double v0 = 0, w0 = 0;
+    if (at_fault) {
+      v0 = std::fabs(at_fault->v);
+      w0 = std::fabs(at_fault->omega);
+    } else if (const VelocitySampleRef last = last_nonzero(cmds, t0 - std::chrono::seconds(1), t0); last.sample) {
+      v0 = std::fabs(last.sample->v);
+      w0 = std::fabs(last.sample->omega);
+    }
+    // Braking time at the slowest stop, from the speed when braking began (a commander driving
+    // blind until its input goes stale may still speed up within the stop bound), plus the
+    // command period and the truth's sampling.
+    double brake_ms = 1000.0 * std::max(v0 / stop_decel_v(), w0 / stop_decel_w()) + kBrakeSlackMs;
+
     // Commanded velocity.
     std::optional<Clock::time_point> cmd_zero;
     int nonzero_after = 0;
@@ -387,19 +513,16 @@ class Harness
     }
     if (cmd_zero) row.cmd_zero_ms = ms_between(t0, *cmd_zero);
     else row.note += "; BASE_CMD never zero (no hold)";
+    // A commander still alive after the fault (its own input went stale) brakes by a ramp of
+    // non-zero commands: zero after the braking time. (A hung one let run again to stop may send
+    // one more: what it does to the robot is measured below.)
     if (nonzero_after > 0) row.note += "; non-zero BASE_CMD after the fault";
-    // A stopped base driver acts on nothing: its drives stop on their own watchdog, so the
-    // hold's timing (it follows detection) is reported, not bounded.
-    bool ok = cmd_zero && (consumer || *row.cmd_zero_ms <= o_.stop_bound.count());
+    bool ok = cmd_zero.has_value();
 
     // Measured velocity.
-    const auto& odo = obs_->drive_odometry();
-    const BusObserver::VelocitySample* at_fault = nullptr;
-    for (const auto& m : odo)
-      if (m.when < t0) at_fault = &m;
-    if (base_proc_.empty() || !at_fault) {
+    if ((base_proc_.empty() && !truth) || !at_fault) {
       row.note += "; no drive odometry to measure";
-    } else if (consumer) {
+    } else if (consumer && !truth) {
       // Unobservable while the base driver itself is down (the drives quick-stop on the lost
       // master heartbeat): its successor's first report must be standstill.
       const BusObserver::VelocitySample* first = nullptr;
@@ -432,31 +555,126 @@ class Harness
         }
       }
     } else {
-      const double v0 = std::fabs(at_fault->v), w0 = std::fabs(at_fault->omega);
-      const double brake_ms = 1000.0 * std::max(v0 / decel_v_, w0 / decel_w_);
-      row.drive_bound_ms = o_.stop_bound.count() + brake_ms;
-      if (at_fault->zero()) row.note += "; robot at rest at the fault: braking not exercised";
+      row.v_at_fault = v0;
+      row.omega_at_fault = w0;
+      if (at_fault->zero()) {
+        row.note += "; robot at rest at the fault: braking not exercised";
+        if (truth) ok = false;  // the stack drives: a drive row must be measured while moving
+      }
       // First sample from which every sample up to `end` is zero.
       std::optional<Clock::time_point> zero_from;
+      size_t zero_index = 0, last_index = 0;
+      std::optional<size_t> first_rest;  // the first sample at rest (before any motion again)
       const BusObserver::VelocitySample* last = nullptr;
-      for (const auto& m : odo) {
+      for (size_t i = 0; i < odo.size(); ++i) {
+        const auto& m = odo[i];
         if (m.when < t0 || m.when > end) continue;
         last = &m;
+        last_index = i;
+        if (m.zero() && !first_rest) first_rest = i;
         if (!m.zero()) zero_from.reset();
-        else if (!zero_from) zero_from = m.when;
+        else if (!zero_from) {
+          zero_from = m.when;
+          zero_index = i;
+        }
       }
+      // At rest and then driven again while the process is down or hung: a stale command got
+      // through (e.g. from a hung commander let run again to stop).
+      if (first_rest && (!zero_from || zero_index > *first_rest) && !at_fault->zero()) {
+        double v_peak = 0;
+        Clock::time_point when{};
+        for (size_t i = *first_rest; i < odo.size() && odo[i].when <= end; ++i)
+          if (std::fabs(odo[i].v) >= v_peak) {
+            v_peak = std::fabs(odo[i].v);
+            when = odo[i].when;
+          }
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "; at rest after %.0f ms, then moved again (%.3f m/s at %.0f ms)",
+                      ms_between(t0, odo[*first_rest].when), v_peak, ms_between(t0, when));
+        row.note += buf;
+        ok = false;
+      }
+      // Back before it had to stop (collision avoidance back before the lld gave up its
+      // trajectory): nothing to brake for.
+      const bool back_in_time = ms_between(t0, end) <= stop_bound;
+      if (back_in_time) row.note += "; back before it had to stop";
+      if (truth && last && !at_fault->zero() && !back_in_time) {
+        // Braking began: the start of the fall that ends at rest (or at the window's end).
+        // From rest, or from the last sample; a robot that no longer translates but still
+        // steers a little has ended its braking where translation stopped.
+        // Translating at the fault: the fall of v, which ended where the robot stopped translating
+        // (a controlled stop may still steer a little); turning in place: the fall of omega.
+        const bool rotation = v0 < 0.05;
+        size_t k = first_rest ? *first_rest : last_index;
+        while (!rotation && k > 0 && odo[k - 1].when >= t0 && std::fabs(odo[k].v) < 1e-3 &&
+               std::fabs(odo[k - 1].v) < 1e-3)
+          --k;
+        const auto onset = brake_onset(odo, k, t0 - std::chrono::seconds(2), rotation);
+        if (onset) {
+          row.brake_start_ms = std::max(0.0, ms_between(t0, *onset));
+          double v_peak = v0, w_peak = w0;
+          for (const auto& m : odo)
+            if (m.when >= t0 && m.when <= *onset) {
+              v_peak = std::max(v_peak, std::fabs(m.v));
+              w_peak = std::max(w_peak, std::fabs(m.omega));
+            }
+          brake_ms = 1000.0 * std::max(v_peak / stop_decel_v(), w_peak / stop_decel_w()) + kBrakeSlackMs;
+          if (*onset < t0) row.note += "; already slowing at the fault";
+          if (*row.brake_start_ms > stop_bound) {
+            ok = false;
+            row.note += "; braking began later than " + std::to_string(static_cast<int>(stop_bound)) + " ms";
+            // Had it begun braking earlier and then been driven again? (Named: the cause differs.)
+            double v_min = std::fabs(at_fault->v);
+            std::optional<Clock::time_point> fell;
+            for (const auto& m : odo) {
+              if (m.when < t0 || m.when > *onset) continue;
+              const double v = std::fabs(m.v);
+              if (!fell && v < std::fabs(at_fault->v) - 0.02) fell = m.when;
+              if (fell && v > v_min + 0.02) {
+                char buf[160];
+                std::snprintf(buf, sizeof buf, " (it had begun braking at %.0f ms, then was driven again: %.2f -> %.2f m/s at %.0f ms)",
+                              ms_between(t0, *fell), v_min, v, ms_between(t0, m.when));
+                row.note += buf;
+                break;
+              }
+              v_min = std::min(v_min, v);
+            }
+          }
+        } else {
+          ok = false;
+          row.note += "; no braking seen";
+        }
+      }
+      // Speeding up again after the stop bound (a resumed commander sending stale commands):
+      // named, as it is what delays the stop.
+      {
+        double v_at_bound = -1, v_max_after = 0;
+        for (const auto& m : odo) {
+          if (m.when < t0 + std::chrono::milliseconds(static_cast<int64_t>(stop_bound)) || m.when > end) continue;
+          if (v_at_bound < 0) v_at_bound = std::fabs(m.v);
+          v_max_after = std::max(v_max_after, std::fabs(m.v));
+        }
+        if (v_at_bound >= 0 && v_max_after > v_at_bound + 0.02) {
+          char buf[120];
+          std::snprintf(buf, sizeof buf, "; sped up again after %.0f ms: %.2f -> %.2f m/s", stop_bound, v_at_bound, v_max_after);
+          row.note += buf;
+        }
+      }
+      row.drive_bound_ms = stop_bound + brake_ms;
       if (zero_from) {
         row.drive_zero_ms = ms_between(t0, *zero_from);
         if (*row.drive_zero_ms > *row.drive_bound_ms) {
           ok = false;
           row.note += "; measured velocity at zero later than " + std::to_string(static_cast<int>(*row.drive_bound_ms)) + " ms";
         }
+      } else if (back_in_time) {
+        // Reported, not bounded.
       } else if (last && ms_between(t0, end) < *row.drive_bound_ms) {
         // Back before the robot could have stopped: it must have been braking at least at the
-        // configured deceleration once the command went to zero.
-        const double braking_s = std::max(0.0, ms_between(t0, last->when) - o_.stop_bound.count()) / 1000.0;
-        const double v_max = std::max(0.0, v0 - decel_v_ * braking_s) + 0.02;
-        const double w_max = std::max(0.0, w0 - decel_w_ * braking_s) + 0.05;
+        // chain's slowest stop deceleration once the bound for the stop had passed.
+        const double braking_s = std::max(0.0, ms_between(t0, last->when) - stop_bound) / 1000.0;
+        const double v_max = std::max(0.0, v0 - stop_decel_v() * braking_s) + 0.02;
+        const double w_max = std::max(0.0, w0 - stop_decel_w() * braking_s) + 0.05;
         char buf[200];
         std::snprintf(buf, sizeof buf, "; back after %.0f ms, before it could stop: braked v %.2f->%.2f m/s, w %.2f->%.2f rad/s",
                       ms_between(t0, end), v0, std::fabs(last->v), w0, std::fabs(last->omega));
@@ -470,7 +688,16 @@ class Harness
         row.note += "; measured velocity not at zero before the process was back";
       }
     }
-    if (row.cmd_zero_ms || row.drive_zero_ms)
+    // A stopped base driver acts on nothing: its drives stop on their own watchdog, so the
+    // hold's timing (it follows detection) is reported, not bounded.
+    const double cmd_bound = stop_bound + (nonzero_after > 0 ? brake_ms : 0.0);
+    if (cmd_zero && !consumer && *row.cmd_zero_ms > cmd_bound) {
+      ok = false;
+      row.note += "; BASE_CMD at zero later than " + std::to_string(static_cast<int>(cmd_bound)) + " ms";
+    }
+    if (consumer && truth)
+      row.robot_stopped_ms = row.drive_zero_ms;  // the hold follows detection: reported above, not the stop
+    else if (row.cmd_zero_ms || row.drive_zero_ms)
       row.robot_stopped_ms = std::max(row.cmd_zero_ms.value_or(0.0), row.drive_zero_ms.value_or(0.0));
     drive_ok_ = ok;
   }
@@ -650,15 +877,21 @@ class Harness
     }
   }
 
+  // Signed like rgnav_ctl's (the supervisor refuses anything else), each copy with a nonce of its own.
   void send_order(int8_t order, const std::string& target)
   {
-    supervisor_order_t o;
+    if (!order_key_) order_key_ = sup::load_order_key(o_.order_key_file);
+    sup::OrderFields o;
     o.utime = time::wall_utime();
     o.order_id = ++order_id_;
     o.host = o_.host;
     o.order = order;
     o.target = target;
-    for (int i = 0; i < 3; ++i) bus::publish(obs_->bus(), "SUPERVISOR_ORDERS", o);
+    o.source = sup::order_source("fault_harness");
+    for (int i = 0; i < 3; ++i) {
+      sup::sign_order(o, *order_key_);
+      bus::publish(obs_->bus(), "SUPERVISOR_ORDERS", sup::to_order_msg(o));
+    }
   }
 
   void run_fault(const sup::PlannedCommand& c, const std::string& fault, FaultRow& row)
@@ -669,7 +902,7 @@ class Harness
       row.note = "a oneshot job that had finished before this fault";
       return;
     }
-    if (fault == "sigstop" && !c.spec.heartbeat) {
+    if ((fault == "sigstop" || fault == "busy_loop") && !c.spec.heartbeat) {
       row.status = "n/a";
       row.note = "no heartbeat: a stopped process is invisible to the supervisor (its dependents notice)";
       return;
@@ -687,38 +920,68 @@ class Harness
       }
     }
     obs_->spin(std::chrono::milliseconds(200));
+    const bool hang = fault == "sigkill" || fault == "sigstop" || fault == "busy_loop";
+    // A drive-chain fault is measured while the robot moves: braking must be exercised.
+    if (hang && obs_->has_truth() && is_drive_row(c) && !wait_moving(o_.moving_wait))
+      row.note += "; robot not moving within " + std::to_string(o_.moving_wait.count() / 1000) + " s";
     const auto before = snapshot();
     const int old_pid = before.count(name) ? before.at(name).first : 0;
     const auto state_before = obs_->state(name);
     obs_->reset_gaps();
-    const double detect_bound = static_cast<double>((o_.heartbeat_timeout + o_.heartbeat_period).count()) + 100.0;
+    // A busy loop keeps the heartbeat going: the supervisor sees its progress stand still for the
+    // work timeout, counted from the first heartbeat after the loop stopped (up to a period later:
+    // it still shows the turns made since the one before); then the stop grace.
+    const auto work_timeout = c.spec.work_timeout_ms > 0 ? std::chrono::milliseconds(c.spec.work_timeout_ms) : o_.work_timeout;
+    double detect_bound = static_cast<double>(
+        ((fault == "busy_loop" ? work_timeout : o_.heartbeat_timeout) + o_.heartbeat_period).count()) + 100.0;
+    const auto restart_bound = fault == "busy_loop" ? o_.restart_bound + work_timeout - o_.heartbeat_timeout : o_.restart_bound;
+    // The supervisor moves its deadlines on by every stall of the whole host it measures: those
+    // are added to the detection bound (reported in the note).
+    const int64_t host_stall_before = obs_->last_status() ? obs_->last_status()->host_stall_total_ms : 0;
     bool ok = true;
     gaps_ok_ = true;
     drive_ok_ = true;
     const auto t0 = Clock::now();
 
-    if (fault == "sigkill" || fault == "sigstop") {
-      kill(old_pid, fault == "sigkill" ? SIGKILL : SIGSTOP);
+    if (hang) {
+      if (fault == "busy_loop") {
+        // The process's event loop spins (runtime/fault_injection.h) past the supervisor's
+        // bound and its grace, so only the supervisor ends it.
+        fault_inject_t f;
+        f.utime = time::wall_utime();
+        f.target = name;
+        f.pid = old_pid;
+        f.fault = fault_inject_t::FAULT_BUSY_LOOP;
+        f.duration_ms = static_cast<int32_t>((work_timeout + o_.hung_grace + std::chrono::seconds(5)).count());
+        bus::publish(obs_->bus(), runtime::kFaultInjectChannel, f);
+      } else {
+        kill(old_pid, fault == "sigkill" ? SIGKILL : SIGSTOP);
+      }
       const bool back = obs_->wait_until([&] { return obs_->first_heartbeat_new_pid(name, old_pid, t0).has_value() ||
                                                       (!c.spec.heartbeat && obs_->status(name) && obs_->status(name)->pid != old_pid &&
                                                        obs_->status(name)->state == process_status_t::STATE_RUNNING); },
-                                         o_.restart_bound + std::chrono::milliseconds(3000));
+                                         restart_bound + std::chrono::milliseconds(3000));
       if (fault == "sigstop") kill(old_pid, SIGCONT);  // in case the supervisor did not act
       const auto det = obs_->first_status(name, t0, [&](const process_status_t& p) {
         return p.pid != old_pid || p.state != process_status_t::STATE_RUNNING;
       });
       if (det) row.detect_ms = ms_between(t0, *det);
+      const int64_t host_stalled = (obs_->last_status() ? obs_->last_status()->host_stall_total_ms : 0) - host_stall_before;
+      if (host_stalled > 0 && fault != "sigkill") {
+        detect_bound += static_cast<double>(host_stalled);
+        row.note += "; host stalled " + std::to_string(host_stalled) + " ms meanwhile (the supervisor's deadlines moved on)";
+      }
       if (back) {
         auto t = obs_->first_heartbeat_new_pid(name, old_pid, t0);
         if (!t) t = obs_->first_status(name, t0, [&](const process_status_t& p) { return p.pid != old_pid && p.state == process_status_t::STATE_RUNNING; });
         if (t) row.restart_ms = ms_between(t0, *t);
       }
-      ok = det && back && *row.detect_ms <= detect_bound && row.restart_ms && *row.restart_ms <= o_.restart_bound.count();
+      ok = det && back && *row.detect_ms <= detect_bound && row.restart_ms && *row.restart_ms <= restart_bound.count();
       if (!det) row.note += "; not detected";
       else if (*row.detect_ms > detect_bound) row.note += "; detected later than " + std::to_string(static_cast<int>(detect_bound)) + " ms";
       if (!back) row.note += "; not restarted";
-      else if (!row.restart_ms || *row.restart_ms > o_.restart_bound.count())
-        row.note += "; running again later than the " + std::to_string(o_.restart_bound.count()) + " ms bound";
+      else if (!row.restart_ms || *row.restart_ms > restart_bound.count())
+        row.note += "; running again later than the " + std::to_string(restart_bound.count()) + " ms bound";
       const auto t_new = obs_->first_status(name, t0, [&](const process_status_t& p) { return p.pid != 0 && p.pid != old_pid; });
       measure_drive(c, t0, back ? std::optional<Clock::time_point>(t0 + std::chrono::microseconds(static_cast<int64_t>(*row.restart_ms * 1000))) : std::nullopt, row);
       if (t_new) check_restart_state(name, t0, *t_new, log_offset, in_before, row);
@@ -770,6 +1033,11 @@ class Harness
         return;
       }
       const int64_t dropped_before = obs_->heartbeat(name) ? obs_->heartbeat(name)->dropped : 0;
+      // A drive-chain process that drove before bad input must drive again after it: input it
+      // dropped or survived must not leave the robot stopped for good.
+      const bool drove_before = obs_->has_truth() && is_drive_row(c) && wait_moving(std::chrono::seconds(5));
+      if (obs_->has_truth() && is_drive_row(c) && !drove_before)
+        row.note += "; robot not driving before the fault (an earlier one may have left it stopped)";
       if (fault == "loss_dup_delay") {
         // A relay of this stack in front of one of its inputs is switched to impair for 2 s.
         const sup::PlannedCommand* relay = nullptr;
@@ -790,13 +1058,20 @@ class Harness
         kill(rs->pid, SIGUSR1);
         obs_->spin(std::chrono::milliseconds(2000));
         kill(rs->pid, SIGUSR2);
-        row.note += "impaired by " + relay->spec.name;
+        row.note += "; impaired by " + relay->spec.name;
       } else {
         std::mt19937 rng(42);
         const int n = fault == "flood" ? o_.flood_messages : 1000;
+        // The material: what each input carried before. The harness hears its own injections, so
+        // captures stop meanwhile (a truncated copy must not become the next "valid" one).
+        std::map<std::string, std::vector<uint8_t>> material;
+        for (const auto& in : c.spec.inputs)
+          if (const auto* v = obs_->captured_input(in)) material[in] = *v;
+        obs_->capture_inputs(false);
         for (int i = 0; i < n; ++i) {
           for (const auto& in : c.spec.inputs) {
-            const auto* valid = obs_->captured_input(in);
+            const auto it = material.find(in);
+            const auto* valid = it == material.end() || it->second.size() <= 8 ? nullptr : &it->second;
             std::vector<uint8_t> msg;
             if (fault == "flood" && valid) {
               msg = *valid;
@@ -819,8 +1094,9 @@ class Harness
             while (Clock::now() < due) obs_->bus().handle(std::chrono::duration_cast<std::chrono::milliseconds>(due - Clock::now()) + std::chrono::milliseconds(1));
           }
         }
-        if (fault == "flood" && !obs_->captured_input(c.spec.inputs[0])) row.note += "no valid input captured: flooded with random bytes";
+        if (fault == "flood" && !material.count(c.spec.inputs[0])) row.note += "; no valid input captured: flooded with random bytes";
         obs_->spin(std::chrono::milliseconds(1000));
+        obs_->capture_inputs(true);
       }
       const auto s = obs_->status(name);
       const bool same = s && s->pid == old_pid && before.count(name) && s->restarts == before.at(name).second;
@@ -832,6 +1108,10 @@ class Harness
         row.note += (row.note.empty() ? "" : "; ") + std::to_string(dropped) + " inputs dropped as invalid";
       }
       ok = same && own_gap <= o_.heartbeat_timeout.count();
+      if (drove_before && !wait_moving(o_.moving_wait)) {
+        ok = false;
+        row.note += "; the robot did not drive again within " + std::to_string(o_.moving_wait.count() / 1000) + " s";
+      }
     }
 
     if (fault != "crash_loop") {
@@ -851,6 +1131,62 @@ class Harness
     ok = ok && !row.others_restarted && gaps_ok_ && !(row.state_lost && *row.state_lost);
     if (row.status.empty()) row.status = ok ? "pass" : "fail";
     if (!row.note.empty() && row.note.rfind("; ", 0) == 0) row.note = row.note.substr(2);
+  }
+
+  // The whole host stalls for `stall` while the robot drives: every process of the stack and
+  // the supervisor stopped together, then continued together (the scheduler picks the order,
+  // real-time threads first, as after a VM's pause). Nobody is hung, so nothing may be restarted,
+  // and the drive chain must not stop the robot: no drive fault reported (a heartbeat or TPDO
+  // consumer that timed out), and the robot not at rest within the 2 s after.
+  FaultRow host_stall(std::chrono::milliseconds stall)
+  {
+    FaultRow row;
+    row.process = "host";
+    row.fault = "stall_" + std::to_string(stall.count()) + "ms";
+    if (!wait_all_running(std::chrono::seconds(15))) row.note += "; stack not running before the stall";
+    if (obs_->has_truth() && !wait_moving(o_.moving_wait))
+      row.note += "; robot not moving within " + std::to_string(o_.moving_wait.count() / 1000) + " s";
+    obs_->spin(std::chrono::milliseconds(200));
+    const auto before = snapshot();
+    std::vector<pid_t> pids;
+    for (const auto& [name, pr] : before)
+      if (pr.first > 0) pids.push_back(pr.first);
+    pids.push_back(sup_pid_);
+    const auto& moved = obs_->has_truth() ? obs_->truth() : obs_->drive_odometry();
+    const BusObserver::VelocitySample at = moved.empty() ? BusObserver::VelocitySample{} : moved.back();
+    row.v_at_fault = std::fabs(at.v);
+    row.omega_at_fault = std::fabs(at.omega);
+    obs_->reset_gaps();
+    const auto t0 = Clock::now();
+    for (const pid_t p : pids) kill(p, SIGSTOP);
+    std::this_thread::sleep_for(stall);
+    for (const pid_t p : pids) kill(p, SIGCONT);
+    obs_->spin(std::chrono::milliseconds(2000) + stall);
+    bool fault = false, rest = false;
+    double v_min = std::fabs(at.v);
+    for (const auto& m : obs_->drive_odometry())
+      if (m.when >= t0 && m.fault) fault = true;
+    for (const auto& m : moved) {
+      if (m.when < t0) continue;
+      v_min = std::min(v_min, std::fabs(m.v));
+      if (m.zero()) rest = true;
+    }
+    row.v_min_after = v_min;
+    row.stall_stop = fault || (rest && !at.zero());
+    if (fault) row.note += "; the base driver reported a drive fault";
+    if (rest && !at.zero()) row.note += "; the robot came to rest";
+    if (at.zero()) row.note += "; robot at rest at the stall: not exercised";
+    // Nobody was hung: nothing may have been restarted.
+    for (const auto& [name, pr] : before) {
+      const auto s = obs_->status(name);
+      if (!s || s->pid != pr.first || s->restarts != pr.second) {
+        row.others_restarted = true;
+        row.note += "; " + name + " restarted";
+      }
+    }
+    row.status = !*row.stall_stop && !row.others_restarted && !at.zero() ? "pass" : "fail";
+    if (row.note.rfind("; ", 0) == 0) row.note = row.note.substr(2);
+    return row;
   }
 
   FaultRow supervisor_fault()
@@ -919,10 +1255,14 @@ class Harness
   pid_t sup_pid_ = 0;
   Clock::time_point sup_started_{};
   int64_t order_id_ = 1000;
+  std::optional<sup::OrderKey> order_key_;
   bool gaps_ok_ = true;
   bool drive_ok_ = true;
-  std::string rg_map_proc_, mapper_proc_, base_proc_, planner_proc_, explorer_proc_;
-  double decel_v_ = 1.0, decel_w_ = 1.0;
+  std::string rg_map_proc_, mapper_proc_, base_proc_, planner_proc_, explorer_proc_, lld_proc_, ca_proc_;
+  double decel_v_ = 1.0, decel_w_ = 1.0;          // the base driver's ramps (its deadman stop)
+  double sim_accel_ = 0.0, sim_alpha_ = 0.0;      // the simulated body's limits (0: unknown)
+  double lld_decel_v_ = 0.0, lld_decel_w_ = 0.0;  // the lld's controlled stop (0: no lld)
+  double lld_trajectory_timeout_s_ = 0.0;
   int64_t mapper_base_ = 0;                  // scans the mapper's current instance resumed with
   int64_t rg_base_ = 0;                      // journal inputs rg_kernel's current instance replayed
   Clock::time_point mapper_instance_start_{};

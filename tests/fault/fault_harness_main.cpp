@@ -3,12 +3,16 @@
 //   fault_harness --launch tests/fault/fault_stack.pmd --out logs/bench/faults.json
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "fault_harness.h"
 #include "log/log.h"
+#include "order_key.h"
 
 int main(int argc, char** argv)
 {
@@ -26,8 +30,9 @@ int main(int argc, char** argv)
   app.add_option("--log", o.log_file, "supervisor output file")->required();
   app.add_option("--lcm-url", o.lcm_url, "LCM URL");
   app.add_option("--process", o.processes, "only these processes (repeatable)");
-  app.add_option("--fault", o.faults, "only these faults (repeatable): sigkill sigstop crash_loop flood malformed loss_dup_delay");
+  app.add_option("--fault", o.faults, "only these faults (repeatable): sigkill sigstop busy_loop crash_loop flood malformed loss_dup_delay");
   app.add_flag("--no-supervisor-fault", no_supervisor_fault, "skip killing the supervisor itself");
+  app.add_option("--host-stall-ms", o.host_stall_ms, "before the process faults, stop the whole stack this long while driving (repeatable)");
   app.add_option("--heartbeat-timeout-ms", timeout_ms, "the supervisor's heartbeat timeout");
   app.add_option("--heartbeat-period-ms", period_ms, "the processes' heartbeat period");
   app.add_option("--restart-bound-ms", restart_bound_ms, "fault to heartbeating again");
@@ -43,6 +48,39 @@ int main(int argc, char** argv)
   o.heartbeat_period = std::chrono::milliseconds(period_ms);
   o.restart_bound = std::chrono::milliseconds(restart_bound_ms);
   o.stop_bound = std::chrono::milliseconds(stop_bound_ms);
+  // The supervisor's own bounds on a busy loop, from its config (defaults otherwise).
+  if (!o.supervisor_config.empty()) {
+    try {
+      const YAML::Node s = YAML::LoadFile(o.supervisor_config)["supervisor"];
+      if (s && s["work_timeout_ms"]) o.work_timeout = std::chrono::milliseconds(s["work_timeout_ms"].as<int>());
+      if (s && s["hung_grace_ms"]) o.hung_grace = std::chrono::milliseconds(s["hung_grace_ms"].as<int>());
+    } catch (const std::exception& e) {
+      std::cerr << "fault_harness: " << o.supervisor_config << ": " << e.what() << "\n";
+      return 2;
+    }
+  }
+
+  // Orders to the supervisor are signed (procs/supervisor/order_auth.h): with the key its config
+  // names, or, where it names none, with a key of this run's own, made in the state folder and
+  // handed to the supervisor through $RGNAV_ORDERS_KEY (the operator's own key is not needed).
+  try {
+    std::string configured;
+    if (!o.supervisor_config.empty()) {
+      const YAML::Node orders = YAML::LoadFile(o.supervisor_config)["orders"];
+      if (orders && orders["key_file"]) configured = orders["key_file"].as<std::string>();
+    }
+    if (configured.empty()) {
+      o.order_key_file = o.state_dir + "/orders.key";
+      if (!std::filesystem::exists(o.order_key_file)) rgnav::supervisor::create_order_key(o.order_key_file, false);
+      setenv("RGNAV_ORDERS_KEY", o.order_key_file.c_str(), 1);
+    } else {
+      o.order_key_file = rgnav::supervisor::order_key_path(configured);
+    }
+    rgnav::supervisor::load_order_key(o.order_key_file);  // refused now, not at the first order
+  } catch (const std::exception& e) {
+    std::cerr << "fault_harness: order key: " << e.what() << "\n";
+    return 2;
+  }
 
   std::vector<rgnav::fault::FaultRow> rows;
   try {
@@ -73,6 +111,11 @@ int main(int argc, char** argv)
     j["cmd_zero_ms"] = r.cmd_zero_ms ? nlohmann::json(*r.cmd_zero_ms) : nlohmann::json();
     j["drive_zero_ms"] = r.drive_zero_ms ? nlohmann::json(*r.drive_zero_ms) : nlohmann::json();
     j["drive_bound_ms"] = r.drive_bound_ms ? nlohmann::json(*r.drive_bound_ms) : nlohmann::json();
+    j["brake_start_ms"] = r.brake_start_ms ? nlohmann::json(*r.brake_start_ms) : nlohmann::json();
+    j["v_at_fault"] = r.v_at_fault ? nlohmann::json(*r.v_at_fault) : nlohmann::json();
+    j["omega_at_fault"] = r.omega_at_fault ? nlohmann::json(*r.omega_at_fault) : nlohmann::json();
+    if (r.stall_stop) j["stall_stop"] = *r.stall_stop;
+    if (r.v_min_after) j["v_min_after"] = *r.v_min_after;
     doc["rows"].push_back(j);
     failed += r.status == "fail";
     passed += r.status == "pass";

@@ -34,9 +34,10 @@ if [ -x "$RGNAV_BUILD/bin/two_room_map" ]; then
 fi
 # The drive chain: the real base_driver on a virtual CAN bus of its own with two emulated
 # CiA 402 drives; it follows the same (relayed) BASE_CMD as the simulated robot and reports
-# on DRIVE_ODOMETRY, so the simulator's ODOMETRY stays the only one.
+# on DRIVE_ODOMETRY, so the simulator's ODOMETRY stays the only one. Here the tour runner owns
+# BASE_CMD (base.command_source), not lld.
 "$ov" "$c/base_driver_sim.yaml" "$out/base_driver.yaml" can.virtual_bus_path="$s/vcan.sock" \
-  channels.base_cmd=BASE_CMD_RELAYED channels.odometry=DRIVE_ODOMETRY
+  channels.base_cmd=BASE_CMD_RELAYED channels.odometry=DRIVE_ODOMETRY base.command_source=tour_runner
 check() {
   "$RGNAV_BUILD/bin/$1" --config "$out/$2.yaml" --check-config >/dev/null || { echo "sim_stack_configs: $2.yaml rejected" >&2; exit 2; }
 }

@@ -7,6 +7,7 @@
 #include <csignal>
 #include <fstream>
 
+#include "bad_files.h"
 #include "bus_watch.h"
 #include "child_process.h"
 #include "time/message_time.h"
@@ -149,6 +150,37 @@ TEST(RuntimeProcess, BadRobotDescriptionExitsTwoBesideTheConfigOrByFlag)
                               std::string(RGNAV_SOURCE_DIR) + "/config/robot.yaml", "--lcm-url", "memq://", "--check-config"},
                              seconds(20), o);
   EXPECT_TRUE(status.exited && status.code == 0) << status.describe() << read_file(dir.file("stderr"));
+}
+
+// Issue 35: every process refuses to start (exit 2, the file named) on a config or robot
+// description of random bytes, an empty one, or one cut off inside a key (process_main).
+TEST(RuntimeProcess, ConfigOrRobotFileOfRandomBytesEmptyOrCutOffExitsTwoNamingIt)
+{
+  TempDir dir;
+  const std::string config = read_file(std::string(RGNAV_INTEGRATION_CONFIG_DIR) + "/contract_subscriber.yaml");
+  const std::string robot = read_file(std::string(RGNAV_SOURCE_DIR) + "/config/robot.yaml");
+  ASSERT_NE(config.find("heartbeat_hz"), std::string::npos);
+  ASSERT_NE(robot.find("max_v_mps"), std::string::npos);
+  write_bytes(dir.file("good.yaml"), config);
+  ChildOptions o;
+  o.stderr_path = dir.file("stderr");
+  const std::string robot_path = std::string(RGNAV_SOURCE_DIR) + "/config/robot.yaml";
+  for (const auto& f : write_bad_files(dir.path(), "config.yaml", config, config.find("heartbeat_hz") + 4)) {
+    SCOPED_TRACE("config " + f.kind);
+    const auto status = run_to_completion({RGNAV_CONTRACT_SUBSCRIBER, "--config", f.path, "--robot", robot_path,
+                                           "--lcm-url", "memq://", "--check-config"},
+                                          seconds(20), o);
+    EXPECT_TRUE(status.exited && status.code == 2) << status.describe();
+    EXPECT_NE(read_file(o.stderr_path).find(f.path), std::string::npos) << read_file(o.stderr_path);
+  }
+  for (const auto& f : write_bad_files(dir.path(), "robot.yaml", robot, robot.find("max_v_mps") + 3)) {
+    SCOPED_TRACE("robot " + f.kind);
+    const auto status = run_to_completion({RGNAV_CONTRACT_SUBSCRIBER, "--config", dir.file("good.yaml"), "--robot", f.path,
+                                           "--lcm-url", "memq://", "--check-config"},
+                                          seconds(20), o);
+    EXPECT_TRUE(status.exited && status.code == 2) << status.describe();
+    EXPECT_NE(read_file(o.stderr_path).find(f.path), std::string::npos) << read_file(o.stderr_path);
+  }
 }
 
 }  // namespace

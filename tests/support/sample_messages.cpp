@@ -245,6 +245,8 @@ heartbeat_t sample<heartbeat_t>(uint32_t variant)
   m.messages_in = g.count(0, 100'000);
   m.messages_dropped = g.count(0, 10);
   m.status = variant % 3 == 0 ? "" : "ok \"quoted\" \\ status";
+  m.progress = g.count(0, 1'000'000);
+  m.busy_ms = variant % 2 ? 0 : g.count(1, 60'000);
   return m;
 }
 
@@ -280,6 +282,9 @@ supervisor_status_t sample<supervisor_status_t>(uint32_t variant)
   for (int i = 0; i < m.nprocesses; ++i) m.processes.push_back(sample<process_status_t>(variant * 7 + i));
   m.robot_held = variant % 2 == 1;
   m.alert = m.robot_held ? "lld failed: robot held" : "";
+  m.host_stalls = variant % 3 == 0 ? 0 : g.count(1, 500);
+  m.host_stall_max_ms = m.host_stalls == 0 ? 0 : g.count(50, 2000);
+  m.host_stall_total_ms = m.host_stalls == 0 ? 0 : m.host_stall_max_ms * m.host_stalls;
   return m;
 }
 
@@ -294,6 +299,10 @@ supervisor_order_t sample<supervisor_order_t>(uint32_t variant)
   m.order = g.pick<int8_t>({supervisor_order_t::ORDER_START, supervisor_order_t::ORDER_STOP,
                             supervisor_order_t::ORDER_RESTART, supervisor_order_t::ORDER_SHUTDOWN});
   m.target = m.order == supervisor_order_t::ORDER_SHUTDOWN ? "" : g.word("proc");
+  m.source = "rgnav_ctl@" + g.word("host") + ":" + std::to_string(100 + variant);
+  m.nonce = static_cast<int64_t>(variant) * 7919 + 13;
+  m.key_id = variant % 3 ? "0123456789abcdef" : "";
+  m.mac = m.key_id.empty() ? "" : std::string(64, "0123456789abcdef"[variant % 16]);
   return m;
 }
 
@@ -800,6 +809,19 @@ explorer_status_t sample<explorer_status_t>(uint32_t variant)
   m.goal_region = has_goal ? g.count(1, 50) : 0;
   if (has_goal) m.goal_map_point = point(g);
   else m.goal_map_point.x = m.goal_map_point.y = 0;
+  return m;
+}
+
+template <>
+fault_inject_t sample<fault_inject_t>(uint32_t variant)
+{
+  Gen g(variant, kSalt + 50);
+  fault_inject_t m;
+  m.utime = utime(g);
+  m.target = g.word("proc");
+  m.pid = variant % 2 ? 0 : g.count(2, 4'000'000);
+  m.fault = fault_inject_t::FAULT_BUSY_LOOP;
+  m.duration_ms = g.count(1, 5000);
   return m;
 }
 

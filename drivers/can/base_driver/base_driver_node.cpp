@@ -13,7 +13,13 @@ BaseDriverNodeOptions load_base_driver_node_options(const config::Config& root)
   const auto ch = root.section("channels");
   o.base_cmd_channel = ch.string("base_cmd", o.base_cmd_channel);
   o.odometry_channel = ch.string("odometry", o.odometry_channel);
-  o.odometry_rate_hz = root.section("base").number("odometry_rate_hz", o.odometry_rate_hz, 1.0, 200.0);
+  const auto base = root.section("base");
+  o.odometry_rate_hz = base.number("odometry_rate_hz", o.odometry_rate_hz, 1.0, 200.0);
+  o.sources.owner = base.string("command_source", o.sources.owner);
+  o.sources.hold_source = base.string("hold_source", o.sources.hold_source);
+  o.sources.foreign_quiet = std::chrono::milliseconds(base.integer("foreign_quiet_ms", o.sources.foreign_quiet.count(), 100, 60000));
+  if (o.sources.owner.empty()) base.fail("command_source", "must name the process that drives (lld's node name)");
+  if (o.sources.hold_source == o.sources.owner) base.fail("hold_source", "must differ from command_source");
   return o;
 }
 
@@ -42,11 +48,9 @@ odometry_t to_odometry_msg(const BaseOdometry& o, int64_t utime, int64_t seq)
 
 BaseDriverNode::BaseDriverNode(runtime::Node& node, const BaseDriverNodeOptions& options,
                                std::unique_ptr<BaseDriver> driver)
-    : node_(node), options_(options), driver_(std::move(driver))
+    : node_(node), options_(options), driver_(std::move(driver)), gate_(options_.sources)
 {
-  node_.subscribe<velocity_cmd_t>(options_.base_cmd_channel, [this](const velocity_cmd_t& msg) {
-    driver_->command(to_velocity_command(msg), command_deadline(msg));
-  });
+  node_.subscribe<velocity_cmd_t>(options_.base_cmd_channel, [this](const velocity_cmd_t& msg) { on_command(msg); });
   node_.every(std::chrono::microseconds(static_cast<int64_t>(1e6 / options_.odometry_rate_hz)),
               [this] { publish_odometry(); });
   node_.set_status(heartbeat_t::STATE_STARTING, "bringing drives up");
@@ -54,6 +58,22 @@ BaseDriverNode::BaseDriverNode(runtime::Node& node, const BaseDriverNodeOptions&
 }
 
 BaseDriverNode::~BaseDriverNode() { driver_->stop(); }
+
+void BaseDriverNode::on_command(const velocity_cmd_t& msg)
+{
+  const CommandDecision d = gate_.on_command(msg.source, msg.v, msg.omega, command_deadline(msg), std::chrono::steady_clock::now());
+  if (d.verdict == CommandVerdict::kFollow) {
+    driver_->command(to_velocity_command(msg), command_deadline(msg));
+    return;
+  }
+  // The hold, or a second source: zero, a controlled stop on the drives' profile ramps (as
+  // for a stale command), from this very message on.
+  driver_->command(VelocityCommand{}, command_deadline(msg));
+  if (!d.alert.empty()) {
+    spdlog::error("ALERT: {}", d.alert);
+    node_.set_status(heartbeat_t::STATE_DEGRADED, d.alert);
+  }
+}
 
 void BaseDriverNode::publish_odometry()
 {
@@ -71,9 +91,17 @@ void BaseDriverNode::publish_odometry()
     else if (last_status_ == BaseStatus::kFault)
       spdlog::info("base recovered ({})", to_string(o.status));
   }
+  // A second source on BASE_CMD holds the drives at zero until it is silent: that alert first.
+  const bool locked_out = gate_.locked_out(std::chrono::steady_clock::now());
+  if (locked_out_ && !locked_out)
+    spdlog::warn("BASE_CMD: '{}' silent for {} ms: following '{}' again ({} commands refused in all)", gate_.foreign_source(),
+                 options_.sources.foreign_quiet.count(), options_.sources.owner, gate_.refused());
+  locked_out_ = locked_out;
   // The state is always the drives' (not the runtime's input-based guess): a base driver
   // without commands is running, holding the robot still.
-  if (o.status == BaseStatus::kFault)
+  if (locked_out)
+    node_.set_status(heartbeat_t::STATE_DEGRADED, gate_.alert());
+  else if (o.status == BaseStatus::kFault)
     node_.set_status(heartbeat_t::STATE_DEGRADED, "drive fault: " + o.reason);
   else if (o.status == BaseStatus::kStopped && o.reason.rfind("bringing", 0) == 0)
     node_.set_status(heartbeat_t::STATE_STARTING, o.reason);

@@ -50,6 +50,10 @@ int main(int argc, char** argv)
   try {
     const auto log = rgnav::importers::read_lcm_log(log_path);
     for (const auto& i : log.issues) std::cerr << log_path << ": event " << i.line << ": " << i.what << "\n";
+    if (log.scans.empty()) {   // an LCM log, but nothing to map: write no empty map
+      std::cerr << "rgnav_rgmap_offline: " << log_path << ": no LASER_FRONT scans in its " << log.lines << " events, nothing to map\n";
+      return 1;
+    }
     const auto run = rp::run_pipeline(log, loaded);
     const auto s = rp::write_run_outputs(run, loaded.options, out, oo);
     std::cout << log_path << ": " << s["scans"] << " scans, " << s["accepted_scans"] << " accepted, " << s["loop_closures"]

@@ -78,6 +78,10 @@ int main(int argc, char** argv)
       o.flaser_pose_is_reference = true;
       const auto corrected = imp::read_carmen(reference_from, o);
       report(corrected, reference_from);
+      if (corrected.scans.empty()) {   // no reference at all: write no log that claims one
+        std::cerr << reference_from << ": no scans in the corrected log (" << corrected.issues.size() << " bad lines)\n";
+        return 1;
+      }
       const size_t n = imp::add_reference_from_corrected(corrected, &log);
       std::cerr << "reference poses from " << reference_from << ": " << n << " of " << corrected.scans.size()
                 << " corrected scans match a raw scan\n";

@@ -37,6 +37,10 @@ int main(int argc, char** argv)
   try {
     const auto log = rgnav::importers::read_lcm_log(log_path);
     for (const auto& i : log.issues) std::cerr << log_path << ": event " << i.line << ": " << i.what << "\n";
+    if (log.scans.empty()) {   // an LCM log, but nothing to map: write no empty map
+      std::cerr << "rgnav_map: " << log_path << ": no LASER_FRONT scans in its " << log.lines << " events, nothing to map\n";
+      return 1;
+    }
     const auto r = sm::run_offline(log, options);
     const double consistency = sm::write_outputs(r, options, out);
     const auto& s = r.stats;

@@ -1,12 +1,16 @@
 // The controller (procman's sheriff, headless): sends orders to the deputies and shows their
-// status.
+// status. Orders are signed with the shared key (order_auth.h; the key file named by
+// orders.key_file of the supervisor config, or --key); `keygen` makes one.
 //   rgnav_ctl status [--once]          rgnav_ctl start|stop|restart <process|group> [--wait]
 //   rgnav_ctl shutdown [--host H]      rgnav_ctl script <name> --launch FILE
+//   rgnav_ctl keygen [--force|--if-missing]
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
+#include <optional>
 #include <map>
 #include <random>
 #include <sstream>
@@ -16,8 +20,12 @@
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
 #include "launch_parser.h"
+#include "config/config.h"
 #include "log/log.h"
+#include "order_auth.h"
+#include "order_conversions.h"
 #include "rgnav/supervisor_order_t.hpp"
+#include "runtime/process_main.h"
 #include "rgnav/supervisor_status_t.hpp"
 #include "script_runner.h"
 #include "status_table.h"
@@ -41,21 +49,26 @@ class Controller
         [this](const rgnav::supervisor_status_t& s, const rgnav::bus::RawMessage&) { status_[s.host] = s; }, &drops_);
   }
 
-  // UDP multicast may lose a datagram: the order goes out three times; deputies drop repeats.
+  // UDP multicast may lose a datagram: the order goes out three times, each copy signed with
+  // a nonce of its own (a deputy takes an exact copy for a replay); deputies act once.
   void send(int8_t order, const std::string& target, const std::string& host)
   {
-    rgnav::supervisor_order_t o;
+    if (!key_) throw std::runtime_error("no order key: orders cannot be signed");
+    sup::OrderFields o;
     o.utime = rgnav::time::wall_utime();
     last_order_utime_ = o.utime;
     o.order_id = ++next_id_;
     o.host = host;
     o.order = order;
     o.target = target;
+    o.source = source_;
     for (int i = 0; i < 3; ++i) {
-      rgnav::bus::publish(bus_, orders_channel_, o);
+      sup::sign_order(o, *key_);
+      rgnav::bus::publish(bus_, orders_channel_, sup::to_order_msg(o));
       spin(std::chrono::milliseconds(30));
     }
   }
+  void set_key(sup::OrderKey key) { key_ = std::move(key); }
 
   void spin(std::chrono::milliseconds d)
   {
@@ -116,6 +129,8 @@ class Controller
   rgnav::bus::LcmBus bus_;
   rgnav::bus::DropCounter drops_;
   std::string orders_channel_;
+  std::optional<sup::OrderKey> key_;
+  std::string source_ = sup::order_source("rgnav_ctl");
   int64_t next_id_ = 0;
   int64_t last_order_utime_ = 0;
 
@@ -139,6 +154,10 @@ int main(int argc, char** argv)
   app.add_option("--host", host, "only this deputy (default: all)");
   app.add_option("--status-channel", status_channel);
   app.add_option("--orders-channel", orders_channel);
+  std::string config_path = rgnav::runtime::default_config_dir() + "/supervisor.yaml";
+  std::string key_path;
+  app.add_option("--config", config_path, "supervisor config (its orders.key_file names the key)");
+  app.add_option("--key", key_path, "order key file (default: the config's orders.key_file)");
   app.require_subcommand(1);
   app.fallthrough();  // --host and --lcm-url also after the sub-command
 
@@ -169,11 +188,39 @@ int main(int argc, char** argv)
   script->add_option("--launch", launch_path, "launch config holding the script")->required();
   script->add_option("--timeout-ms", timeout_ms, "for each wait");
 
+  auto* keygen = app.add_subcommand("keygen", "make the shared order key (copy the file to every deputy and controller host)");
+  bool force = false, if_missing = false;
+  keygen->add_flag("--force", force, "replace an existing key (orders signed with the old one are refused from then on)");
+  keygen->add_flag("--if-missing", if_missing, "do nothing if there is a key already");
+
   CLI11_PARSE(app, argc, argv);
   rgnav::log::init("rgnav_ctl", "warn");
 
   try {
+    if (key_path.empty() && !status->parsed()) {
+      // The same file the deputies read; a missing config leaves the default places.
+      std::string configured;
+      try {
+        configured = sup::load_order_auth_options(rgnav::config::Config::load(config_path).section("orders")).key_file;
+      } catch (const rgnav::config::ConfigError&) {
+        if (std::filesystem::exists(config_path)) throw;
+      }
+      key_path = sup::order_key_path(configured);
+    }
+    if (keygen->parsed()) {
+      if (!force && std::filesystem::exists(key_path)) {
+        if (if_missing) return 0;
+        std::cout << "order key " << sup::load_order_key(key_path).id << " is at " << key_path
+                  << " (kept; --force makes a new one)\n";
+        return 0;
+      }
+      const auto key = sup::create_order_key(key_path, force);
+      std::cout << "order key " << key.id << " written to " << key_path
+                << " (mode 600); every deputy and controller host needs this same file\n";
+      return 0;
+    }
     Controller ctl(url, status_channel, orders_channel);
+    if (!status->parsed()) ctl.set_key(sup::load_order_key(key_path));
     ctl.host_filter_ = host;
     if (status->parsed()) {
       if (once) {

@@ -1,6 +1,9 @@
 // The base_driver node adapter over the synchronous FakeBus: BASE_CMD in, ODOMETRY out at
-// its rate, drive faults in the process heartbeat; and the message conversions.
+// its rate, drive faults in the process heartbeat, a second BASE_CMD source refused; and the
+// message conversions.
 #include <gtest/gtest.h>
+
+#include <cstdio>
 
 #include "base_driver/base_driver_node.h"
 #include "bus/typed.h"
@@ -98,7 +101,7 @@ TEST(BaseDriverNode, CommandsInOdometryOutFaultsInTheHeartbeat)
     cmd.v = 0.3;
     cmd.omega = 0.0;
     cmd.deadline_us = 200000;
-    cmd.source = "test";
+    cmd.source = "lld";  // the owner of BASE_CMD (base.command_source)
     bus::publish(*fb, "BASE_CMD", cmd);
     t_cmd = std::chrono::steady_clock::now();
   };
@@ -133,6 +136,96 @@ TEST(BaseDriverNode, CommandsInOdometryOutFaultsInTheHeartbeat)
   ASSERT_TRUE(rig.pump_until([&] { return last_odometry()->status == odometry_t::STATUS_OK; }, 3000ms, drive))
       << last_heartbeat()->status;
   EXPECT_EQ(last_heartbeat()->state, heartbeat_t::STATE_RUNNING);
+}
+
+// A second source on BASE_CMD while the owner drives: refused from its first command (the
+// alert naming both is in the heartbeat as soon as that command is handled, before any other
+// message), the drives stop although the owner keeps commanding motion, and the owner drives
+// again once the other source is silent.
+TEST(BaseDriverNode, ASecondSourceIsRefusedStopsTheDrivesAndRaisesAnAlertNamingBoth)
+{
+  testing::RealtimeRig rig("node2");
+  runtime::NodeOptions no;
+  no.name = "base_driver";
+  no.input_stale_after = 0ms;
+  rgnav::testing::FakeBusNode n(no);
+  bus::FakeBus* fb = n.bus;
+  runtime::Node& node = *n.node;
+  BaseDriverNodeOptions opts;
+  opts.sources.owner = "lld";
+  opts.sources.foreign_quiet = 300ms;
+  BaseDriverNode adapter(node, opts, std::make_unique<BaseDriver>(rig.options(), make_can_interface(rig.options())));
+
+  auto spin = [&] { node.spin_once(0ms); };
+  auto last_odometry = [&] {
+    const auto msgs = rgnav::testing::decoded<odometry_t>(*fb, "ODOMETRY");
+    return msgs.empty() ? std::optional<odometry_t>() : msgs.back();
+  };
+  auto heartbeat = [&] {
+    node.publish_heartbeat();
+    return rgnav::testing::decoded<heartbeat_t>(*fb, "HEARTBEAT").back();
+  };
+  int64_t seq = 0;
+  auto send = [&](const std::string& source, double v) {
+    velocity_cmd_t cmd;
+    cmd.utime = time::wall_utime();
+    cmd.seq = ++seq;
+    cmd.v = v;
+    cmd.omega = 0.0;
+    cmd.deadline_us = 200000;
+    cmd.source = source;
+    bus::publish(*fb, "BASE_CMD", cmd);
+  };
+  // The owner at its 20 Hz.
+  auto t_cmd = std::chrono::steady_clock::now() - 1s;
+  auto lld = [&] {
+    spin();
+    if (std::chrono::steady_clock::now() - t_cmd < 50ms) return;
+    send("lld", 0.3);
+    t_cmd = std::chrono::steady_clock::now();
+  };
+  ASSERT_TRUE(rig.pump_until([&] {
+    auto m = last_odometry();
+    return m && m->status == odometry_t::STATUS_OK && m->v > 0.29;
+  }, 5000ms, lld)) << heartbeat().status;
+  EXPECT_EQ(heartbeat().state, heartbeat_t::STATE_RUNNING);
+
+  // One command of another source, handled in one turn of the loop: alert at once.
+  send("teleop", 0.5);
+  spin();
+  const auto t_foreign = std::chrono::steady_clock::now();
+  const heartbeat_t hb = heartbeat();
+  EXPECT_EQ(hb.state, heartbeat_t::STATE_DEGRADED);
+  EXPECT_NE(hb.status.find("'teleop'"), std::string::npos) << hb.status;
+  EXPECT_NE(hb.status.find("'lld'"), std::string::npos) << hb.status;
+
+  // The owner goes on commanding 0.3 m/s, the other source 0.5 m/s: the drives stop anyway
+  // and neither is followed.
+  auto t_other = std::chrono::steady_clock::now();
+  auto both = [&] {
+    lld();
+    if (std::chrono::steady_clock::now() - t_other < 50ms) return;
+    send("teleop", 0.5);
+    t_other = std::chrono::steady_clock::now();
+  };
+  const auto stopped = rig.pump_until([&] { return last_odometry()->v == 0.0; }, 3000ms, both);
+  ASSERT_TRUE(stopped) << "still moving at " << last_odometry()->v << " m/s";
+  std::printf("[ figures  ] second BASE_CMD source at 0.3 m/s -> ODOMETRY v = 0 after %lld ms (controlled stop, %.1f m/s^2)\n",
+              static_cast<long long>(std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t_foreign).count()),
+              rig.options().translation.max_acceleration);
+  const size_t from = fb->published_on("ODOMETRY").size();
+  rig.pump_for(400ms, both);
+  for (const auto& m : rgnav::testing::decoded<odometry_t>(*fb, "ODOMETRY")) EXPECT_LE(m.v, 0.3 + 1e-6);
+  const auto during = rgnav::testing::decoded<odometry_t>(*fb, "ODOMETRY");
+  for (size_t i = from; i < during.size(); ++i) EXPECT_EQ(during[i].v, 0.0) << "moved while two sources spoke";
+  EXPECT_EQ(heartbeat().state, heartbeat_t::STATE_DEGRADED);
+
+  // The other source falls silent: after foreign_quiet the owner drives again.
+  ASSERT_TRUE(rig.pump_until([&] {
+    auto m = last_odometry();
+    return m->status == odometry_t::STATUS_OK && m->v > 0.29;
+  }, 5000ms, lld)) << heartbeat().status;
+  EXPECT_EQ(heartbeat().state, heartbeat_t::STATE_RUNNING);
 }
 
 }  // namespace

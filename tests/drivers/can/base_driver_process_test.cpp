@@ -1,14 +1,15 @@
 // vcan_broker, drive_emulator and base_driver as separate processes: LCM over udpm inside a
 // private network namespace (ctest runs this binary through tests/support/in_netns.sh), the
 // CAN bus over the user-space broker. ODOMETRY must arrive at 50 Hz and follow BASE_CMD,
-// stop when commands stop, report a lost drive process, and every process must exit 0 on
-// SIGTERM.
+// stop when commands stop, stop on a second BASE_CMD source, report a lost drive process, and
+// every process must exit 0 on SIGTERM.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <thread>
 
@@ -107,7 +108,7 @@ TEST(BaseDriverProcesses, OdometryFollowsBaseCmdAndSigtermExitsCleanly)
     cmd.v = v_cmd;
     cmd.omega = 0.25;
     cmd.deadline_us = 200000;
-    cmd.source = "can_process_test";
+    cmd.source = "lld";  // the owner of BASE_CMD in config/base_driver.yaml
     bus::publish(lcm, "BASE_CMD", cmd);
     t_cmd = Clock::now();
   };
@@ -128,6 +129,36 @@ TEST(BaseDriverProcesses, OdometryFollowsBaseCmdAndSigtermExitsCleanly)
   ASSERT_TRUE(pump_until([&] { return odo.last->status == odometry_t::STATUS_STOPPED && odo.last->v == 0.0; }, 3000ms));
   std::printf("[ figures  ] processes: BASE_CMD stopped at 0.2 m/s -> ODOMETRY STOPPED with v = 0 after %lld ms\n",
               static_cast<long long>(std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - t_stop).count()));
+
+  // A second BASE_CMD source while the owner drives: refused at its first command, the drives
+  // stop although the owner keeps commanding motion, and the heartbeat names both sources.
+  v_cmd = 0.3;
+  ASSERT_TRUE(pump_until([&] { return odo.last->status == odometry_t::STATUS_OK && std::fabs(odo.last->v - 0.3) < 1e-3; },
+                         5000ms, command));
+  velocity_cmd_t foreign;
+  foreign.utime = time::wall_utime();
+  foreign.seq = 1;
+  foreign.v = 0.5;
+  foreign.omega = 0.0;
+  foreign.deadline_us = 200000;
+  foreign.source = "teleop";
+  bus::publish(lcm, "BASE_CMD", foreign);
+  const auto t_foreign = Clock::now();
+  std::optional<Clock::time_point> braking;
+  ASSERT_TRUE(pump_until([&] {
+    if (!braking && odo.last->v < 0.299) braking = Clock::now();
+    return odo.last->v == 0.0;
+  }, 3000ms, command)) << "still moving at " << odo.last->v << " m/s";
+  const auto ms_since = [&](Clock::time_point t) {
+    return static_cast<long long>(std::chrono::duration_cast<std::chrono::milliseconds>(t - t_foreign).count());
+  };
+  std::printf("[ figures  ] processes: a second BASE_CMD source at 0.3 m/s -> braking seen on ODOMETRY after %lld ms, "
+              "v = 0 after %lld ms (controlled stop)\n", ms_since(*braking), ms_since(Clock::now()));
+  EXPECT_TRUE(hb.wait_until("base_driver", 2000ms, [](const heartbeat_t& h) {
+    return h.state == heartbeat_t::STATE_DEGRADED && h.status.find("'teleop'") != std::string::npos &&
+           h.status.find("'lld'") != std::string::npos;
+  })) << "no heartbeat naming both sources";
+  pump_until([] { return false; }, 1200ms);  // past base.foreign_quiet_ms: the alert clears
 
   // The drive process dies: base_driver reports FAULT on ODOMETRY.
   emulator.signal(SIGKILL);

@@ -93,6 +93,11 @@ class BaseSim : public ::testing::Test
   }
   double trans_velocity() const { return trans->actual_velocity() / options.translation.counts_per_unit; }
   double rot_velocity() const { return rot->actual_velocity() / options.rotation.counts_per_unit; }
+  // A quick stop of the translation drive from v [m/s] (0x6085 ramp), rounded up to the ms.
+  std::chrono::milliseconds quick_stop_ramp(double v) const
+  {
+    return std::chrono::milliseconds(static_cast<int64_t>(std::ceil(1000.0 * v / options.translation.quick_stop_deceleration)));
+  }
 
   BaseDriverOptions options;
   std::unique_ptr<testing::SimCanBus> bus;
@@ -114,8 +119,9 @@ TEST_F(BaseSim, BringsBothDrivesToOperationEnabledInProfileVelocity)
     EXPECT_EQ(d->nmt_state(), canopen::NmtState::kOperational);
     EXPECT_EQ(d->power_state(), PowerState::kOperationEnabled);
     EXPECT_EQ(d->od().get_signed(0x6061), 3) << "profile velocity mode";
-    EXPECT_EQ(d->od().get(0x1017), 20u);
-    EXPECT_EQ(d->od().get(0x1016, 1), (1u << 16) | 100u);
+    EXPECT_EQ(d->od().get(0x1017), static_cast<uint32_t>(options.drive_common.heartbeat_period.count()));
+    EXPECT_EQ(d->od().get(0x1016, 1),
+              (1u << 16) | static_cast<uint32_t>(options.drive_common.master_heartbeat_timeout.count()));
     EXPECT_EQ(d->od().get(0x1600, 0), 2u);
     EXPECT_EQ(d->od().get(0x1600, 2), 0x60FF0020u);
     EXPECT_EQ(d->od().get(0x1A00, 2), 0x60640020u);
@@ -211,7 +217,7 @@ TEST_F(BaseSim, DeadmanStopsBothDrivesWhenCommandsGoStale)
   (void)sent;
 }
 
-TEST_F(BaseSim, LossOfTheRotationNodeStopsTheRobotWithin200ms)
+TEST_F(BaseSim, LossOfTheRotationNodeStopsTheRobotWithinItsConsumerTimeAndARamp)
 {
   bring_up();
   drive(0.4, 0.2);
@@ -230,7 +236,10 @@ TEST_F(BaseSim, LossOfTheRotationNodeStopsTheRobotWithin200ms)
   std::printf("[ figures  ] rotation node lost at 0.4 m/s: stop commanded after %lld ms, translation at rest "
               "after %lld ms (simulated)\n",
               static_cast<long long>(commanded_zero->count()), static_cast<long long>(total.count()));
-  EXPECT_LT(total, 200ms);
+  // The master's consumer time for the drive (120 ms shipped: it rides out stalls of a loaded
+  // machine), then the quick-stop ramp (0.1 s at 4 m/s^2), plus a SYNC cycle for each to act.
+  EXPECT_LE(*commanded_zero, options.drive_common.heartbeat_timeout + options.master.sync_period + 2ms);
+  EXPECT_LE(total, options.drive_common.heartbeat_timeout + quick_stop_ramp(0.4) + 2 * options.master.sync_period + 2ms);
   EXPECT_EQ(ctl->odometry().status, BaseStatus::kFault);
   EXPECT_NE(ctl->odometry().reason.find("rotation drive 3: heartbeat lost"), std::string::npos)
       << ctl->odometry().reason;
@@ -259,8 +268,8 @@ TEST_F(BaseSim, LossOfTheTranslationNodeStopsItByItsOwnConsumer)
   ASSERT_TRUE(stopped);
   std::printf("[ figures  ] translation node lost at 0.4 m/s: both drives at rest after %lld ms (simulated)\n",
               static_cast<long long>(stopped->count()));
-  // 100 ms master-heartbeat consumer time + 0.1 s quick-stop ramp at 4 m/s^2.
-  EXPECT_LT(*stopped, 250ms);
+  // The drive's consumer time for the master's heartbeat + 0.1 s quick-stop ramp at 4 m/s^2.
+  EXPECT_LE(*stopped, options.drive_common.master_heartbeat_timeout + quick_stop_ramp(0.4) + 2ms);
   EXPECT_EQ(ctl->odometry().status, BaseStatus::kFault);
 }
 
@@ -303,7 +312,7 @@ TEST_F(BaseSim, BusOffStopsTheRobotAndRecoversAfterRestart)
   // The master is silent; the drives stop on their heartbeat consumers.
   auto stopped = run_until([this] { return trans->actual_velocity() == 0.0; }, 1000ms);
   ASSERT_TRUE(stopped);
-  EXPECT_LT(*stopped, 250ms);
+  EXPECT_LE(*stopped, options.drive_common.master_heartbeat_timeout + quick_stop_ramp(0.4) + 2ms);
   run(300ms);
   bus->inject(ctl_id, make_error_frame(CAN_ERR_RESTARTED));
   auto back = run_until([this] { return both_enabled(); }, 3000ms);
@@ -345,13 +354,15 @@ TEST_F(BaseSim, DriveBackFromAHeartbeatOutageKeepsItsMotionInTheOdometry)
   };
   const double error_before = odometry_error();
   bus->set_connected(t_id, false);
-  run(80ms);  // beyond the 60 ms heartbeat consumer, before the drive's own 100 ms
+  // Beyond the master's consumer time for the drive, before the drive's own for the master.
+  ASSERT_LT(options.drive_common.heartbeat_timeout + 10ms, options.drive_common.master_heartbeat_timeout);
+  run(options.drive_common.heartbeat_timeout + 10ms);
   bus->set_connected(t_id, true);
   auto back = run_until([this] { return both_enabled(); }, 3000ms);
   ASSERT_TRUE(back) << ctl->odometry().reason;
   run(500ms);
   EXPECT_GT(trans->actual_position() / options.translation.counts_per_unit, 0.3);
-  // Re-baselined, the outage here (80 ms, then the reconfiguration) would lose about 4 mm.
+  // Re-baselined, the outage here (130 ms, then the reconfiguration) would lose about 5 mm.
   EXPECT_NEAR(odometry_error(), error_before, 1e-3);
 }
 

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "bad_files.h"
 #include "config/config.h"
 #include "sim/world_generator.h"
 #include "sim/world_yaml.h"
@@ -202,6 +203,42 @@ TEST(WorldLoading, MalformedWorldsAreRefusedWithFileAndKey)
   expect_refused("bad11.yaml", "name: empty\n", "walls");
   expect_refused("bad12.yaml", wall + "image: {file: does_not_exist.png}\n", "does_not_exist.png");
   expect_refused("bad13.yaml", "walls: [\n", "not valid YAML");
+}
+
+void expect_bad_world_refused(const testing::BadFile& f)
+{
+  SCOPED_TRACE(f.kind + " " + f.path);
+  try {
+    load_world(f.path);
+    ADD_FAILURE() << f.path << " was loaded as a world";
+  } catch (const config::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(f.path + ": ", 0), 0u) << e.what();
+  }
+}
+
+// Issue 35: random bytes, an empty file and one cut off mid-content are refused naming the file,
+// for each kind of world: rgnav YAML, a bare PGM and a bare PNG (a decoder alone fills the
+// missing rows of a cut-off PGM with zeros: walls where the file ended).
+TEST(WorldLoading, RandomBytesEmptyAndCutOffWorldFilesAreRefusedNamingThem)
+{
+  testing::TempDir dir("bad_worlds");
+  const std::string office = read_file(kWorlds + "/office.yaml");
+  const size_t mid_line = office.find("{", office.size() / 2) + 5;   // inside a flow mapping
+  for (const auto& f : testing::write_bad_files(dir.path(), "world.yaml", office, mid_line)) expect_bad_world_refused(f);
+  cv::Mat img(40, 60, CV_8U, cv::Scalar(254));
+  img.row(0).setTo(0);
+  img.row(39).setTo(0);
+  for (const char* ext : {".pgm", ".png"}) {
+    const std::string valid = dir.file(std::string("valid") + ext);
+    cv::imwrite(valid, img);
+    ASSERT_FALSE(load_world(valid).walls.empty());
+    const std::string bytes = testing::read_file(valid);
+    for (const auto& f : testing::write_bad_files(dir.path(), std::string("map") + ext, bytes, bytes.size() * 2 / 3))
+      expect_bad_world_refused(f);
+  }
+  // A config cut off inside its header comment is only comments: no world, not an empty one.
+  testing::write_bytes(dir.file("comment.yaml"), "# rgnav world (format: config/worlds/README.md)\n# cut he");
+  expect_bad_world_refused({"only comments", dir.file("comment.yaml")});
 }
 
 TEST(WorldLoading, ResolvesWorldNames)

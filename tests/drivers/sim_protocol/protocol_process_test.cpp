@@ -157,7 +157,7 @@ class Commander
     cmd.v = v;
     cmd.omega = omega;
     cmd.deadline_us = 300000;
-    cmd.source = "sim_protocol_test";
+    cmd.source = "lld";  // the owner of BASE_CMD in config/base_driver_sim.yaml
     bus::publish(bus_, "BASE_CMD", cmd);
     last_ = Clock::now();
   }

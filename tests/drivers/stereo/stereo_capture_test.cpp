@@ -3,6 +3,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <filesystem>
+
+#include "bad_files.h"
 #include "bus/fake_bus.h"
 #include "drivers/stereo/image_encoding.h"
 #include "drivers/stereo/image_folder_source.h"
@@ -45,6 +48,38 @@ TEST(ImageFolderSource, MissingFolderOrNoPairsRefused)
 {
   EXPECT_THROW(ImageFolderSource({"/nonexistent", "left", "right", true, false}), std::runtime_error);
   EXPECT_THROW(ImageFolderSource({kData + "/stereo/aloe", "left", "right", true, false}), std::runtime_error);
+}
+
+// Issue 35: a folder whose first pair has an image of random bytes, an empty one or one cut off
+// mid-content (a JPEG decoder alone fills the missing rows with grey) is refused at start-up,
+// naming the file; the same file later in the sequence is a failed frame naming it.
+TEST(ImageFolderSource, RandomBytesEmptyAndCutOffImagesAreRefusedNamingThem)
+{
+  testing::TempDir dir("stereo_bad");
+  const std::string jpeg = testing::read_file(kData + "/stereo/aloe/aloeL.jpg");
+  ASSERT_GT(jpeg.size(), 1000u);
+  for (const auto& f : testing::write_bad_files(dir.path(), "image.jpg", jpeg)) {
+    SCOPED_TRACE(f.kind);
+    const std::string folder = dir.file(f.kind);
+    std::filesystem::create_directories(folder);
+    std::filesystem::copy_file(f.path, folder + "/a_left.jpg");
+    testing::write_bytes(folder + "/a_right.jpg", jpeg);
+    try {
+      ImageFolderSource s({folder, "left", "right", true, false});
+      ADD_FAILURE() << "a folder starting with a bad image was taken";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(folder + "/a_left.jpg"), std::string::npos) << e.what();
+    }
+    // After a good first pair: that frame fails, naming the file, and the sequence goes on.
+    std::filesystem::rename(folder + "/a_left.jpg", folder + "/b_left.jpg");
+    std::filesystem::copy_file(folder + "/a_right.jpg", folder + "/b_right.jpg");
+    testing::write_bytes(folder + "/a_left.jpg", jpeg);
+    ImageFolderSource s({folder, "left", "right", true, false});
+    EXPECT_TRUE(s.next());
+    EXPECT_FALSE(s.next());
+    EXPECT_NE(s.error().find(folder + "/b_left.jpg"), std::string::npos) << s.error();
+    EXPECT_TRUE(s.next());   // looped to the good pair
+  }
 }
 
 TEST(CameraPairSource, MissingDeviceNamedInError)

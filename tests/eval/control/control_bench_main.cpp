@@ -8,6 +8,9 @@
 //     only avoid touching it). Targets follow the odometry drift as a localizer would.
 //   - tours (--tours N): the office world's whole tour driven as the demo drives it
 //     (office_tour.h); targets reached, time, the longest stall between two targets.
+//   - doorway encounters (--doorways N): generated doorways and narrow hallways with a person
+//     coming the other way who waits, stands aside or goes around at random
+//     (doorway_encounters.h); resolved, collisions, deadlocks, time lost.
 // Loop timing of the real lld executable is measured by deploy/bench/control.sh.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -31,6 +34,7 @@
 #include "trajectory/construct.h"
 
 #include "contact_report.h"
+#include "doorway_encounters.h"
 #include "obstacle_course.h"
 #include "office_tour.h"
 
@@ -385,7 +389,7 @@ int main(int argc, char** argv)
 {
   CLI::App app("control_bench");
   std::string config_dir = "config", out_path;
-  int chains = 6, ncourses = 50, only = -1, ntours = 0;
+  int chains = 6, ncourses = 50, only = -1, ntours = 0, ndoorways = 60, doorway_only = -1;
   std::string tour_world = "config/worlds/office.yaml";
   double personal_space = 0.4;
   bool oblivious_too = false;
@@ -397,6 +401,9 @@ int main(int argc, char** argv)
   app.add_option("--only", only,
                  "run only this course (debugging; CB_DEBUG=1: a trace, CB_DEBUG_NEAREST=1: the nearest obstacles)");
   app.add_option("--seed", seed);
+  app.add_option("--doorways", ndoorways, "doorway and narrow-hallway encounters (0: none)");
+  app.add_option("--doorway-only", doorway_only,
+                 "run only this doorway encounter, and nothing else (debugging; CB_DEBUG=1: a trace)");
   app.add_option("--tours", ntours, "drive the tour world's tour this many times (people shifted 7 s each time)");
   app.add_option("--tour-world", tour_world, "world file; its tour, or the one the demo plans (default config/worlds/office.yaml)");
   app.add_option("--personal-space", personal_space,
@@ -414,6 +421,12 @@ int main(int argc, char** argv)
 
   nlohmann::json j;
   j["plant"] = "sim";
+  if (doorway_only >= 0) {
+    j["doorway_encounters"] = bench::doorway_encounters(lo, co.ca, std::max(ndoorways, doorway_only + 1), seed, doorway_only);
+    std::ofstream(out_path) << j.dump(2) << "\n";
+    std::cout << j["doorway_encounters"].dump(2) << "\n";
+    return 0;
+  }
   double terr_max = 0.0;
   Stats all_06;
   Stats dummy;
@@ -432,6 +445,7 @@ int main(int argc, char** argv)
     j["obstacle_courses_oblivious_people"] = oj;
   }
   if (ntours > 0) j["tours"] = tours(lo, co.ca, tour_world, ntours, seed, only);
+  if (ndoorways > 0) j["doorway_encounters"] = bench::doorway_encounters(lo, co.ca, ndoorways, seed, -1);
   j["courses"] = cj["courses"];
   j["collisions"] = cj["collisions"];
   j["reached_ratio"] = cj["reached_ratio"];

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "bad_files.h"
 #include "bus/typed.h"
 #include "child_process.h"
 #include "config/config.h"
@@ -229,6 +230,26 @@ TEST(ExplorerState, RoundTripAndRefusal)
   EXPECT_FALSE(load_explorer_state(dir.file("missing")).has_value());
   std::ofstream(dir.file("garbage")) << "garbage";
   EXPECT_THROW(load_explorer_state(dir.file("garbage")), std::runtime_error);
+}
+
+// Issue 35: random bytes, an empty file and one cut off mid-content are refused naming the file
+// (the node then sets the file aside and starts afresh: the node tests).
+TEST(ExplorerState, RandomBytesEmptyAndCutOffFilesAreRefusedNamingThem)
+{
+  testing::TempDir dir("explorerstate_bad");
+  ExplorerState s;
+  s.utime = 1234;
+  s.explorer = Explorer().save();
+  save_explorer_state(dir.file("valid.json"), s);
+  for (const auto& f : testing::write_bad_files(dir.path(), "explorer.json", testing::read_file(dir.file("valid.json")))) {
+    SCOPED_TRACE(f.kind);
+    try {
+      load_explorer_state(f.path);
+      ADD_FAILURE() << f.path << " was read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(f.path + ": ", 0), 0u) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <random>
 
+#include "bad_files.h"
 #include "config/config.h"
 #include "gateway_detector/gateway_models.h"
 #include "gateway_detector/options.h"
@@ -114,6 +115,33 @@ TEST(GatewayModels, BrokenFilesAreRefusedWithTheKey)
   bad_cov.insert(at + 13, "-");
   expect_refused(bad_cov, "covariance");
   std::filesystem::remove(path);
+}
+
+// Issue 35: a model file of random bytes, an empty one and one cut off mid-content (inside a
+// list of numbers, and at a line boundary) are refused naming the file.
+TEST(GatewayModels, RandomBytesEmptyAndCutOffFilesAreRefusedNamingThem)
+{
+  GatewayModels m;
+  m.hallway_width = 2.0;
+  m.f_vlm = 0.5;
+  m.f_gw = 1.0;
+  m.classifier = small_classifier();
+  testing::TempDir dir("models_bad");
+  save_gateway_models(m, dir.file("valid.yaml"));
+  const std::string text = testing::read_file(dir.file("valid.yaml"));
+  ASSERT_NO_THROW(load_gateway_models(dir.file("valid.yaml")));
+  auto files = testing::write_bad_files(dir.path(), "models.yaml", text, text.find("[", text.size() / 2) + 4);
+  files.push_back({"cut at a line end", dir.file("line_cut.yaml")});
+  testing::write_bytes(files.back().path, text.substr(0, text.find("\n", text.size() / 2) + 1));
+  for (const auto& f : files) {
+    SCOPED_TRACE(f.kind);
+    try {
+      load_gateway_models(f.path);
+      ADD_FAILURE() << f.path << " was loaded";
+    } catch (const config::ConfigError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(f.path + ": ", 0), 0u) << e.what();
+    }
+  }
 }
 
 TEST(GatewayModels, MeasureFeaturesRoundTripAndMismatchesAreNamed)

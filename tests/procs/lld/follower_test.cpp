@@ -1,4 +1,5 @@
 #include "lld/follower.h"
+#include "lld/stall_credit.h"
 
 #include <gtest/gtest.h>
 
@@ -249,6 +250,30 @@ TEST(Follower, EmptyTrajectoryCancels)
   for (int i = 0; i < 40; ++i) d.unrefreshed_period(/*plant_moves=*/false);
   EXPECT_EQ(d.f.last_command().v, 0.0);
   EXPECT_EQ(d.f.status().state, FollowerState::kIdle);
+}
+
+}  // namespace
+}  // namespace rgnav::lld
+
+namespace rgnav::lld {
+namespace {
+
+// The loop's own lateness since the newest odometry is credited to that odometry's age, up to
+// the cap; a new odometry starts afresh, and a loop on time earns nothing.
+TEST(StallCredit, CountsTheLoopsLatenessSinceTheNewestOdometry)
+{
+  StallCredit c(0.5);
+  const time::Time a = time::from_utime(1'000'000), b = time::from_utime(1'020'000);
+  c.on_tick(0.02, 0.02, a);
+  EXPECT_DOUBLE_EQ(c.credit_s(), 0.0);
+  c.on_tick(0.17, 0.02, a);   // the host stood still for 150 ms
+  EXPECT_NEAR(c.credit_s(), 0.15, 1e-12);
+  c.on_tick(0.02, 0.02, a);   // on time again: the credit stays while the odometry is the same
+  EXPECT_NEAR(c.credit_s(), 0.15, 1e-12);
+  c.on_tick(0.02, 0.02, b);   // new odometry
+  EXPECT_DOUBLE_EQ(c.credit_s(), 0.0);
+  for (int i = 0; i < 10; ++i) c.on_tick(0.22, 0.02, b);
+  EXPECT_DOUBLE_EQ(c.credit_s(), 0.5);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "bus/typed.h"
+#include "bad_files.h"
 #include "child_process.h"
 #include "config/config.h"
 #include "config/robot_description.h"
@@ -401,6 +402,35 @@ TEST(LocalizerNode, ADamagedSavedMapOrEstimateIsRefusedOrIgnored)
   Fixture f(LocalizerFiles{dir.file("good"), dir.file("estimate")});
   EXPECT_FALSE(f.node->resumed_from().has_value());
   EXPECT_EQ(f.node->localizer().mode(), Mode::kUnknown);
+}
+
+// Issue 35: a --map file of random bytes, an empty one or one cut off mid-content refuses the
+// start naming the file; a saved estimate of the same is not used, moved aside as found
+// (.damaged) and the localizer starts unlocalized.
+TEST(LocalizerNode, BadMapOrEstimateFilesOfRandomBytesEmptyOrCutOff)
+{
+  testing::TempDir dir("localizer_bad");
+  testing::write_rgmap_json(testing::two_room_world().map, dir.file("good"));
+  SavedEstimate s;
+  s.utime = 1;
+  s.region = testing::two_room_world().room_a;
+  save_estimate(dir.file("estimate"), s);
+  const auto maps = testing::write_bad_files(dir.path(), "rgmap.json", testing::read_file(dir.file("good/rgmap.json")));
+  const auto estimates = testing::write_bad_files(dir.path(), "estimate", testing::read_file(dir.file("estimate")));
+  for (size_t k = 0; k < maps.size(); ++k) {
+    SCOPED_TRACE(maps[k].kind);
+    try {
+      Fixture f(LocalizerFiles{maps[k].path, ""});
+      ADD_FAILURE() << maps[k].path << " was loaded as a map";
+    } catch (const config::ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(maps[k].path), std::string::npos) << e.what();
+    }
+    const std::string bytes = testing::read_file(estimates[k].path);
+    Fixture f(LocalizerFiles{dir.file("good"), estimates[k].path});
+    EXPECT_FALSE(f.node->resumed_from().has_value());
+    EXPECT_EQ(f.node->localizer().mode(), Mode::kUnknown);
+    EXPECT_EQ(testing::read_file(estimates[k].path + ".damaged"), bytes);
+  }
 }
 
 TEST(LocalizerProcess, ShippedConfigPassesCheckConfigAndAMisspeltKeyIsRefused)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "bad_files.h"
 #include "bus/typed.h"
 #include "child_process.h"
 #include "planner/planner_conversions.h"
@@ -161,6 +162,26 @@ TEST(PlannerState, RoundTripAndRefusal)
   s.names[3] = "bad\tname";
   save_planner_state(dir.file("bad_name"), s);
   EXPECT_THROW(load_planner_state(dir.file("bad_name")), std::runtime_error);
+}
+
+// Issue 35: random bytes, an empty file and one cut off mid-content are refused naming the file
+// (the node then sets the file aside and starts afresh: the node tests).
+TEST(PlannerState, RandomBytesEmptyAndCutOffFilesAreRefusedNamingThem)
+{
+  testing::TempDir dir("plannerstate_bad");
+  PlannerState s;
+  s.utime = 42;
+  s.names = {{2, "lab"}};
+  save_planner_state(dir.file("valid.json"), s);
+  for (const auto& f : testing::write_bad_files(dir.path(), "planner.json", testing::read_file(dir.file("valid.json")))) {
+    SCOPED_TRACE(f.kind);
+    try {
+      load_planner_state(f.path);
+      ADD_FAILURE() << f.path << " was read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(f.path + ": ", 0), 0u) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bad_files.h"
 #include "fake_bus_node.h"
 #include "kernel_messages.h"
 #include "persist/atomic_file.h"
@@ -328,9 +329,9 @@ TEST(RgKernelPersistence, DamagedSnapshotIsReportedNeverLoadedAndThePreviousOneU
     return d + name;
   };
   // 1. A flipped byte (CRC), 2. a truncated file, 3. a payload that passes the CRC but is not
-  // a kernel state: each is reported, renamed *.corrupt, and the previous snapshot plus its
-  // longer journal tail give the same map.
-  for (int kind = 0; kind < 3; ++kind) {
+  // a kernel state, 4. random bytes, 5. an empty file: each is reported, renamed *.corrupt, and
+  // the previous snapshot plus its longer journal tail give the same map.
+  for (int kind = 0; kind < 5; ++kind) {
     const std::string d = fresh_dir("damaged" + std::to_string(kind));
     fs::copy(pristine, d, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
     const std::string path = newest_path(d);
@@ -340,8 +341,10 @@ TEST(RgKernelPersistence, DamagedSnapshotIsReportedNeverLoadedAndThePreviousOneU
       f.put('\x5a');
     } else if (kind == 1) {
       fs::resize_file(path, fs::file_size(path) - 100);
-    } else {
+    } else if (kind == 2) {
       persist::write_atomically(path, "not a kernel state");
+    } else {
+      rgnav::testing::write_bytes(path, kind == 3 ? rgnav::testing::random_bytes(4096) : "");
     }
     KernelProcess restarted(d, 5);
     EXPECT_EQ(restarted.map_json(), expected) << "damage kind " << kind;
@@ -395,6 +398,33 @@ TEST(RgKernelPersistence, DamagedOlderJournalEndsTheReplayThereAndIsReported)
   ASSERT_EQ(restarted.kernel->store()->problems().size(), 2u);
   EXPECT_NE(restarted.kernel->store()->problems()[0].find("CRC"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir + "/inputs.0000000001.journal.orphaned"));
+}
+
+// Issue 35: a journal that holds no record at all (random bytes) is no torn tail: it is
+// reported as a loss, kept as found (*.damaged), and the kernel starts from what was intact
+// (here: nothing). An empty journal is a new one; a cut-off one is the trace of a kill.
+TEST(RgKernelPersistence, JournalOfRandomBytesIsReportedKeptAsideAndNotReplayed)
+{
+  const std::string dir = fresh_dir("random_journal");
+  const std::string fresh_map = KernelProcess(fresh_dir("random_journal_ref")).map_json();
+  const std::string junk = rgnav::testing::random_bytes(4096);
+  rgnav::testing::write_bytes(dir + "/inputs.0000000000.journal", junk);
+  KernelProcess restarted(dir);
+  EXPECT_EQ(restarted.map_json(), fresh_map);
+  EXPECT_EQ(restarted.kernel->restored_inputs(), 0);
+  ASSERT_EQ(restarted.kernel->store()->problems().size(), 1u);
+  const std::string problem = restarted.kernel->store()->problems()[0];
+  EXPECT_NE(problem.find(dir + "/inputs.0000000000.journal"), std::string::npos) << problem;
+  EXPECT_NE(problem.find("bad record header at byte 0"), std::string::npos) << problem;
+  EXPECT_EQ(rgnav::testing::read_file(dir + "/inputs.0000000000.journal.damaged"), junk);
+  EXPECT_EQ(fs::file_size(dir + "/inputs.0000000000.journal"), 0u);   // new records start clean
+
+  const std::string empty = fresh_dir("empty_journal");
+  rgnav::testing::write_bytes(empty + "/inputs.0000000000.journal", "");
+  KernelProcess from_empty(empty);
+  EXPECT_EQ(from_empty.map_json(), fresh_map);
+  EXPECT_TRUE(from_empty.kernel->store()->problems().empty());
+  EXPECT_TRUE(from_empty.kernel->store()->tail_damage().empty());
 }
 
 TEST(RgKernelPersistence, GroupCommitSyncsBeforePublishing)
@@ -456,6 +486,53 @@ TEST(Journal, CorruptRecordCutsTheTailAndIsReported)
   ASSERT_EQ(again.recovered().size(), 2u);
   EXPECT_EQ(again.recovered()[1].bytes, "fourth");
   EXPECT_TRUE(again.damage().empty());
+}
+
+// Issue 35: random bytes, an empty file and a file cut off mid-record (AtomicFile: mid-payload).
+TEST(AtomicFile, RefusesRandomBytesEmptyAndCutOffFilesNamingThem)
+{
+  const std::string d = fresh_dir("atomic_bad");
+  persist::write_atomically(d + "/valid", std::string(200, 'v'));
+  for (const auto& f : rgnav::testing::write_bad_files(d, "state", rgnav::testing::read_file(d + "/valid"))) {
+    SCOPED_TRACE(f.kind);
+    try {
+      persist::read_checked(f.path);
+      ADD_FAILURE() << f.path << " was read";
+    } catch (const persist::CorruptFile& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(f.path + ": ", 0), 0u) << e.what();
+    }
+  }
+}
+
+TEST(Journal, RandomBytesAreKeptAsideEmptyIsNewCutOffIsATornTail)
+{
+  const std::string d = fresh_dir("journal_bad");
+  {
+    persist::Journal j(d + "/valid", false);
+    j.append(1, "first");
+    j.append(2, "second");
+  }
+  const std::string valid = rgnav::testing::read_file(d + "/valid");
+  for (const auto& f : rgnav::testing::write_bad_files(d, "j", valid, valid.size() - 3)) {
+    SCOPED_TRACE(f.kind);
+    const std::string before = rgnav::testing::read_file(f.path);
+    persist::Journal j(f.path, false);
+    if (f.kind == "random") {
+      EXPECT_TRUE(j.recovered().empty());
+      EXPECT_TRUE(j.corrupt());
+      EXPECT_NE(j.damage().find(f.path + ".damaged"), std::string::npos) << j.damage();
+      EXPECT_EQ(rgnav::testing::read_file(f.path + ".damaged"), before);
+    } else if (f.kind == "empty") {
+      EXPECT_TRUE(j.recovered().empty());
+      EXPECT_TRUE(j.damage().empty());
+    } else {
+      ASSERT_EQ(j.recovered().size(), 1u);
+      EXPECT_EQ(j.recovered()[0].bytes, "first");
+      EXPECT_NE(j.damage().find("torn"), std::string::npos) << j.damage();
+      EXPECT_FALSE(j.corrupt());
+      EXPECT_FALSE(fs::exists(f.path + ".damaged"));
+    }
+  }
 }
 
 TEST(Journal, OneWriterAtATime)

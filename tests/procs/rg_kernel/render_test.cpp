@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bad_files.h"
 #include "persist/atomic_file.h"
 #include "procs/rg_kernel/rg_kernel.h"
 #include "render/rgmap_picture.h"
@@ -79,6 +80,30 @@ TEST(Render, PicturesAndMapServerExport)
   const std::string y((std::istreambuf_iterator<char>(yaml)), std::istreambuf_iterator<char>());
   EXPECT_NE(y.find("image: global.pgm"), std::string::npos);
   EXPECT_NE(y.find("resolution: 0.05"), std::string::npos);
+}
+
+// Issue 35: ./rgnav render on random bytes, an empty file, a cut-off rgmap.json, and a whole
+// checked file that is no RG map: exit non-zero, the file named, no picture or export written.
+TEST(Render, BadFilesAreRefusedNamingThemAndNothingIsWritten)
+{
+  rgnav::testing::TempDir dir("render_bad");
+  const std::string valid = dir.file("rgmap.json");
+  persist::write_atomically(valid, rgmap::to_json(two_room_map()).dump(1));
+  auto files = rgnav::testing::write_bad_files(dir.path(), "rgmap.json", rgnav::testing::read_file(valid));
+  files.push_back({"not an RG map", dir.file("other.json")});
+  persist::write_atomically(files.back().path, "{\"schema\": \"something else\"}");
+  for (const auto& f : files) {
+    SCOPED_TRACE(f.kind);
+    const std::string out = dir.file("out.png"), base = dir.file("export");
+    const auto r = rgnav::testing::run_tool({RGNAV_RENDER_BIN, f.path, "--out", out, "--export-pgm", base}, dir.path());
+    EXPECT_TRUE(r.status.exited && r.status.code != 0) << r.status.describe();
+    EXPECT_NE(r.err.find(f.path), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_FALSE(std::filesystem::exists(base + ".pgm"));
+    EXPECT_FALSE(std::filesystem::exists(base + ".yaml"));
+  }
+  const auto ok = rgnav::testing::run_tool({RGNAV_RENDER_BIN, valid, "--out", dir.file("ok.png")}, dir.path());
+  EXPECT_TRUE(ok.status.clean()) << ok.err;   // the same command on the whole file works
 }
 
 TEST(Render, RegionFramesComposedThroughGateways)

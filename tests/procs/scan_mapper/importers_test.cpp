@@ -13,6 +13,7 @@
 #include "importers/mines_parser.h"
 #include "importers/odometry_alignment.h"
 #include "importers/reference_matching.h"
+#include "bad_files.h"
 
 namespace imp = rgnav::importers;
 namespace fs = std::filesystem;
@@ -212,6 +213,102 @@ TEST(LcmLog, TruncatedLogKeepsCompleteEvents)
   const auto back = imp::read_lcm_log(path.string());
   EXPECT_TRUE(back.truncated);
   EXPECT_EQ(back.scans.size(), 49u);
+}
+
+// Issue 35: a file that is no LCM log is refused naming it (it used to read as an empty log
+// with a "truncated" warning); a log cut off mid-event keeps what came before, with a warning.
+TEST(LcmLog, RandomBytesEmptyAndCutOffLogs)
+{
+  imp::ImportedLog log;
+  std::string why;
+  for (int i = 0; i < 20; ++i) ASSERT_TRUE(imp::parse_carmen_line(flaser(180, 2.0, i * 0.2, 0, 0, 1.0 + i), {}, &log, &why));
+  const auto dir = temp_dir();
+  const auto valid = (dir / "valid.lcmlog").string();
+  imp::write_lcm_log(log, valid);
+  std::ifstream in(valid, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto bad = rgnav::testing::write_bad_files(dir.string(), "log.lcmlog", bytes, bytes.size() / 2 + 7);
+  for (const auto& f : bad) {
+    SCOPED_TRACE(f.kind);
+    if (f.kind == "truncated") {
+      const auto part = imp::read_lcm_log(f.path);
+      EXPECT_TRUE(part.truncated);
+      EXPECT_GT(part.scans.size(), 5u);
+      EXPECT_LT(part.scans.size(), 15u);
+      ASSERT_FALSE(part.issues.empty());
+      EXPECT_NE(part.issues.back().what.find("truncated"), std::string::npos);
+      continue;
+    }
+    try {
+      imp::read_lcm_log(f.path);
+      ADD_FAILURE() << f.path << " was read as an LCM log";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(f.path), std::string::npos) << e.what();
+    }
+  }
+  // Cut inside its first event: no complete event, nothing valid.
+  const auto first = (dir / "first.lcmlog").string();
+  rgnav::testing::write_bytes(first, bytes.substr(0, 40));
+  EXPECT_THROW(imp::read_lcm_log(first), std::runtime_error);
+  // Junk in front of a valid log: lcm's reader would skip to the first sync word in silence.
+  const auto prefixed = (dir / "prefixed.lcmlog").string();
+  rgnav::testing::write_bytes(prefixed, "not a log" + bytes);
+  EXPECT_THROW(imp::read_lcm_log(prefixed), std::runtime_error);
+  // Junk between two events: what came before is read, and the damage is reported (LCM 1.3's
+  // reader stops there; a reader that resynchronises goes on, and the skipped bytes are reported).
+  const auto middle = (dir / "middle.lcmlog").string();
+  const size_t second_half = bytes.find("\xed\xa1\xda\x01", bytes.size() / 2);
+  ASSERT_NE(second_half, std::string::npos);
+  rgnav::testing::write_bytes(middle, bytes.substr(0, second_half) + "junk" + bytes.substr(second_half));
+  const auto mended = imp::read_lcm_log(middle);
+  EXPECT_GE(mended.scans.size(), 9u);
+  ASSERT_EQ(mended.issues.size(), 1u);
+  const std::string what = mended.issues[0].what;
+  EXPECT_TRUE(mended.truncated ? what.find("damaged or truncated") != std::string::npos
+                               : what.find("4 damaged bytes skipped") != std::string::npos)
+      << what;
+}
+
+// Issue 35: `./rgnav import` on random bytes or an empty file (CARMEN or Mines) exits non-zero
+// naming it and writes no LCM log; a CARMEN log cut off mid-line is imported up to the damage,
+// with the bad line named.
+TEST(ImportTool, RandomBytesAndEmptyFilesAreRefusedACutOffLogIsImportedToTheDamage)
+{
+  rgnav::testing::TempDir dir("import_bad");
+  std::string carmen, mines;
+  for (int i = 0; i < 20; ++i) {
+    carmen += flaser(180, 1.0 + i * 0.01, i * 0.1, 0, 0, i + 1) + "\n";
+    mines += std::to_string(1000000 + i * 100000) + " 7 " + std::to_string(100 * i) + " " + std::to_string(100 * i);
+    for (int k = 0; k < 20; ++k) mines += " 0";
+    for (int k = 0; k < 683; ++k) mines += " " + std::to_string(1000 + k);
+    mines += "\n";
+  }
+  for (const auto& [name, valid] : {std::pair<std::string, std::string>{"in.log", carmen}, {"in.dat", mines}}) {
+    size_t cut = 0;
+    for (int line = 0; line < 10; ++line) cut = valid.find('\n', cut) + 1;
+    for (const auto& f : rgnav::testing::write_bad_files(dir.path(), name, valid, cut + 30)) {
+      SCOPED_TRACE(f.kind + " " + f.path);
+      const std::string out = f.path + ".lcmlog";
+      const auto r = rgnav::testing::run_tool({RGNAV_IMPORT_BIN, f.path, out}, dir.path());
+      if (f.kind == "truncated") {
+        EXPECT_TRUE(r.status.clean()) << r.err;
+        EXPECT_NE(r.err.find(f.path + ":11: "), std::string::npos) << r.err;   // the cut line, named
+        EXPECT_EQ(imp::read_lcm_log(out).scans.size(), 10u);
+        continue;
+      }
+      EXPECT_TRUE(r.status.exited && r.status.code != 0) << r.status.describe();
+      EXPECT_NE(r.err.find(f.path), std::string::npos) << r.err;
+      EXPECT_FALSE(fs::exists(out));
+    }
+  }
+  // A reference log with nothing in it is refused too, before anything is written.
+  rgnav::testing::write_bytes(dir.file("good.log"), carmen);
+  rgnav::testing::write_bytes(dir.file("empty_ref.log"), rgnav::testing::random_bytes(2000));
+  const auto r = rgnav::testing::run_tool(
+      {RGNAV_IMPORT_BIN, dir.file("good.log"), dir.file("ref.lcmlog"), "--reference-from", dir.file("empty_ref.log")}, dir.path());
+  EXPECT_TRUE(r.status.exited && r.status.code != 0) << r.status.describe();
+  EXPECT_NE(r.err.find(dir.file("empty_ref.log")), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.file("ref.lcmlog")));
 }
 
 TEST(MinesParser, IntegratesWheelTicksAndMarksMarginBeams)

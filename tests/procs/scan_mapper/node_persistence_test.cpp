@@ -13,6 +13,7 @@
 #include <map>
 #include <set>
 
+#include "bad_files.h"
 #include "node_harness.h"
 #include "scan_mapper/mapper_state_io.h"
 
@@ -245,6 +246,47 @@ TEST(ScanMapperPersistence, CorruptSnapshotIsKeptAsideAndTheMapStartsAfresh)
   EXPECT_EQ(rep.scans, 0u);
   EXPECT_TRUE(h.adapter->mapper().nodes().empty());
   EXPECT_TRUE(fs::exists(p.state_file + ".corrupt"));
+}
+
+// Issue 35: a snapshot of random bytes, an empty one and one cut off mid-content are refused
+// naming the file, kept aside as found (.corrupt), and the map starts afresh; a journal of
+// random bytes is reported naming it, kept as found (.damaged) and not replayed.
+TEST(ScanMapperPersistence, BadSnapshotOrJournalFilesAreReportedKeptAsideAndNotLoaded)
+{
+  TempDir ref("badref");
+  std::string valid;
+  {
+    const auto p = persistence(ref.path, 5);
+    {
+      NodeHarness h(p);
+      drive(h, 0, 30);
+    }  // clean stop: snapshot
+    valid = rgnav::testing::read_file(p.state_file);
+  }
+  ASSERT_GT(valid.size(), 100u);
+  TempDir bad("badfiles");
+  for (const auto& f : rgnav::testing::write_bad_files(bad.path.string(), "snapshot", valid)) {
+    SCOPED_TRACE(f.kind);
+    TempDir dir("bad_" + f.kind);
+    const auto p = persistence(dir.path, 5);
+    fs::copy_file(f.path, p.state_file);
+    NodeHarness h(p);
+    const auto rep = *h.adapter->recovery();
+    EXPECT_NE(rep.damage.find("snapshot refused (" + p.state_file + ": "), std::string::npos) << rep.damage;
+    EXPECT_EQ(rep.scans, 0u);
+    EXPECT_TRUE(h.adapter->mapper().nodes().empty());
+    EXPECT_EQ(rgnav::testing::read_file(p.state_file + ".corrupt"), rgnav::testing::read_file(f.path));
+  }
+  TempDir dir("bad_journal");
+  const auto p = persistence(dir.path, 5);
+  const std::string junk = rgnav::testing::random_bytes(4096);
+  rgnav::testing::write_bytes(p.state_file + ".journal", junk);
+  NodeHarness h(p);
+  const auto rep = *h.adapter->recovery();
+  EXPECT_NE(rep.damage.find("journal " + p.state_file + ".journal: bad record header at byte 0"), std::string::npos)
+      << rep.damage;
+  EXPECT_EQ(rep.scans, 0u);
+  EXPECT_EQ(rgnav::testing::read_file(p.state_file + ".journal.damaged"), junk);
 }
 
 TEST(ScanMapperPersistence, JournalRecordsAreNotReplayedTwiceAfterASnapshot)

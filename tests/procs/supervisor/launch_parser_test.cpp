@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bad_files.h"
+
 namespace rgnav::supervisor {
 namespace {
 
@@ -79,6 +81,30 @@ TEST(LaunchParser, ErrorsNameFileAndLine)
   EXPECT_NE(error_of("group \"g\" {\n cmd \"a\" { exec = \"x\"; }\n").find("bad.pmd:3: expected '}' closing group"), std::string::npos);
   EXPECT_NE(error_of("script \"s\" {\n wait cmd \"a\" status \"sleeping\";\n}").find("bad.pmd:2:"), std::string::npos);
   EXPECT_NE(error_of("cmd \"a/b\" { exec = \"x\"; }").find("'/' is not allowed"), std::string::npos);
+}
+
+// Issue 35: a launch file of random bytes, an empty one and one cut off mid-content are refused
+// naming the file (the supervisor and rgnav_ctl then refuse to start).
+TEST(LaunchParser, RandomBytesEmptyAndCutOffFilesAreRefusedNamingThem)
+{
+  testing::TempDir dir("launch_bad");
+  const std::string valid =
+      "# robot\ngroup \"drivers\" {\n  cmd \"base\" { exec = \"base_driver --config a.yaml\"; }\n}\n"
+      "cmd \"lld\" { exec = \"lld\"; depends = \"base\"; }\n";
+  testing::write_bytes(dir.file("valid.pmd"), valid);
+  EXPECT_EQ(parse_launch_file(dir.file("valid.pmd")).commands.size(), 2u);
+  for (const auto& f : testing::write_bad_files(dir.path(), "launch.pmd", valid, valid.find("base_driver"))) {
+    SCOPED_TRACE(f.kind);
+    try {
+      parse_launch_file(f.path);
+      ADD_FAILURE() << f.path << " was read";
+    } catch (const LaunchError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(f.path + ":", 0), 0u) << e.what();
+    }
+  }
+  // Comments only (cut off in its header) or groups without commands: nothing to launch.
+  testing::write_bytes(dir.file("comments.pmd"), "# robot launch\n");
+  EXPECT_THROW(parse_launch_file(dir.file("comments.pmd")), LaunchError);
 }
 
 TEST(LaunchParser, UnnamedCommandTakesItsExecutableName)

@@ -4,7 +4,8 @@
 # range) only inside these namespaces; multicast routed over the link and LCM with ttl=1.
 # One deputy per robot (--host b21r-main / b21r-vision), the controller on the laptop. Checks:
 # status from both deputies reaches the laptop, a cross-host dependency starts, start/stop
-# orders reach the right host only, shutdown stops both deputies. Namespaces are removed on
+# orders reach the right host only, an order signed with another key is refused, shutdown
+# stops both deputies. Namespaces are removed on
 # any exit. Usage: multihost_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$1; root=$2
@@ -13,6 +14,10 @@ tag="rgmh$$"
 work=$(mktemp -d /tmp/rgnav-multihost.XXXXXX)
 export MH_STATE=$work
 export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=1"
+# Orders are signed: a key of this test's own, the same file for the deputies and the laptop
+# (on a real network each host holds a copy).
+export RGNAV_ORDERS_KEY=$work/orders.key
+"$build/bin/rgnav_ctl" keygen >/dev/null
 hosts=(r1 r2 lap)
 declare -A addr=([r1]=192.0.2.11 [r2]=192.0.2.12 [lap]=192.0.2.20)
 declare -A hname=([r1]=b21r-main [r2]=b21r-vision [lap]=laptop)
@@ -92,6 +97,13 @@ grep -q "^host b21r-vision " <<<"$view" || fail "no status from b21r-vision"
 ctl --host b21r-main stop mh_sink || true
 sleep 1.5
 [[ $(state_of b21r-vision mh_sink) == running ]] || fail "a stop addressed to b21r-main stopped mh_sink on b21r-vision"
+
+# An order signed with another key is refused (the deputy keeps mh_sink running).
+RGNAV_ORDERS_KEY=$work/other.key "$build/bin/rgnav_ctl" keygen >/dev/null
+RGNAV_ORDERS_KEY=$work/other.key ctl --host b21r-vision stop mh_sink || true
+sleep 1.5
+[[ $(state_of b21r-vision mh_sink) == running ]] || fail "an order signed with another key stopped mh_sink"
+grep -q "refused: signed with another key" "$work/r2.log" || fail "b21r-vision did not log the refused order"
 
 # Orders to the right host.
 ctl --host b21r-vision stop mh_sink --wait --timeout-ms 10000 || fail "stop mh_sink on b21r-vision"

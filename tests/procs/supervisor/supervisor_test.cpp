@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "child_process.h"
+#include "proc_info.h"
 #include "state_file.h"
 
 namespace rgnav::supervisor {
@@ -63,7 +64,8 @@ class SupervisorTest : public ::testing::Test
       s.reap(now);
       if (now >= next_hb) {
         for (const auto& v : s.status(now))
-          if (v.pid != 0 && std::find(alive.begin(), alive.end(), v.name) != alive.end()) s.on_heartbeat(v.name, v.pid, now);
+          if (v.pid != 0 && std::find(alive.begin(), alive.end(), v.name) != alive.end())
+            s.on_heartbeat(v.name, v.pid, now, true, progress_of_ ? progress_of_(v.name) : ++progress_);
         next_hb = now + milliseconds(100);
       }
       s.tick(now);
@@ -85,6 +87,8 @@ class SupervisorTest : public ::testing::Test
 
   std::filesystem::path dir_;
   SupervisorOptions options_;
+  std::function<int64_t(const std::string&)> progress_of_;   // the heartbeats' work counter (unset: always moving on)
+  int64_t progress_ = 0;
   std::vector<pid_t> spawned_;
 };
 
@@ -119,6 +123,69 @@ TEST_F(SupervisorTest, SilentProcessIsKilledAsHungAndRestarted)
   ASSERT_TRUE(run_until(*s, [&] { return view(*s, "h").pid != 0 && view(*s, "h").pid != first; }, milliseconds(4000)));
   EXPECT_NE(view(*s, "h").last_exit.find("heartbeat timeout"), std::string::npos) << view(*s, "h").last_exit;
   EXPECT_EQ(view(*s, "h").restarts, 1);
+}
+
+TEST_F(SupervisorTest, BusyProcessThatProgressesIsKeptButOneStuckWhileBeatingIsHung)
+{
+  auto s = make("cmd \"w\" { exec = \"sleep 30\"; work_timeout_ms = 400; }");
+  int64_t progress = 1;
+  bool progressing = true;
+  progress_of_ = [&](const std::string&) { return progressing ? ++progress : progress; };
+  s->start_all(Clock::now());
+  ASSERT_TRUE(run_until(*s, [&] { return view(*s, "w").state == ProcState::kRunning; }, milliseconds(2000), {"w"}));
+  const pid_t first = view(*s, "w").pid;
+  // Beating and progressing for well over the work bound: busy, not hung.
+  EXPECT_FALSE(run_until(*s, [&] { return view(*s, "w").pid != first; }, milliseconds(1200), {"w"}));
+  // Still beating, progress stands still: a loop stuck in its work.
+  progressing = false;
+  ASSERT_TRUE(run_until(*s, [&] { return view(*s, "w").pid != 0 && view(*s, "w").pid != first; }, milliseconds(4000), {"w"}));
+  EXPECT_NE(view(*s, "w").last_exit.find("no progress for 400 ms"), std::string::npos) << view(*s, "w").last_exit;
+}
+
+TEST_F(SupervisorTest, AGapTheWholeHostSharedBlamesNoProcess)
+{
+  auto s = make("cmd \"h\" { exec = \"sleep 30\"; }");
+  s->start_all(Clock::now());
+  ASSERT_TRUE(run_until(*s, [&] { return view(*s, "h").state == ProcState::kRunning; }, milliseconds(2000), {"h"}));
+  const pid_t pid = view(*s, "h").pid;
+  // The host stood still for 1 s (the supervisor too): the heartbeat is 1 s old when the
+  // supervisor runs again, but the gap is the host's.
+  const auto after = Clock::now() + milliseconds(1000);
+  s->on_host_stall(milliseconds(1000), after);
+  s->tick(after);
+  EXPECT_EQ(view(*s, "h").state, ProcState::kRunning);
+  EXPECT_EQ(s->host_stalls().count, 1);
+  EXPECT_EQ(s->host_stalls().longest, milliseconds(1000));
+  // Without the stall the same gap is a hang.
+  s->tick(after + milliseconds(1000));
+  EXPECT_NE(view(*s, "h").state, ProcState::kRunning);
+  run_until(*s, [&] { return view(*s, "h").pid != pid; }, milliseconds(3000), {"h"});
+}
+
+TEST(ProcInfo, MainThreadStateTellsRunningSleepingAndStopped)
+{
+  EXPECT_EQ(main_thread_state(getpid()), 'R');   // this test, reading
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    pause();
+    _exit(0);
+  }
+  char state = '?';
+  for (int i = 0; i < 200 && state != 'S'; ++i) {
+    std::this_thread::sleep_for(milliseconds(5));
+    state = main_thread_state(child);
+  }
+  EXPECT_EQ(state, 'S');
+  kill(child, SIGSTOP);
+  for (int i = 0; i < 200 && state != 'T'; ++i) {
+    std::this_thread::sleep_for(milliseconds(5));
+    state = main_thread_state(child);
+  }
+  EXPECT_EQ(state, 'T');
+  kill(child, SIGKILL);
+  waitpid(child, nullptr, 0);
+  EXPECT_EQ(main_thread_state(child), '?');
 }
 
 TEST_F(SupervisorTest, CrashLoopIsGivenUpAndSafetyCriticalFailureHoldsTheRobot)

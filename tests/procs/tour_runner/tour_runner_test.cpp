@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "bad_files.h"
 #include "fake_bus_node.h"
 #include "laser_scan_msg.h"
 #include "procs/tour_runner/pure_pursuit.h"
@@ -24,6 +25,23 @@ std::string write_tour(const std::string& text)
                            ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".yaml";
   std::ofstream(path) << text;
   return path;
+}
+
+// Issue 35: a tour file of random bytes, an empty one and one cut off inside its list of points
+// are refused naming the file.
+TEST(Tour, RandomBytesEmptyAndCutOffFilesAreRefusedNamingThem)
+{
+  testing::TempDir dir("tour_bad");
+  const std::string valid = "# tour\nstart: [1, 2, 0.5]\ntour: [[3, 4], [5, 6], [7, 8]]\n";
+  for (const auto& f : testing::write_bad_files(dir.path(), "tour.yaml", valid, valid.find("[5") + 2)) {
+    SCOPED_TRACE(f.kind);
+    try {
+      load_tour(f.path);
+      ADD_FAILURE() << f.path << " was loaded";
+    } catch (const config::ConfigError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(f.path + ": ", 0), 0u) << e.what();
+    }
+  }
 }
 
 TEST(Tour, DensifyKeepsSpacingAndEndpoints)

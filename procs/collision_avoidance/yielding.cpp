@@ -1,0 +1,359 @@
+// Leaving a person's path sideways (give_way.h), the part of CollisionAvoidance
+// (collision_avoidance.h) that runs it: who is in the way, the way out of their path and the
+// wait beside it, in phases (looking behind when nothing around is known, leaving, waiting),
+// each sent as a trajectory so the drive stays the only one commanding the base.
+#include <cmath>
+#include <iostream>
+
+#include "collision_avoidance/collision_avoidance.h"
+
+namespace rgnav::collision_avoidance {
+
+using trajectory::Chain;
+using trajectory::Segment;
+
+namespace {
+
+constexpr const char* kLeaving = "yielding: leaving the person's path sideways";
+constexpr const char* kWaitingThere = "yielding: beside the person's path, waiting for them to pass";
+constexpr const char* kLooking = "yielding: turning to look for room behind";
+constexpr const char* kReturning = "yielding: they passed, back to where it left its way";
+constexpr int kMaxPlans = 6;  // yield points chosen anew when the way there turns out blocked
+constexpr double kAhead = 1.05;  // [rad] someone in the way stands within this of the way to the target
+// A mover counts as a person once it moved this long while the robot held its heading
+// (people_tracker.h Track::moving_steady: walls coming into view as the robot turns move too).
+constexpr double kSteadyWalking = 0.3;  // [s] walking now
+constexpr double kSteadyStopped = 0.5;  // [s] walked up and stopped
+constexpr double kReturnMargin = 0.02;  // [m] the way back keeps this beyond the clearance
+
+// Turns on the spot and straight legs through `corners`, then a turn to `final_heading`: a
+// synchro drive can always do this from standing, and the legs are the search's free lines.
+Chain polyline(const Pose2& start, const std::vector<Eigen::Vector2d>& corners, double final_heading, double v_max)
+{
+  Chain c;
+  Pose2 from = start;
+  for (const auto& corner : corners) {
+    const Eigen::Vector2d d = corner - from.translation();
+    if (d.norm() < 1e-3) continue;
+    const double dth = geometry::normalize_angle(std::atan2(d.y(), d.x()) - from.theta());
+    if (std::fabs(dth) > 1e-3) {
+      c.push_back(Segment::turn(from, dth));
+      from = c.end();
+    }
+    Segment leg = Segment::line(from, d.norm());
+    leg.set_v_max(v_max);
+    c.push_back(leg);
+    from = c.end();
+  }
+  const double dth = geometry::normalize_angle(final_heading - from.theta());
+  if (std::fabs(dth) > 1e-3) c.push_back(Segment::turn(from, dth));
+  return c;
+}
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// first_collision's rule from s0 on, on what is there now: where someone is only predicted to
+// walk does not count. The person the robot makes way for follows it down their path, and
+// their prediction runs ahead of them into the way out (and the way back).
+bool blocked_now(const LocalMap& map, const Chain& c, double s0, double clearance, double step)
+{
+  // Leaving a tight spot as first_collision lets a chain (and the search chose the way): from
+  // the clearance there with everything counted.
+  const double c0 = map.clearance(c.pose_at(s0).translation(), clearance);
+  for (double s = s0; s <= c.length() + 1e-9; s += step)
+    if (map.clearance_observed(c.pose_at(s).translation(), clearance) < required_clearance(clearance, c0, s - s0)) {
+      if (getenv("CA_DEBUG_YIELD")) std::cerr << "blocked_now at " << s << " of " << c.length() << " p " << c.pose_at(s).translation().transpose() << " clr " << map.clearance_observed(c.pose_at(s).translation(), clearance) << " c0 " << c0 << "\n";
+      return true;
+    }
+  return false;
+}
+
+// The way someone walks (unit): where their track went since it began, over a metre or more and
+// near their velocity's direction (a velocity fit over half a second sways a few degrees, and
+// a few degrees put a yield point metres down the path off by decimetres); else the velocity.
+Eigen::Vector2d walking_direction(const Eigen::Vector2d& velocity, const Eigen::Vector2d& since_first)
+{
+  const Eigen::Vector2d v = velocity.normalized();
+  if (since_first.norm() >= 1.0 && since_first.normalized().dot(v) > std::cos(0.5)) return since_first.normalized();
+  return v;
+}
+
+}  // namespace
+
+std::optional<PersonPath> CollisionAvoidance::person_in_the_way() const
+{
+  const Eigen::Vector2d here = pose_.translation();
+  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
+  const YieldOptions& yo = options_.give_way.yield;
+  // The robot is on their path: within what the path keeps free of its centre line.
+  const double on_path = clearance + yo.path_half_width;
+  // In the robot's way: ahead, toward its next target (a wall seen anew as the robot turns can
+  // look like someone who walked up and stopped; behind the robot it blocks nothing).
+  const auto g = goals();
+  const Eigen::Vector2d to_target = g.empty() ? Eigen::Vector2d::Zero() : Eigen::Vector2d(g.front().translation() - here);
+  std::optional<PersonPath> best;
+  double best_d = 0.0;
+  auto consider = [&](const Eigen::Vector2d& at, Eigen::Vector2d dir) {
+    const Eigen::Vector2d to_robot = here - at;
+    const double d = to_robot.norm();
+    if (d < 1e-6 || to_target.norm() < 1e-6) return;
+    if (-to_robot.dot(to_target) < std::cos(kAhead) * d * to_target.norm()) return;
+    dir.normalize();
+    if (to_robot.dot(dir) <= 0.0 || std::fabs(cross(dir, to_robot)) > on_path) return;
+    if (best && d >= best_d) return;
+    PersonPath p;
+    p.from = at;
+    p.direction = dir;
+    p.length = yo.path_length;
+    best = p;
+    best_d = d;
+  };
+  const double min_speed = options_.map.people.min_speed;
+  for (const Track& t : map_.tracker().tracks()) {
+    if (!t.moved || t.moving_steady < kSteadyWalking || t.centroids.empty() || t.velocity.norm() < min_speed) continue;
+    const Eigen::Vector2d at = t.centroids.back().second;
+    if ((at - here).norm() <= options_.yield_notice) consider(at, walking_direction(t.velocity, at - t.first));
+  }
+  // Someone who walked up and stopped (their cells turned static, the track ended), and still
+  // stands there: they were walking the way they last moved; if that did not lead toward the
+  // robot (they stepped aside last), they want by where the robot stands.
+  for (const auto& m : map_.tracker().last_seen_movers()) {
+    if ((m.position - here).norm() > options_.yield_notice_stopped || m.moving_steady < kSteadyStopped) continue;
+    // Still there: the newest scan ends at them (a remembered one may have walked on unseen).
+    if (map_.seen_now(m.position) != SeenNow::kStillThere) continue;
+    Eigen::Vector2d dir = m.walking.norm() < min_speed ? Eigen::Vector2d::Zero() : walking_direction(m.walking, m.position - m.first);
+    if (dir.dot(here - m.position) <= 0.0) dir = here - m.position;
+    consider(m.position, dir);
+  }
+  return best;
+}
+
+std::optional<trajectory::Trajectory> CollisionAvoidance::start_yield(time::Time now, const PersonPath& path)
+{
+  yield_ = Yield{};
+  yield_.phase = YieldPhase::kLeaving;
+  yield_.path = path;
+  yield_.goal_id = targets_.goal_id;
+  yield_.goal_at = targets_.poses.back().translation();
+  yield_.since = now;
+  yield_.trail = {pose_.translation()};
+  yield_.start_heading = pose_.theta();
+  yield_.until = now + time::Duration(static_cast<int64_t>(options_.yield_timeout * 1e6));
+  ++yields_;
+  return leave_path(now);
+}
+
+std::optional<trajectory::Trajectory> CollisionAvoidance::leave_path(time::Time now)
+{
+  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
+  const Eigen::Vector2d here = pose_.translation();
+  const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
+  yield_.trajectory_id = 0;
+  yield_.since = now;
+  if (!standing) {
+    yield_.phase = YieldPhase::kLeaving;
+    return stop(now, Mode::kReactive, "yielding: stopping to leave the person's path");
+  }
+  if (getenv("CA_DEBUG_YIELD")) std::cerr << "leave_path: standing " << standing << " plans " << yield_.plans << " looked " << yield_.looked << " path " << yield_.path.from.transpose() << " dir " << yield_.path.direction.transpose() << "\n";
+  const auto y = ++yield_.plans <= kMaxPlans ? choose_yield_point(map_, here, yield_.path, clearance, options_.give_way.yield)
+                                              : std::nullopt;
+  if (getenv("CA_DEBUG_YIELD") && y) std::cerr << "  point " << y->point.transpose() << " corners " << y->corners.size() << " travel " << y->travel << "\n";
+  if (!y) {
+    if (yield_.looked || yield_.plans > kMaxPlans) {
+      end_yield(now, false);
+      return std::nullopt;
+    }
+    // Nothing known behind the robot (the laser looks ahead): face the way down the person's
+    // path, away from them, where a hallway's mouth and the room behind it are, and search again.
+    yield_.looked = true;
+    yield_.phase = YieldPhase::kLooking;
+    const double heading = std::atan2(yield_.path.direction.y(), yield_.path.direction.x());
+    const double dth = geometry::normalize_angle(heading - pose_.theta());
+    const double t = trajectory::turn_duration(dth, options_.omega_max, 1.0);
+    yield_.phase_until = now + time::Duration(static_cast<int64_t>((t + 2.0) * 1e6));
+    status_ = kLooking;
+    auto sent = send_new(Chain({Segment::turn(pose_, dth)}), now, t, Mode::kReactive);
+    if (sent) yield_.trajectory_id = sent->id;
+    return sent;
+  }
+  yield_.point = y->point;
+  // There, face where the person comes from: the laser then sees them come and pass.
+  const Eigen::Vector2d look = yield_.path.from - y->point;
+  const double facing = look.norm() > 1e-6 ? std::atan2(look.y(), look.x()) : pose_.theta();
+  if (y->corners.empty()) {
+    yield_.phase = YieldPhase::kWaiting;
+    return stop(now, Mode::kReactive, kWaitingThere);
+  }
+  Chain c = polyline(pose_, y->corners, facing, options_.yield_speed);
+  if (auto hit = first_collision(c, map_, clearance, options_.planner.check_step)) {
+    if (getenv("CA_DEBUG_YIELD")) { std::cerr << "  blocked at " << *hit << " of " << c.length() << " corners"; for (auto& k : y->corners) std::cerr << " " << k.transpose() << " (clr " << map_.clearance(k, 1.0) << ")"; std::cerr << " start clr " << map_.clearance(here, 1.0) << "\n"; }
+    end_yield(now, false);
+    return std::nullopt;
+  }
+  double t = y->travel / options_.yield_speed;
+  for (const auto& seg : c.segments())
+    if (seg.kind() == trajectory::Kind::kTurn) t += trajectory::turn_duration(seg.turn_angle(), options_.omega_max, 1.0);
+  yield_.phase = YieldPhase::kLeaving;
+  yield_.phase_until = now + time::Duration(static_cast<int64_t>((t + 3.0) * 1e6));
+  status_ = kLeaving;
+  auto sent = send_new(std::move(c), now, t, Mode::kReactive);
+  if (sent) yield_.trajectory_id = sent->id;
+  return sent;
+}
+
+std::optional<std::optional<trajectory::Trajectory>> CollisionAvoidance::yield_under_way(time::Time now)
+{
+  if (yield_.phase == YieldPhase::kNone) return std::nullopt;
+  // A new goal, or (goals without an id) targets moved elsewhere: decide anew.
+  const bool other_goal = targets_.goal_id != yield_.goal_id ||
+                          (targets_.goal_id == 0 && (targets_.poses.back().translation() - yield_.goal_at).norm() > 0.5);
+  if (other_goal || now >= yield_.until) {
+    end_yield(now, true);
+    return std::nullopt;
+  }
+  if ((yield_.phase == YieldPhase::kLooking || yield_.phase == YieldPhase::kLeaving) &&
+      (pose_.translation() - yield_.trail.back()).norm() > 0.1)
+    yield_.trail.push_back(pose_.translation());
+  const bool ours = yield_.trajectory_id != 0 && has_feedback_ && feedback_.trajectory_id == yield_.trajectory_id;
+  const bool ended = ours && (feedback_.state == 2 || feedback_.state == 0);
+  auto keep_alive = [&]() -> std::optional<trajectory::Trajectory> {
+    if (time::to_seconds(now - last_sent_) < options_.refresh_period) return std::nullopt;
+    last_sent_ = now;
+    return active_;
+  };
+  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
+  switch (yield_.phase) {
+    case YieldPhase::kLooking:
+      // Done looking as soon as the turn brings a way out into view.
+      if (ended || now >= yield_.phase_until ||
+          choose_yield_point(map_, pose_.translation(), yield_.path, clearance, options_.give_way.yield))
+        return leave_path(now);
+      return keep_alive();
+    case YieldPhase::kLeaving: {
+      if (yield_.trajectory_id == 0) return leave_path(now);  // stopping first
+      if (ended) {  // there, and turned to watch the path
+        yield_.phase = YieldPhase::kWaiting;
+        yield_.since = now;
+        status_ = kWaitingThere;
+        return std::optional<trajectory::Trajectory>();
+      }
+      // Committed, but never blind: something on what remains of it (it came into view as the
+      // robot turned, someone stepped into it), or the drive stuck: choose again from here.
+      if (yield_way_blocked() || now >= yield_.phase_until) {
+        const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
+        if (standing) return leave_path(now);
+        yield_.trajectory_id = 0;  // stopping first, then choose again
+        return stop(now, Mode::kReactive, "yielding: the way out is blocked, stopping");
+      }
+      return keep_alive();
+    }
+    case YieldPhase::kWaiting: {
+      const Eigen::Vector2d here = pose_.translation();
+      const ToPass to_pass = someone_to_pass(map_, yield_.path, here, options_.give_way.yield);
+      if (to_pass != ToPass::kNobody) {
+        yield_.clear = false;
+      } else if (!yield_.clear) {
+        yield_.clear = true;
+        yield_.clear_since = now;
+      }
+      if (to_pass != ToPass::kStanding) {
+        yield_.standing = false;
+      } else if (!yield_.standing) {
+        yield_.standing = true;
+        yield_.standing_since = now;
+      }
+      const bool passed = yield_.clear && time::to_seconds(now - yield_.clear_since) >= options_.pass_settle;
+      // Someone stands there and does not come (they wait for the robot in turn, or stand aside
+      // for it): go if a chain gets past them.
+      const bool invited = yield_.standing && time::to_seconds(now - yield_.standing_since) >= options_.standing_go_after &&
+                           planner_.plan(pose_, 0.0, goals(), map_, targets_.max_speed).has_value();
+      if (passed) {
+        if (auto back = return_to_way(now)) return back;
+        end_yield(now, true);
+        return std::nullopt;
+      }
+      if (invited || time::to_seconds(now - yield_.since) >= options_.yield_wait_timeout) {
+        end_yield(now, true);
+        return std::nullopt;
+      }
+      return stop(now, Mode::kReactive, kWaitingThere);
+    }
+    case YieldPhase::kReturning:
+      // There (the planner goes on from its way), or something in the way back: the planner
+      // decides from here.
+      if (ended || yield_way_blocked() || now >= yield_.phase_until) {
+        if (getenv("CA_DEBUG_YIELD")) std::cerr << "return ends: ended " << ended << " blocked " << yield_way_blocked() << " late " << (now >= yield_.phase_until) << " here " << pose_.translation().transpose() << " to " << yield_.trail.front().transpose() << "\n";
+        end_yield(now, true);
+        return std::nullopt;
+      }
+      return keep_alive();
+    case YieldPhase::kNone: break;
+  }
+  return std::nullopt;
+}
+
+bool CollisionAvoidance::yield_way_blocked() const
+{
+  if (!active_) return false;
+  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
+  const bool ours = has_feedback_ && feedback_.trajectory_id == active_->id;
+  return blocked_now(map_, active_->chain, ours ? feedback_.progress : 0.0, clearance, options_.planner.check_step);
+}
+
+std::optional<trajectory::Trajectory> CollisionAvoidance::return_to_way(time::Time now)
+{
+  // Back to where it left its way, heading as it was: in a hallway that is back in, lined up;
+  // the planner goes on from there (or from wherever this stops). Not along the trail as
+  // recorded: two turns on the spot since shift what the odometry frame holds by decimetres at
+  // a metre, and a narrow hallway has centimetres to spare. A detour on the map as it is now,
+  // to the nearest place there with the clearance.
+  // A little more than the clearance: the search's legs graze it, and the drive's check of what
+  // the scans add on the way must not find them a millimetre short.
+  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin + kReturnMargin;
+  const Eigen::Vector2d here = pose_.translation();
+  Eigen::Vector2d goal = yield_.trail.front();
+  if ((goal - here).norm() < 0.3) return std::nullopt;
+  double best = map_.clearance(goal, clearance + 0.1);
+  const Eigen::Vector2d from = goal;
+  for (double r = 0.05; r <= 0.2 + 1e-9 && best < clearance; r += 0.05)
+    for (int k = 0; k < 16; ++k) {
+      const Eigen::Vector2d p = from + r * Eigen::Vector2d(std::cos(k * M_PI / 8.0), std::sin(k * M_PI / 8.0));
+      const double c = map_.clearance(p, clearance + 0.1);
+      if (c > best) {
+        best = c;
+        goal = p;
+      }
+    }
+  if (best < clearance) return std::nullopt;
+  const auto corners = grid_path(map_, here, goal, clearance, options_.grid);
+  if (!corners) return std::nullopt;
+  Chain c = polyline(pose_, *corners, yield_.start_heading, options_.yield_speed);
+  if (blocked_now(map_, c, 0.0, clearance - kReturnMargin, options_.planner.check_step)) return std::nullopt;
+  double t = c.length() / options_.yield_speed;
+  for (const auto& seg : c.segments())
+    if (seg.kind() == trajectory::Kind::kTurn) t += trajectory::turn_duration(seg.turn_angle(), options_.omega_max, 1.0);
+  yield_.phase = YieldPhase::kReturning;
+  yield_.since = now;
+  yield_.phase_until = now + time::Duration(static_cast<int64_t>((t + 3.0) * 1e6));
+  status_ = kReturning;
+  auto sent = send_new(std::move(c), now, t, Mode::kReactive);
+  if (sent) yield_.trajectory_id = sent->id;
+  return sent;
+}
+
+void CollisionAvoidance::end_yield(time::Time now, bool done)
+{
+  yield_.phase = YieldPhase::kNone;
+  if (!done) {
+    yield_retry_after_ = now + time::Duration(static_cast<int64_t>(options_.yield_after * 1e6));
+    return;
+  }
+  // The headway clock starts again from here: the time spent out of the way is no lack of it.
+  has_progress_pose_ = true;
+  progress_pose_ = pose_.translation();
+  progress_since_ = now;
+  blocked_since_set_ = false;
+  give_way_active_ = false;
+}
+
+}  // namespace rgnav::collision_avoidance
