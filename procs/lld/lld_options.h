@@ -31,7 +31,7 @@ struct LldOptions
   LoopOptions loop;
   ChannelOptions channels;
   FollowerOptions follower;
-  double stall_excuse_max_s = 0.5;   // [s] longest host stall not held against the odometry (stall_credit.h)
+  double stall_excuse_max_s = 0.4;   // [s] longest host stall not held against the odometry (stall_credit.h)
 };
 
 // Reads the `channels`, `loop`, `tracking`, `limits` and `timeouts` sections; the drive's

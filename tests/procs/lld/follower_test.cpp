@@ -259,10 +259,10 @@ namespace rgnav::lld {
 namespace {
 
 // The loop's own lateness since the newest odometry is credited to that odometry's age, up to
-// the cap; a new odometry starts afresh, and a loop on time earns nothing.
+// the cap; a new odometry starts afresh, a loop on time earns nothing, a gap over the cap voids it.
 TEST(StallCredit, CountsTheLoopsLatenessSinceTheNewestOdometry)
 {
-  StallCredit c(0.5);
+  StallCredit c(0.4);
   const time::Time a = time::from_utime(1'000'000), b = time::from_utime(1'020'000);
   c.on_tick(0.02, 0.02, a);
   EXPECT_DOUBLE_EQ(c.credit_s(), 0.0);
@@ -273,7 +273,9 @@ TEST(StallCredit, CountsTheLoopsLatenessSinceTheNewestOdometry)
   c.on_tick(0.02, 0.02, b);   // new odometry
   EXPECT_DOUBLE_EQ(c.credit_s(), 0.0);
   for (int i = 0; i < 10; ++i) c.on_tick(0.22, 0.02, b);
-  EXPECT_DOUBLE_EQ(c.credit_s(), 0.5);
+  EXPECT_DOUBLE_EQ(c.credit_s(), 0.4);
+  c.on_tick(0.72, 0.02, b);   // one gap longer than the cap: the process was stopped, no excuse
+  EXPECT_DOUBLE_EQ(c.credit_s(), 0.0);
 }
 
 }  // namespace
