@@ -17,6 +17,25 @@ inline Pose2 interpolate(const Pose2& a, const Pose2& b, double s)
   return Pose2(a.x() + s * (b.x() - a.x()), a.y() + s * (b.y() - a.y()), a.theta() + s * normalize_angle(b.theta() - a.theta()));
 }
 
+// The pose at `utime` from time-sorted samples (a random-access container; pose_of reads a
+// sample's pose, each has .utime): the sample at that time, else interpolated between the two
+// around it when both lie within max_gap_us of it; nothing before the first, after the last or
+// across a longer gap. What a node needs to place an input between the odometry around it.
+template <class Samples, class PoseOf>
+std::optional<Pose2> bracketed_at(const Samples& samples, int64_t utime, int64_t max_gap_us, const PoseOf& pose_of)
+{
+  const auto after = std::lower_bound(samples.begin(), samples.end(), utime,
+                                      [](const auto& s, int64_t t) { return s.utime < t; });
+  if (after == samples.end()) return std::nullopt;
+  if (after->utime == utime) return pose_of(*after);
+  if (after == samples.begin()) return std::nullopt;
+  const auto& a = *(after - 1);
+  const auto& b = *after;
+  if (utime - a.utime > max_gap_us || b.utime - utime > max_gap_us) return std::nullopt;
+  const double s = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
+  return interpolate(pose_of(a), pose_of(b), s);
+}
+
 class PoseTrack
 {
  public:

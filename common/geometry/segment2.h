@@ -64,4 +64,36 @@ inline double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vect
   return (p - (a + t * d)).norm();
 }
 
+// Smallest distance between segments s0-s1 and t0-t1 (0 if they cross); a segment shorter than
+// 1e-9 counts as a point. The line grouping's "distance" (diss. 3.1): the RG kernel's objects
+// and the vision's quadrangles.
+inline double segments_distance(const Eigen::Vector2d& s0, const Eigen::Vector2d& s1, const Eigen::Vector2d& t0,
+                                const Eigen::Vector2d& t1)
+{
+  // Lines count as parallel unless |cross(s, t)| is strictly more than 1e-12.
+  static const double kParallelBelow = std::nextafter(1e-12, 1.0);
+  const auto hit = ray_meets_line(s0, s1 - s0, t0, t1, kParallelBelow);
+  if (hit) {
+    const double a = hit->along_ray, b = hit->along_line;
+    if (a >= 0 && a <= 1 && b >= 0 && b <= 1) return 0;
+  }
+  constexpr double kPoint2 = 1e-18;
+  return std::min({point_segment_distance(s0, t0, t1, kPoint2), point_segment_distance(s1, t0, t1, kPoint2),
+                   point_segment_distance(t0, s0, s1, kPoint2), point_segment_distance(t1, s0, s1, kPoint2)});
+}
+
+// Gap between two non-parallel segments at the corner they would form: how far the farther of
+// the two is from the intersection of their lines (0 if they really intersect; infinity if the
+// lines are parallel).
+inline double corner_gap(const Eigen::Vector2d& s0, const Eigen::Vector2d& s1, const Eigen::Vector2d& t0,
+                         const Eigen::Vector2d& t1)
+{
+  const Eigen::Vector2d r = s1 - s0, q = t1 - t0;
+  const auto hit = ray_meets_line(s0, r, t0, t1, 1e-12 * r.norm() * q.norm());
+  if (!hit) return std::numeric_limits<double>::infinity();
+  const Eigen::Vector2d x = s0 + r * hit->along_ray;
+  constexpr double kPoint2 = 1e-18;
+  return std::max(point_segment_distance(x, s0, s1, kPoint2), point_segment_distance(x, t0, t1, kPoint2));
+}
+
 }  // namespace rgnav::geometry

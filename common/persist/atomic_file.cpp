@@ -36,7 +36,7 @@ uint32_t crc32_of(const std::string& bytes)
   return static_cast<uint32_t>(::crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size())));
 }
 
-void write_atomically(const std::string& path, const std::string& payload)
+void write_atomically_raw(const std::string& path, const std::string& bytes)
 {
   const std::filesystem::path target(path);
   const auto dir = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
@@ -45,10 +45,7 @@ void write_atomically(const std::string& path, const std::string& payload)
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw std::runtime_error(tmp + ": cannot create: " + std::strerror(errno));
   try {
-    std::ostringstream header;
-    header << kMagic << " length=" << payload.size() << " crc32=" << crc32_of(payload) << "\n";
-    write_all(fd, header.str(), tmp);
-    write_all(fd, payload, tmp);
+    write_all(fd, bytes, tmp);
     if (::fsync(fd) != 0) throw std::runtime_error(tmp + ": fsync failed: " + std::strerror(errno));
   } catch (...) {
     ::close(fd);
@@ -65,32 +62,46 @@ void write_atomically(const std::string& path, const std::string& payload)
   }
 }
 
-std::optional<std::string> read_checked(const std::string& path)
+void write_atomically(const std::string& path, const std::string& payload)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::string header;
-  if (!std::getline(in, header)) throw CorruptFile(path + ": empty file");
+  std::ostringstream header;
+  header << kMagic << " length=" << payload.size() << " crc32=" << crc32_of(payload) << "\n";
+  write_atomically_raw(path, header.str() + payload);
+}
+
+std::string check_framed(const std::string& text, const std::string& path)
+{
+  const size_t eol = text.find('\n');
+  if (text.empty()) throw CorruptFile(path + ": empty file");
+  const std::string header = text.substr(0, eol);
   size_t length = 0;
   unsigned long crc = 0;
   char magic[64] = {0};
   char version[16] = {0};
-  if (std::sscanf(header.c_str(), "%63s %15s length=%zu crc32=%lu", magic, version, &length, &crc) != 4 ||
+  if (eol == std::string::npos ||
+      std::sscanf(header.c_str(), "%63s %15s length=%zu crc32=%lu", magic, version, &length, &crc) != 4 ||
       std::string(magic) + " " + version != kMagic)
     throw CorruptFile(path + ": not an rgnav checked file (bad header)");
-  // One read of the rest (snapshots run to megabytes; a character iterator is slow there).
-  const std::streampos at = in.tellg();
-  in.seekg(0, std::ios::end);
-  const std::streamoff rest = in.tellg() - at;
-  in.seekg(at);
-  std::string payload(static_cast<size_t>(std::max<std::streamoff>(0, rest)), '\0');
-  in.read(payload.data(), static_cast<std::streamsize>(payload.size()));
-  payload.resize(static_cast<size_t>(in.gcount()));
+  std::string payload = text.substr(eol + 1);
   if (payload.size() != length)
     throw CorruptFile(path + ": truncated or padded: " + std::to_string(payload.size()) + " bytes, header says " +
                       std::to_string(length));
   if (crc32_of(payload) != crc) throw CorruptFile(path + ": CRC mismatch (corrupted)");
   return payload;
+}
+
+std::optional<std::string> read_checked(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  // One read of the whole file (snapshots run to megabytes; a character iterator is slow there).
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0);
+  std::string text(static_cast<size_t>(std::max<std::streamoff>(0, size)), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<size_t>(in.gcount()));
+  return check_framed(text, path);
 }
 
 }  // namespace rgnav::persist

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "persist/atomic_file.h"
+#include "persist/checked_json.h"
 
 namespace rgnav::persist {
 
@@ -13,24 +13,24 @@ void write_json_state(const std::string& path, const std::string& schema, int ve
   body["schema_version"] = version;
   const auto dir = std::filesystem::path(path).parent_path();
   if (!dir.empty()) std::filesystem::create_directories(dir);
-  write_atomically(path, body.dump(1));
+  write_json_atomically(path, std::move(body));
 }
 
 std::optional<nlohmann::json> read_json_state(const std::string& path, const std::string& schema, int version,
                                               const std::string& what)
 {
-  std::optional<std::string> text;
+  std::optional<nlohmann::json> doc;
   try {
-    text = read_checked(path);
+    doc = read_checked_json(path);
   } catch (const std::exception& e) {
     throw std::runtime_error(e.what());   // CorruptFile names the file and the defect
   }
-  if (!text) return std::nullopt;
+  if (!doc) return std::nullopt;
   try {
-    auto j = nlohmann::json::parse(*text);
+    auto& j = *doc;
     if (j.at("schema").get<std::string>() != schema) throw std::invalid_argument("schema is not " + schema);
     if (j.at("schema_version").get<int>() != version) throw std::invalid_argument("unknown schema_version");
-    return j;
+    return doc;
   } catch (const std::exception& e) {
     throw not_this_state(path, what, e);
   }

@@ -1,4 +1,4 @@
-// A process's saved state as one JSON document in an atomic checked file (atomic_file.h): the
+// A process's saved state as one JSON document in an atomic checked file (checked_json.h): the
 // document carries its schema name and version, so that a file of another kind or version is
 // refused rather than misread.
 #pragma once

@@ -3,10 +3,12 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
 #include <deque>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <tuple>
 
 namespace rgnav::render {
 
@@ -126,6 +128,23 @@ void draw_rgmap(const rgmap::RgMap& map, const rgmap::RgGraph& graph, Canvas* c)
       const Vector2d hx = p.rotation() * Vector2d(o.length / 2, 0), hy = p.rotation() * Vector2d(0, o.width / 2);
       c->polygon({p.translation() - hx - hy, p.translation() + hx - hy, p.translation() + hx + hy, p.translation() - hx + hy},
                  {120, 80, 40}, 0.7);
+    }
+    // 3D objects (the vision's rectangles) seen from above: upright ones (doors, whiteboards) as
+    // their footprint, a thick line along the floor; flat ones (table tops) as their outline.
+    for (const auto& o : r.objects3d) {
+      const Color col = o.kind == 1 ? Color{230, 120, 0} : Color{150, 60, 160};
+      std::vector<Vector2d> outline;
+      for (int k = 0; k < 4; ++k) outline.push_back(f * Vector2d(o.corners(k, 0), o.corners(k, 1)));
+      if (std::fabs(o.normal.z()) > 0.7) {
+        c->polygon(outline, col, 0.5);
+      } else {
+        // The two corners farthest apart in the plane span the footprint.
+        Vector2d a = outline[0], b = outline[1];
+        for (int i = 0; i < 4; ++i)
+          for (int j = i + 1; j < 4; ++j)
+            if ((outline[i] - outline[j]).norm() > (a - b).norm()) std::tie(a, b) = std::make_pair(outline[i], outline[j]);
+        c->line(a, b, col, 3.0, false);
+      }
     }
     const Vector2d label = f * (0.5 * (r.bbox_min + r.bbox_max));
     c->text(label, "R" + std::to_string(id) + (r.name.empty() ? "" : " " + r.name), {0, 0, 0}, 14);

@@ -1,5 +1,6 @@
 #include "rgmap/rg_map.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "rgmap/region_name.h"
@@ -118,6 +119,17 @@ void RgMap::connect(int64_t gateway_id, int64_t region_b, const geometry::Pose2&
   ++version;
 }
 
+Rectangle3d moved(Rectangle3d r, const geometry::Pose2& to_from)
+{
+  const double c = std::cos(to_from.theta()), s = std::sin(to_from.theta());
+  Eigen::Matrix3d rot;
+  rot << c, -s, 0, s, c, 0, 0, 0, 1;
+  const Eigen::Vector3d t(to_from.x(), to_from.y(), 0.0);
+  for (int i = 0; i < 4; ++i) r.corners.row(i) = (rot * r.corners.row(i).transpose() + t).transpose();
+  r.normal = rot * r.normal;
+  return r;
+}
+
 int RgMap::merge(int64_t from, int64_t into, const geometry::Pose2& into_from_from, int64_t t)
 {
   Region* src = region(from);
@@ -132,6 +144,7 @@ int RgMap::merge(int64_t from, int64_t into, const geometry::Pose2& into_from_fr
     o.center = into_from_from * o.center;
     dst->objects.push_back(o);
   }
+  for (const auto& o : src->objects3d) dst->objects3d.push_back(moved(o, into_from_from));
   // Bounding box: the union, with the source's corners moved into the target frame.
   const Eigen::Vector2d corners[4] = {src->bbox_min, {src->bbox_min.x(), src->bbox_max.y()}, src->bbox_max,
                                       {src->bbox_max.x(), src->bbox_min.y()}};

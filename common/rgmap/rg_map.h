@@ -67,6 +67,9 @@ struct Rectangle3d
   int8_t kind = 0;                     // rectangle3d_t::KIND_*
 };
 
+// `r` in another frame of the plane: corners and normal turned and moved by `to_from`, heights kept.
+Rectangle3d moved(Rectangle3d r, const geometry::Pose2& to_from);
+
 struct Region
 {
   enum class State : int8_t { kOpen = 1, kFinalised = 2, kMerged = 3 };

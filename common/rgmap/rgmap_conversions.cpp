@@ -139,6 +139,20 @@ rg_graph_t to_msg(const RgGraph& g, int64_t utime)
   return m;
 }
 
+Rectangle3d from_msg(const rectangle3d_t& x)
+{
+  Rectangle3d o;
+  o.id = x.id;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) o.corners(i, j) = x.corners[i][j];
+  o.normal = Eigen::Vector3d(x.normal[0], x.normal[1], x.normal[2]);
+  o.width = x.width;
+  o.height = x.height;
+  o.confidence = x.confidence;
+  o.kind = x.kind;
+  return o;
+}
+
 Region from_msg(const region_t& m)
 {
   Region r;
@@ -154,18 +168,7 @@ Region from_msg(const region_t& m)
   r.objects = map_vector(m.objects, [](const object2d_t& x) {
     return Object2d{x.id, static_cast<Object2d::Shape>(x.shape), msg::to_pose2(x.center), x.length, x.width, x.confidence};
   });
-  r.objects3d = map_vector(m.objects3d, [](const rectangle3d_t& x) {
-    Rectangle3d o;
-    o.id = x.id;
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 3; ++j) o.corners(i, j) = x.corners[i][j];
-    o.normal = Eigen::Vector3d(x.normal[0], x.normal[1], x.normal[2]);
-    o.width = x.width;
-    o.height = x.height;
-    o.confidence = x.confidence;
-    o.kind = x.kind;
-    return o;
-  });
+  r.objects3d = map_vector(m.objects3d, [](const rectangle3d_t& x) { return from_msg(x); });
   r.bbox_min = msg::to_vector(m.bbox_min);
   r.bbox_max = msg::to_vector(m.bbox_max);
   if (m.freespace_width > 0 && m.freespace_height > 0)

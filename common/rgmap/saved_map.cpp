@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "config/config.h"
-#include "persist/atomic_file.h"
+#include "persist/checked_json.h"
 #include "rgmap/rgmap_json.h"
 
 namespace rgnav::rgmap {
@@ -27,15 +27,15 @@ RgMap load_map_flag(const std::string& path)
 RgMap load_saved_map(const std::string& path)
 {
   const std::string file = saved_map_file(path);
-  std::optional<std::string> text;
+  std::optional<nlohmann::json> doc;
   try {
-    text = persist::read_checked(file);
+    doc = persist::read_checked_json(file);
   } catch (const std::exception& e) {
     throw std::runtime_error(e.what());   // CorruptFile names the file and the defect
   }
-  if (!text) throw std::runtime_error(file + ": no such file");
+  if (!doc) throw std::runtime_error(file + ": no such file");
   try {
-    return from_json(nlohmann::json::parse(*text));
+    return from_json(*doc);
   } catch (const std::exception& e) {
     throw std::runtime_error(file + ": not an RG map: " + e.what());
   }
@@ -44,7 +44,7 @@ RgMap load_saved_map(const std::string& path)
 void save_map(const RgMap& map, const std::string& path)
 {
   // The same form the RG kernel exports, so render, map and the processes read it alike.
-  persist::write_atomically(saved_map_file(path), to_json(map).dump(1));
+  persist::write_json_atomically(saved_map_file(path), to_json(map));
 }
 
 }  // namespace rgnav::rgmap

@@ -1,5 +1,5 @@
-// A saved RG map on disk: an rgmap.json in the checkpoint framing of common/persist (length and
-// CRC header), as the RG kernel and ./rgnav map write it, or a folder holding one. Processes
+// A saved RG map on disk: an rgmap.json, a JSON document whose first member checks the rest
+// (common/persist/checked_json.h), as the RG kernel and ./rgnav map write it, or a folder holding one. Processes
 // that run on a saved map (localizer, planner) load it with load_saved_map; the operator's
 // tools that change it (./rgnav name-region --map) write it back with save_map, atomically.
 #pragma once

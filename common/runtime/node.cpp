@@ -24,6 +24,7 @@ NodeOptions load_node_options(const config::Config& node_section, const std::str
   o.heartbeat_hz = node_section.number("heartbeat_hz", o.heartbeat_hz, 0.5, 100.0);
   o.input_stale_after = std::chrono::milliseconds(
       node_section.integer("input_stale_after_ms", o.input_stale_after.count(), 0, 3'600'000));
+  o.max_stamp_jump = std::chrono::milliseconds(node_section.integer("max_stamp_jump_ms", o.max_stamp_jump.count(), 100, 3'600'000));
   return o;
 }
 
@@ -48,7 +49,8 @@ int64_t steady_ns(Node::Clock::time_point t)
 
 }  // namespace
 
-Node::Node(NodeOptions options) : options_(std::move(options)), signals_(std::make_unique<SignalWatcher>())
+Node::Node(NodeOptions options)
+    : options_(std::move(options)), signals_(std::make_unique<SignalWatcher>()), clock_(options_.max_stamp_jump)
 {
   bus_ = std::make_unique<bus::LcmBus>(options_.lcm_url);
   host_ = host_name();
@@ -62,7 +64,10 @@ Node::Node(NodeOptions options) : options_(std::move(options)), signals_(std::ma
 }
 
 Node::Node(NodeOptions options, std::unique_ptr<bus::Bus> bus)
-    : options_(std::move(options)), signals_(std::make_unique<SignalWatcher>()), bus_(std::move(bus))
+    : options_(std::move(options)),
+      signals_(std::make_unique<SignalWatcher>()),
+      bus_(std::move(bus)),
+      clock_(options_.max_stamp_jump)
 {
   host_ = host_name();
   every(heartbeat_period(options_), [this] {

@@ -41,6 +41,9 @@ struct NodeOptions
   double heartbeat_hz = 5.0;
   // Heartbeat state turns DEGRADED when the newest input is older than this (0 = never).
   std::chrono::milliseconds input_stale_after{2000};
+  // The message clock takes a stamp this far ahead of it only once a second input confirms it
+  // (time::MessageClock); a node whose inputs come at tens of Hz takes a tighter bound.
+  std::chrono::milliseconds max_stamp_jump{5000};
 };
 
 // Reads the `node:` section every process config has.
@@ -126,7 +129,7 @@ class Node
   std::unique_ptr<SignalWatcher> signals_;  // before bus_: threads LCM may start inherit the mask
   std::unique_ptr<bus::Bus> bus_;
   bus::DropCounter drops_;
-  time::MessageClock clock_;
+  time::MessageClock clock_;  // made from options_.max_stamp_jump
   ProcStats stats_;
   std::vector<WallTimer> wall_timers_;
   std::vector<MessageTimer> message_timers_;

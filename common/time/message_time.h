@@ -31,26 +31,47 @@ constexpr double to_seconds(std::chrono::duration<Rep, Period> d)
 }
 
 // Tracks the newest message time a process has accepted. Never goes backwards: an input with
-// an older utime (out of order, or a replayed log restarting) does not move it.
+// an older utime (out of order, or a replayed log restarting) does not move it. Nor does one
+// stamped more than max_jump ahead, until a second input within confirm of it says the same
+// (as time/robot_clock.h): one corrupted stamp would otherwise hold every message-time timer
+// and age every input for as long as it is ahead.
 class MessageClock
 {
  public:
+  static constexpr Duration kMaxJump{5'000'000};
+  static constexpr Duration kConfirm{1'000'000};
+
+  explicit MessageClock(Duration max_jump = kMaxJump, Duration confirm = kConfirm) : max_jump_(max_jump), confirm_(confirm) {}
+
   // Returns true when t advanced the clock.
   bool observe(Time t)
   {
     if (has_time_ && t <= now_) return false;
+    if (has_time_ && t - now_ > max_jump_ && !(has_held_ && (t - held_ <= confirm_ && held_ - t <= confirm_))) {
+      held_ = t;
+      has_held_ = true;
+      return false;
+    }
     now_ = t;
     has_time_ = true;
+    has_held_ = false;
     return true;
   }
   bool has_time() const { return has_time_; }
   Time now() const { return now_; }
   // Starting over (e.g. a log replay restarted from its beginning).
-  void reset() { has_time_ = false; now_ = Time{}; }
+  void reset()
+  {
+    has_time_ = has_held_ = false;
+    now_ = Time{};
+  }
 
  private:
+  Duration max_jump_, confirm_;
   Time now_{};
   bool has_time_ = false;
+  Time held_{};  // a stamp far ahead, waiting for confirmation
+  bool has_held_ = false;
 };
 
 // Wall time in utime, for the few places that must stamp real time: drivers stamping

@@ -17,12 +17,12 @@ constexpr int64_t kMaxStamp = int64_t{1} << 62;
 std::string RobotClock::observe(int64_t utime, const std::string& channel)
 {
   if (utime <= 0 || utime >= kMaxStamp) return "utime out of range";
-  if (now_ == 0 || utime <= now_ + kMaxJumpUs) {
+  if (now_ == 0 || utime <= now_ + max_jump_us_) {
     now_ = std::max(now_, utime);
     held_ = 0;
     return "";
   }
-  if (held_ != 0 && std::llabs(utime - held_) <= kConfirmUs) {
+  if (held_ != 0 && std::llabs(utime - held_) <= confirm_us_) {
     spdlog::warn("robot time jumped ahead by {:.1f} s (confirmed by {})", static_cast<double>(utime - now_) * 1e-6, channel);
     now_ = utime;
     held_ = 0;

@@ -4,17 +4,19 @@
 # while the machine is loaded. Writes logs/bench/control.json.
 # The office world's tour is driven --tours times as the demo drives it (tour runner cadence,
 # people shifted 7 s per run), measuring whether the robot gets through its doors and halls.
-#   control.sh [--courses N] [--chains N] [--tours N] [--jitter-seconds S] [--out FILE]
+#   control.sh [--courses N] [--chains N] [--tours N] [--doorways N] [--jitter-seconds S] [--out FILE]
+# --doorways: doorway and narrow-hallway encounters with a person (issue 35 item 4; 0: none).
 # The benchmark itself: tests/eval/control (control_bench, loop_canary).
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"
-courses=50 chains=6 tours=6 jitter_s=60 out_file=
+courses=50 chains=6 tours=6 doorways=60 jitter_s=60 out_file=
 while [ $# -gt 0 ]; do
   case "$1" in
     --courses) courses="$2"; shift 2 ;;
     --tours) tours="$2"; shift 2 ;;
     --chains) chains="$2"; shift 2 ;;
+    --doorways) doorways="$2"; shift 2 ;;
     --jitter-seconds) jitter_s="$2"; shift 2 ;;
     --out) out_file="$2"; shift 2 ;;
     *) echo "control.sh: unknown argument $1" >&2; exit 2 ;;
@@ -64,7 +66,7 @@ done
 #    alone once the jitter measurement is over).
 "$BUILD/bin/control_bench" --config-dir "$ROOT/config" --out "$tmp/sim.json" \
   --courses "$courses" --chains "$chains" --personal-space 0.4 --oblivious-too \
-  --tours "$tours" --tour-world "$ROOT/config/worlds/office.yaml" > /dev/null &
+  --tours "$tours" --doorways "$doorways" --tour-world "$ROOT/config/worlds/office.yaml" > /dev/null &
 bench_pid=$!
 sleep "$jitter_s"
 kill -TERM "$lld_pid"
@@ -106,13 +108,19 @@ out = {
              "one per CPU at the same priority; see loop.evidence.verdict. Tours ('tours'): the office "
              "world's tour as the demo drives it (targets re-sent at 2 Hz with the tour runner's goal ids, a "
              "perfect localizer), people starting 7 s later per run; longest_stall_s is the longest time "
-             "between two targets reached.",
+             "between two targets reached. Doorway encounters ('doorway_encounters'): generated doorways and narrow "
+             "hallways with one person walking the other way who waits, stands aside or goes round at random; "
+             "its 'definitions' say what resolved, deadlock, collision and time lost mean.",
     "tracking": sim["tracking"],
     "obstacle_courses": sim["obstacle_courses"],
     "obstacle_courses_oblivious_people": sim.get("obstacle_courses_oblivious_people"),
     "tours": sim.get("tours"),
+    "doorway_encounters": sim.get("doorway_encounters"),
     "loop": loop,
 }
 json.dump(out, open(sys.argv[3], "w"), indent=2)
-print(json.dumps({k: v for k, v in out.items() if k not in ("tracking", "obstacle_courses", "notes")}, indent=2))
+shown = {k: v for k, v in out.items() if k not in ("tracking", "obstacle_courses", "notes")}
+if shown.get("doorway_encounters"):
+    shown["doorway_encounters"] = {k: v for k, v in shown["doorway_encounters"].items() if k not in ("runs", "contacts")}
+print(json.dumps(shown, indent=2))
 PY

@@ -76,6 +76,8 @@ cleanup() {
 trap cleanup EXIT INT TERM
 
 echo "demo: stack launched on '$world' with no map (log: $run/supervisor.log); exploring ..." >&2
+viewer_port=$(awk '/^http:/ {h = 1} h && /^  port:/ {print $2; exit}' "$ROOT/config/viewer.yaml")
+echo "demo: live view: open http://127.0.0.1:${viewer_port:-8036}/ in a browser${RGNAV_DEMO_INNER:+ (inside the private network namespace of the demo)}" >&2
 start=$(date +%s)
 phase=""
 while :; do
@@ -135,8 +137,6 @@ fi
 map_counts=$(python3 - "$run/rg_kernel/rgmap.json" <<'PY' 2>/dev/null || echo "? regions, ? gateways"
 import json, sys
 text = open(sys.argv[1]).read()
-if text.startswith("rgnav-checked-file"):   # common/persist's framing: a header line, then the JSON
-    text = text.split("\n", 1)[1]
 m = json.loads(text)
 regions = [r for r in m["regions"] if r["state"] != 3]
 gateways = [g for g in m["gateways"] if not g["neutralized"] and g["region_b"]]

@@ -113,6 +113,20 @@ struct Person
   bool turn_back = false;
 };
 
+// A flat picture hung on a wall, seen only by the cameras (posters, whiteboards: planar
+// rectangles the vision looks for). a-b is its lower edge in the plane it hangs in: a
+// centimetre off the wall face, on the side it faces.
+struct WallObject
+{
+  enum class Kind { kPoster, kWhiteboard };
+  std::string name;
+  Kind kind = Kind::kPoster;
+  Vec2 a{0, 0};
+  Vec2 b{0, 0};
+  double z_min = 1.0;  // [m] lower edge
+  double z_max = 1.8;  // [m] upper edge
+};
+
 enum class RegionKind { kRoom, kHallway, kLobby, kOther };
 
 struct Region
@@ -148,6 +162,9 @@ struct World
   std::vector<Box> boxes;
   std::vector<Table> tables;
   std::vector<Person> people;
+  std::vector<WallObject> wall_objects;  // cameras only
+  // Seeds the surfaces' texture for the cameras (the same seed: the same look).
+  uint64_t texture_seed = 1;
   std::vector<Region> regions;
   std::vector<Gateway> gateways;
   std::vector<Vec2> tour;  // optional waypoints, starting near `start`

@@ -135,6 +135,22 @@ void furnish(const Office& o, World* w)
   // A desk (legs only: the laser sees four posts) at the far wall, a cabinet in a far corner.
   w->tables.push_back(make_table(o.name + ".desk", at(width * 0.35, depth - 0.45), size(1.6, 0.8)));
   w->boxes.push_back(make_box(o.name + ".cabinet", at(width - 0.35, depth - 0.65), size(0.6, 1.2), 1.9));
+  // For the cameras: a whiteboard on the far wall above the desk, a poster on the side wall.
+  WallObject board;
+  board.name = o.name + ".whiteboard";
+  board.kind = WallObject::Kind::kWhiteboard;
+  board.a = at(width * 0.35 - 0.7, depth - 0.01);
+  board.b = at(width * 0.35 + 0.7, depth - 0.01);
+  board.z_min = 1.0;
+  board.z_max = 1.9;
+  w->wall_objects.push_back(board);
+  WallObject poster;
+  poster.name = o.name + ".poster";
+  poster.a = at(0.01, depth * 0.35);
+  poster.b = at(0.01, depth * 0.35 + 0.6);
+  poster.z_min = 1.1;
+  poster.z_max = 1.9;
+  w->wall_objects.push_back(poster);
   if (!o.cluttered) return;
   w->tables.push_back(make_table(o.name + ".table", at(width * 0.45, depth * 0.5), size(1.2, 0.8)));
   w->boxes.push_back(make_box(o.name + ".chair1", at(width * 0.45 - 0.9, depth * 0.5), size(0.45, 0.45), 0.9));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -219,6 +220,20 @@ World parse_world_yaml(const config::Config& cfg, const std::string& base_dir)
     p.turn_back = c.boolean("turn_back", p.turn_back);
     world.people.push_back(p);
   }
+  for (const auto& c : cfg.list("wall_objects")) {
+    WallObject o;
+    o.name = unique_name(c, "wall_object_" + std::to_string(world.wall_objects.size()), &names);
+    o.kind = c.choice("kind", "poster", {"poster", "whiteboard"}) == "whiteboard" ? WallObject::Kind::kWhiteboard
+                                                                                 : WallObject::Kind::kPoster;
+    o.a = read_point(c, "a");
+    o.b = read_point(c, "b");
+    if ((o.a - o.b).norm() < 0.05) c.fail("b", "a wall object must be at least 5 cm wide");
+    o.z_min = c.number("z_min", o.z_min, 0.0, 20.0);
+    o.z_max = c.number("z_max", o.z_max, 0.0, 20.0);
+    if (o.z_max < o.z_min + 0.05) c.fail("z_max", "must exceed z_min by at least 5 cm");
+    world.wall_objects.push_back(o);
+  }
+  world.texture_seed = static_cast<uint64_t>(cfg.integer("texture_seed", 1, 0, INT64_MAX));
   std::set<std::string> region_names;
   for (const auto& c : cfg.list("regions")) {
     Region r;
@@ -328,6 +343,12 @@ std::string world_to_yaml(const World& w)
       << (p.go_around_share > 0.0 ? ", go_around_share: " + num(p.go_around_share) : std::string())
       << (p.patience_max > 0.0 ? ", patience_max: " + num(p.patience_max) : std::string())
       << (p.turn_back ? ", turn_back: true" : "") << (p.once ? ", once: true" : "") << "}\n";
+  if (!w.wall_objects.empty()) o << "wall_objects:\n";
+  for (const auto& x : w.wall_objects)
+    o << "  - {name: " << quoted(x.name) << ", kind: " << (x.kind == WallObject::Kind::kWhiteboard ? "whiteboard" : "poster")
+      << ", a: " << point_text(x.a) << ", b: " << point_text(x.b) << ", z_min: " << num(x.z_min)
+      << ", z_max: " << num(x.z_max) << "}\n";
+  if (w.texture_seed != 1) o << "texture_seed: " << w.texture_seed << "\n";
   if (!w.regions.empty()) o << "regions:\n";
   for (const auto& r : w.regions)
     o << "  - {name: " << quoted(r.name) << ", kind: " << to_string(r.kind) << ", polygon: " << points_text(r.polygon) << "}\n";

@@ -2,16 +2,32 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+
+#include "drivers/stereo/stereo_calibration.h"
+
 #include "rgnav/heartbeat_t.hpp"
 #include "rgnav/stereo_images_t.hpp"
 
 namespace rgnav::stereo {
 
-CaptureOptions load_capture_options(const config::Config& c, const config::Config& channels, const std::string& data_root)
+std::string world_path(const std::string& world, const std::string& config_dir)
+{
+  namespace fs = std::filesystem;
+  if (world.find('/') == std::string::npos && fs::path(world).extension().empty())
+    return config_dir + "/worlds/" + world + ".yaml";
+  return fs::path(world).is_absolute() ? world : (fs::path(config_dir) / world).lexically_normal().string();
+}
+
+CaptureOptions load_capture_options(const config::Config& c, const config::Config& channels, const std::string& data_root,
+                                    const std::string& config_dir)
 {
   CaptureOptions o;
-  o.source = c.choice("source", "folder", {"folder", "cameras"}) == "cameras" ? CaptureOptions::Source::kCameras
-                                                                            : CaptureOptions::Source::kFolder;
+  const std::string source = c.choice("source", "folder", {"folder", "cameras", "sim"});
+  o.source = source == "cameras" ? CaptureOptions::Source::kCameras
+                                 : (source == "sim" ? CaptureOptions::Source::kSim : CaptureOptions::Source::kFolder);
   const auto cams = c.section("cameras");
   o.cameras.left_device = cams.string("left_device", o.cameras.left_device);
   o.cameras.right_device = cams.string("right_device", o.cameras.right_device);
@@ -35,11 +51,30 @@ CaptureOptions load_capture_options(const config::Config& c, const config::Confi
   o.pan = c.number("pan_rad", 0, -M_PI, M_PI);
   o.tilt = c.number("tilt_rad", 0, -M_PI / 2, M_PI / 2);
   o.channel = channels.string("stereo", o.channel);
+  o.sim.truth_channel = channels.string("truth", o.sim.truth_channel);
+  const auto sim = c.section("sim");
+  o.sim.world_file = world_path(sim.string("world", "office"), config_dir);
+  o.sim.noise_sigma = sim.number("noise_sigma", o.sim.noise_sigma, 0.0, 50.0);
+  o.sim.noise_seed = sim.integer("noise_seed", o.sim.noise_seed, 0, INT64_MAX);
+  o.sim.people_seed = sim.integer("people_seed", o.sim.people_seed, 0, INT64_MAX);
+  if (o.source == CaptureOptions::Source::kSim) {
+    // The images carry calibration_id; the simulated head renders through that very file.
+    try {
+      o.sim.calibration_file = stereo_calibration_path(config_dir, o.calibration_id);
+    } catch (const config::ConfigError& e) {
+      c.fail("calibration_id", e.what());
+    }
+    if (!std::filesystem::is_regular_file(o.sim.calibration_file))
+      c.fail("calibration_id", "no calibration file " + o.sim.calibration_file);
+    if (!std::filesystem::is_regular_file(o.sim.world_file)) sim.fail("world", "no world file " + o.sim.world_file);
+  }
   return o;
 }
 
 std::unique_ptr<StereoSource> make_source(const CaptureOptions& o)
 {
+  if (o.source == CaptureOptions::Source::kSim)
+    throw std::logic_error("the simulated head is made by sim::make_sim_stereo_source (drivers/sim)");
   if (o.source == CaptureOptions::Source::kCameras) return std::make_unique<CameraPairSource>(o.cameras);
   return std::make_unique<ImageFolderSource>(o.folder);
 }

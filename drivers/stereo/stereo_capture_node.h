@@ -13,11 +13,24 @@
 
 namespace rgnav::stereo {
 
+// The simulated head (drivers/sim/sim_stereo_source.h): what it renders and where the true pose
+// comes from.
+struct SimSourceOptions
+{
+  std::string world_file;        // the simulator's world (the same as sim.yaml's sim.world)
+  std::string calibration_file;  // <config dir>/stereo/<calibration_id>.yml
+  std::string truth_channel = "SIM_TRUTH";
+  double noise_sigma = 2.0;      // [grey levels]
+  int64_t noise_seed = 1;
+  int64_t people_seed = 1;       // the simulator's seed (sim.yaml sim.seed)
+};
+
 struct CaptureOptions
 {
-  enum class Source { kCameras, kFolder } source = Source::kFolder;
+  enum class Source { kCameras, kFolder, kSim } source = Source::kFolder;
   CameraPairOptions cameras;
   ImageFolderOptions folder;
+  SimSourceOptions sim;
   Encoding encoding = Encoding::kJpeg;
   int jpeg_quality = 90;
   double rate_hz = 10;
@@ -26,9 +39,15 @@ struct CaptureOptions
   std::string channel = "STEREO_IMAGES";
 };
 
-// data_root resolves relative folder paths (the repository's ../shared/data by default).
+// A world name (config/worlds/<name>.yaml) or a file (relative paths: the config folder).
+std::string world_path(const std::string& world, const std::string& config_dir);
+
+// data_root resolves relative folder paths (the repository's ../shared/data by default);
+// config_dir the calibration file and the simulated world (source: sim), which must exist.
 CaptureOptions load_capture_options(const config::Config& capture, const config::Config& channels,
-                                    const std::string& data_root);
+                                    const std::string& data_root, const std::string& config_dir);
+// Cameras or folder; the simulated head needs the bus for the true pose and is made by
+// drivers/sim (sim_stereo_feed.h).
 std::unique_ptr<StereoSource> make_source(const CaptureOptions& options);
 
 class StereoCaptureNode

@@ -108,7 +108,6 @@ CaNodeOptions load_ca_options(const config::Config& root, const config::RobotDes
   c.yield_head_on_after = yi.number("head_on_after_s", c.yield_head_on_after, 0.0, 600.0);
   c.yield_notice = yi.number("notice_m", c.yield_notice, 0.0, 20.0);
   c.yield_notice_stopped = yi.number("notice_stopped_m", c.yield_notice_stopped, 0.0, 20.0);
-  y.path_length = yi.number("path_length_m", y.path_length, 0.5, 30.0);
   y.path_half_width = yi.number("path_half_width_m", y.path_half_width, 0.1, 3.0);
   y.extra = yi.number("extra_m", y.extra, 0.0, 3.0);
   y.spot_margin = yi.number("spot_margin_m", y.spot_margin, 0.0, 2.0);
@@ -118,6 +117,7 @@ CaNodeOptions load_ca_options(const config::Config& root, const config::RobotDes
   y.in_path_cost = yi.number("in_path_cost", y.in_path_cost, 1.0, 100.0);
   y.downstream_cost = yi.number("downstream_cost", y.downstream_cost, 1.0, 100.0);
   y.cell = yi.number("cell_m", y.cell, 0.02, 0.5);
+  y.shadow_cost = yi.number("shadow_cost", y.shadow_cost, 1.0, 100.0);
   c.yield_speed = yi.number("speed_mps", c.yield_speed, 0.02, 1.0);
   y.watch_half_width = yi.number("watch_half_width_m", y.watch_half_width, 0.1, 5.0);
   y.watch_behind = yi.number("watch_behind_m", y.watch_behind, 0.0, 20.0);

@@ -137,7 +137,16 @@ class CollisionAvoidance
   bool targets_changed_goal() const { return targets_.goal_id != give_way_goal_id_; }
   // Leaving a person's path sideways (yielding.cpp). The person in the way, if any: someone
   // walking toward the robot with it on their path, or someone who stopped in front of it.
-  std::optional<PersonPath> person_in_the_way() const;
+  struct PersonInTheWay
+  {
+    PersonPath path;
+    bool walking = false;  // walking now (else: walked up and stopped)
+  };
+  std::optional<PersonInTheWay> person_in_the_way() const;
+  // [s] a yield manoeuvre takes the drive.
+  double manoeuvre_time(const trajectory::Chain& c) const;
+  // Where the robot's way leads (unit, odom frame): toward its first target at least a metre off.
+  std::optional<Eigen::Vector2d> way_ahead() const;
   std::optional<trajectory::Trajectory> start_yield(time::Time now, const PersonPath& path);
   // From where the robot is: to the yield point (or a look behind first, or waiting where it is).
   // Nothing: the yield ended (no place to go).
@@ -231,6 +240,8 @@ class CollisionAvoidance
     int64_t trajectory_id = 0;  // the manoeuvre under way (0: none yet, stopping first)
     bool looked = false;
     int plans = 0;             // yield points chosen (blocked ways re-plan, a few times)
+    int returns = 0;           // ways back chosen anew
+    time::Time rechecked{};    // leaving: last looked for a nearer place
     std::vector<Eigen::Vector2d> trail;  // where the robot drove since it began (odom frame, 0.1 m apart; the first: where it left its way)
     double start_heading = 0.0;          // [rad] its heading on its way when it began
   };

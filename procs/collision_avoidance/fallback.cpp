@@ -14,7 +14,6 @@ using trajectory::Segment;
 
 namespace {
 constexpr const char* kTurningAway = "reactive fallback: backing off, turning away";
-constexpr double kHeadOn = 0.8;  // [rad] someone walking within this of straight at the robot's way comes head-on
 }  // namespace
 
 std::optional<trajectory::Trajectory> CollisionAvoidance::backing_off(time::Time now, double radius)
@@ -160,15 +159,11 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time no
   // backing off or turning away from them now would only turn the laser from them.
   if (now >= yield_retry_after_) {
     if (const auto person = person_in_the_way()) {
-      // Coming straight at the robot along its own way (a hallway, a doorway it is about to go
-      // through) they will not pass by: no reason to wait and see.
-      const auto g = goals();
-      const Eigen::Vector2d to_target =
-          g.empty() ? Eigen::Vector2d::Zero() : Eigen::Vector2d(g.front().translation() - pose_.translation());
-      const bool head_on = to_target.norm() > 1e-6 && person->direction.dot(to_target.normalized()) < -std::cos(kHeadOn);
-      const double after = head_on ? options_.yield_head_on_after : options_.yield_sideways_after;
+      // Walking straight at the robot along its way, they will not pass by: no reason to wait
+      // and see; someone who stopped there may walk on by themselves.
+      const double after = person->walking ? options_.yield_head_on_after : options_.yield_sideways_after;
       if (time::to_seconds(now - progress_since_) >= after) {
-        auto out = start_yield(now, *person);
+        auto out = start_yield(now, person->path);
         if (yield_.phase != YieldPhase::kNone) return out;
       } else {
         return stop(now, Mode::kReactive, "reactive fallback: someone in the way, waiting");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <queue>
 
@@ -12,7 +13,7 @@ namespace rgnav::collision_avoidance {
 
 double PersonPath::distance(const Eigen::Vector2d& p) const
 {
-  const double s = std::clamp(along(p), 0.0, length);
+  const double s = std::max(0.0, along(p));
   return (p - (from + s * direction)).norm();
 }
 
@@ -55,24 +56,29 @@ std::vector<Eigen::Vector2d> leaving_corners(const LocalMap& map, const std::vec
 
 }  // namespace
 
-std::optional<YieldPoint> choose_yield_point(const LocalMap& map, const Eigen::Vector2d& robot, const PersonPath& path,
-                                             double clearance, const YieldOptions& o)
+namespace {
+
+// A search over the local map's grid from the robot (Dijkstra, 8-connected) through space the
+// scans saw (not out of every view, but for the robot's own surroundings) to the cheapest cell
+// `goal` accepts within `max_travel` of way; `allowed` may close cells, `factor` weighs steps
+// (from, to). Where the robot starts closer than the clearance to something, the way may leave,
+// as first_collision lets a chain, never get closer. Cells below clearance + way_margin cost
+// more where there is room. The way: cell centres from the robot (first) to the goal cell.
+using CellTest = std::function<bool(int x, int y, const Eigen::Vector2d& centre)>;
+using StepFactor = std::function<double(const Eigen::Vector2d& from, const Eigen::Vector2d& to)>;
+std::optional<std::vector<Eigen::Vector2d>> search(const LocalMap& map, const LocalGrid& grid, const Eigen::Vector2d& robot,
+                                                   double clearance, const YieldOptions& o, double max_travel,
+                                                   const CellTest& allowed, const CellTest& goal, const StepFactor& factor)
 {
-  const double reach = o.max_travel + 0.5;
-  const LocalGrid grid(map, robot.array() - reach, robot.array() + reach, o.cell);
   const int w = grid.width(), h = grid.height();
   const Eigen::Vector2i s = grid.cell_of(robot);
   const double c0 = map.clearance(robot, clearance);
-  const double off_needed = clearance + o.path_half_width + o.extra;
-  // Never nearer the person than clearance + person_keep, nor nearer than the robot is now.
-  const double keep = std::min(clearance + o.person_keep, (robot - path.from).norm());
-  // `len`: the way's length to the cell. Tight (the person walked up to the robot): the way may
-  // leave, as first_collision lets a chain, never get closer.
-  // `from`: where the step into the cell starts (the robot, or a cell's centre).
+  // `from`: where the step into the cell starts (the robot, or a cell's centre); `len`: the
+  // way's length to the cell.
   auto passable = [&](int x, int y, const Eigen::Vector2d& from, double len) {
     const Eigen::Vector2d c = grid.centre(x, y);
     if (!grid.in_view(x, y) && (c - robot).norm() > 0.5) return false;  // unknown: behind the robot
-    if ((c - path.from).norm() < keep) return false;
+    if (!allowed(x, y, c)) return false;
     if (grid.clearance(x, y) >= clearance) return true;  // the grid's is on the safe side
     const double step = (c - from).norm();
     for (const double f : {0.5, 1.0})
@@ -80,11 +86,6 @@ std::optional<YieldPoint> choose_yield_point(const LocalMap& map, const Eigen::V
         return false;
     return true;
   };
-  auto goal = [&](int x, int y) {
-    const Eigen::Vector2d c = grid.centre(x, y);
-    return grid.seen(x, y) && grid.clearance(x, y) >= clearance + o.spot_margin && path.distance(c) >= off_needed;
-  };
-
   const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
   std::vector<double> cost(n, std::numeric_limits<double>::infinity()), length(n, 0.0);
   std::vector<int> parent(n, -1);
@@ -101,7 +102,7 @@ std::optional<YieldPoint> choose_yield_point(const LocalMap& map, const Eigen::V
     if (closed[static_cast<size_t>(cur)]) continue;
     closed[static_cast<size_t>(cur)] = 1;
     const int cx = cur % w, cy = cur / w;
-    if (goal(cx, cy)) {
+    if (goal(cx, cy, grid.centre(cx, cy))) {
       found = cur;
       break;
     }
@@ -116,15 +117,13 @@ std::optional<YieldPoint> choose_yield_point(const LocalMap& map, const Eigen::V
         const Eigen::Vector2d next = grid.centre(nx, ny);
         const double step = (next - here).norm();
         const double len = length[static_cast<size_t>(cur)] + step;
-        if (len > o.max_travel || !passable(nx, ny, here, len)) continue;
-        // Leave the person's path at once, and not down it farther than needed (give_way.h).
-        double factor = path.distance(next) < clearance + o.path_half_width ? o.in_path_cost : 1.0;
+        if (len > max_travel || !passable(nx, ny, here, len)) continue;
+        double f = factor(here, next);
         // Keep way_margin more than the clearance where there is room (between walls that close
         // in, it cannot: a narrow hallway stays passable).
         if (o.way_margin > 0.0)
-          factor *= 1.0 + 2.0 * std::clamp((clearance + o.way_margin - grid.clearance(nx, ny)) / o.way_margin, 0.0, 1.0);
-        if ((next - here).dot(path.direction) > 0.3 * step) factor *= o.downstream_cost;
-        const double c = cost[static_cast<size_t>(cur)] + step * factor;
+          f *= 1.0 + 2.0 * std::clamp((clearance + o.way_margin - grid.clearance(nx, ny)) / o.way_margin, 0.0, 1.0);
+        const double c = cost[static_cast<size_t>(cur)] + step * f;
         if (c < cost[static_cast<size_t>(ni)]) {
           cost[static_cast<size_t>(ni)] = c;
           length[static_cast<size_t>(ni)] = len;
@@ -138,17 +137,76 @@ std::optional<YieldPoint> choose_yield_point(const LocalMap& map, const Eigen::V
   for (int i = found; i >= 0; i = parent[static_cast<size_t>(i)]) cells.push_back(grid.centre(i % w, i / w));
   std::reverse(cells.begin(), cells.end());
   cells.front() = robot;
-  YieldPoint y;
-  y.point = cells.back();
-  y.off_path = path.distance(y.point);
-  if (cells.size() < 2) return y;  // already out of the way
-  y.corners = leaving_corners(map, cells, clearance, o.way_margin);
-  Eigen::Vector2d prev = robot;
-  for (const auto& c : y.corners) {
-    y.travel += (c - prev).norm();
+  return cells;
+}
+
+double length_of(const Eigen::Vector2d& from, const std::vector<Eigen::Vector2d>& corners)
+{
+  double l = 0.0;
+  Eigen::Vector2d prev = from;
+  for (const auto& c : corners) {
+    l += (c - prev).norm();
     prev = c;
   }
+  return l;
+}
+
+constexpr double kAheadOfThem = 0.5;  // [m] a yield point lies at least this far ahead of the person along their path
+
+}  // namespace
+
+std::optional<YieldPoint> choose_yield_point(const LocalMap& map, const Eigen::Vector2d& robot, const PersonPath& path,
+                                             double clearance, const YieldOptions& o)
+{
+  const double reach = o.max_travel + 0.5;
+  const LocalGrid grid(map, robot.array() - reach, robot.array() + reach, o.cell);
+  const double off_needed = clearance + o.path_half_width + o.extra;
+  // Never nearer the person than clearance + person_keep, nor nearer than the robot is now.
+  const double keep = std::min(clearance + o.person_keep, (robot - path.from).norm());
+  const auto cells = search(
+      map, grid, robot, clearance, o, o.max_travel,
+      [&](int, int, const Eigen::Vector2d& c) { return (c - path.from).norm() >= keep; },
+      // In view: seen free, or in the shadow of what was seen (from inside a hallway, the room
+      // beyond its mouth is seen only through the mouth; the way there is re-chosen as it opens).
+      // And ahead of the person along their path: not beside or past them (that is their side).
+      [&](int x, int y, const Eigen::Vector2d& c) {
+        return grid.in_view(x, y) && grid.clearance(x, y) >= clearance + o.spot_margin && path.distance(c) >= off_needed &&
+               path.along(c) >= kAheadOfThem;
+      },
+      // Leave the person's path at once, and not down it farther than needed (give_way.h);
+      // through space the scans saw rather than its shadow.
+      [&](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+        double f = path.distance(to) < clearance + o.path_half_width ? o.in_path_cost : 1.0;
+        if ((to - from).dot(path.direction) > 0.3 * (to - from).norm()) f *= o.downstream_cost;
+        const Eigen::Vector2i c = grid.cell_of(to);
+        if (!grid.seen(c.x(), c.y())) f *= o.shadow_cost;
+        return f;
+      });
+  if (!cells) return std::nullopt;
+  YieldPoint y;
+  y.point = cells->back();
+  y.off_path = path.distance(y.point);
+  if (cells->size() < 2) return y;  // already out of the way
+  y.corners = leaving_corners(map, *cells, clearance, o.way_margin);
+  y.travel = length_of(robot, y.corners);
   return y;
+}
+
+std::optional<std::vector<Eigen::Vector2d>> way_to(const LocalMap& map, const Eigen::Vector2d& robot,
+                                                   const Eigen::Vector2d& to, double clearance, const YieldOptions& o)
+{
+  const double reach = o.max_travel + 0.5;
+  if ((to - robot).norm() > reach) return std::nullopt;
+  const LocalGrid grid(map, robot.array() - reach, robot.array() + reach, o.cell);
+  const Eigen::Vector2i g = grid.cell_of(to);
+  const auto cells = search(
+      map, grid, robot, clearance, o, 2.0 * o.max_travel, [](int, int, const Eigen::Vector2d&) { return true; },
+      [&](int x, int y, const Eigen::Vector2d&) { return x == g.x() && y == g.y(); },
+      [](const Eigen::Vector2d&, const Eigen::Vector2d&) { return 1.0; });
+  if (!cells || cells->size() < 2) return std::nullopt;
+  std::vector<Eigen::Vector2d> points = *cells;
+  points.back() = to;
+  return leaving_corners(map, points, clearance, o.way_margin);
 }
 
 ToPass someone_to_pass(const LocalMap& map, const PersonPath& path, const Eigen::Vector2d& robot, const YieldOptions& o)
@@ -169,11 +227,16 @@ ToPass someone_to_pass(const LocalMap& map, const PersonPath& path, const Eigen:
   }
   // Standing: a mover that stopped, and something still stands where it did (the newest scan
   // does not look through its place; out of view, what the map remembers there).
-  constexpr double kPersonRadius = 0.3;
-  for (const auto& m : map.tracker().last_seen_movers())
-    if (m.moving_steady > 0.0 && watched(m.position) && map.seen_now(m.position) != SeenNow::kFreeNow &&
-        map.clearance(m.position, kPersonRadius) < kPersonRadius)
-      return ToPass::kStanding;
+  // In view, they stand apart from what is behind them (a piece of wall a person walking past
+  // hid for a moment reappears like someone who walked and stopped).
+  constexpr double kPersonRadius = 0.3, kApart = 0.3;
+  for (const auto& m : map.tracker().last_seen_movers()) {
+    if (m.moving_steady <= 0.0 || !watched(m.position) || map.clearance(m.position, kPersonRadius) >= kPersonRadius) continue;
+    const SeenNow seen = map.seen_now(m.position);
+    if (seen == SeenNow::kFreeNow || (seen == SeenNow::kStillThere && !map.stands_apart(m.position, kPersonRadius, kApart)))
+      continue;
+    return ToPass::kStanding;
+  }
   return ToPass::kNobody;
 }
 

@@ -22,13 +22,13 @@
 
 namespace rgnav::collision_avoidance {
 
-// A person's predicted path: from where they stand, on along the way they walk.
+// A person's predicted path: from where they stand, straight on along the way they walk (no
+// end: a yield point just past where a path of some length ends would stand where they walk on).
 struct PersonPath
 {
   Eigen::Vector2d from = Eigen::Vector2d::Zero();       // odom frame
   Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  // unit
-  double length = 6.0;                                   // [m]
-  // Distance from p to the path's centre line (a segment: behind `from`, the distance to it).
+  // Distance from p to the path's centre line (a ray: behind `from`, the distance to it).
   double distance(const Eigen::Vector2d& p) const;
   // How far along the path p lies (negative: behind where they stand).
   double along(const Eigen::Vector2d& p) const { return (p - from).dot(direction); }
@@ -36,7 +36,6 @@ struct PersonPath
 
 struct YieldOptions
 {
-  double path_length = 6.0;      // [m] of the person's path kept free
   double path_half_width = 0.45; // [m] a person passing: their radius and some sway
   double extra = 0.50;           // [m] the yield point this much beyond clearance + half width from the path
   double spot_margin = 0.05;     // [m] and this much more room around it than the clearance
@@ -50,6 +49,7 @@ struct YieldOptions
   // (next to a door) the robot is behind them once they have passed; farther down, their path
   // may bend toward it (toward the place they walk to), and they stop again.
   double downstream_cost = 2.0;
+  double shadow_cost = 3.0;      // cost factor of cells in view but not seen (behind what the scans hit)
   double cell = 0.10;            // [m] search grid
   // Waiting there (someone_to_pass): movers this close to the path's centre line count ...
   double watch_half_width = 0.9; // [m]
@@ -66,11 +66,18 @@ struct YieldPoint
 
 // The cheapest place to reach from `robot` that lies clear of `path` (clearance + half width +
 // extra) with room around it: a search over the local map's grid (local_grid.h) from the robot,
-// through space the scans saw (not in shadows or out of view, but for the robot's own cell
-// surroundings), never nearer the person than clearance + person_keep, steps on the person's
-// path and toward the person costing more. Nothing: no such place within max_travel.
+// through space in view (seen, or in the shadow of what was seen, at a higher cost; never out of
+// every view, but for the robot's own surroundings), never nearer the person than clearance +
+// person_keep, steps on the person's path and down it costing more. Nothing: no such place
+// within max_travel.
 std::optional<YieldPoint> choose_yield_point(const LocalMap& map, const Eigen::Vector2d& robot, const PersonPath& path,
                                              double clearance, const YieldOptions& options);
+
+// A way from `robot` to `to` (corners, `to` last) by the same search, ending where `to` lies;
+// nothing if there is none within twice max_travel, or `to` is not where the robot fits. The
+// way back to where the robot left its way, once the person has passed.
+std::optional<std::vector<Eigen::Vector2d>> way_to(const LocalMap& map, const Eigen::Vector2d& robot,
+                                                   const Eigen::Vector2d& to, double clearance, const YieldOptions& options);
 
 // Whether someone is still to pass the robot waiting at `robot` beside `path`: a tracked mover
 // (not walking away along the path: someone who turned back leaves the way free), or a mover that

@@ -85,6 +85,37 @@ SeenNow LocalMap::seen_now(const Eigen::Vector2d& p) const
   return view.empty() ? SeenNow::kUnknown : view.look(p);
 }
 
+bool BeamView::stands_apart(const Eigen::Vector2d& odom_point, double radius, double jump) const
+{
+  const Eigen::Vector2d q = laser_from_odom_ * odom_point;
+  auto end = [&](size_t i) {
+    return Eigen::Vector2d(beams_[i].second * std::cos(beams_[i].first), beams_[i].second * std::sin(beams_[i].first));
+  };
+  size_t lo = beams_.size(), hi = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < beams_.size(); ++i)
+    if ((end(i) - q).norm() <= radius) {
+      lo = std::min(lo, i);
+      hi = std::max(hi, i);
+      nearest = std::min(nearest, beams_[i].second);
+    }
+  if (lo > hi) return false;
+  // Neither flank nearer than the thing itself (a wall seen at a grazing angle goes on toward
+  // the laser on its near side: beams there end nearer, and on its far side farther by as much
+  // as a jump at a few metres), and at least one of them reaching `jump` farther.
+  const double left = lo > 0 ? beams_[lo - 1].second : std::numeric_limits<double>::infinity();
+  const double right = hi + 1 < beams_.size() ? beams_[hi + 1].second : std::numeric_limits<double>::infinity();
+  if (std::min(left, right) < nearest) return false;
+  return (lo > 0 && left >= nearest + jump) || (hi + 1 < beams_.size() && right >= nearest + jump);
+}
+
+bool LocalMap::stands_apart(const Eigen::Vector2d& p, double radius, double jump) const
+{
+  if (scans_.empty()) return false;
+  const BeamView view(scans_.back(), options_.clear_margin);
+  return !view.empty() && view.stands_apart(p, radius, jump);
+}
+
 void LocalMap::forget_seen_through(const BeamView& view)
 {
   if (view.empty()) return;

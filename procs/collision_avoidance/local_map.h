@@ -66,6 +66,11 @@ class BeamView
   // by `margin`: hidden; otherwise (one of them ends at it) still there. One beam only
   // would free the corners of a box a neighbouring beam grazes.
   SeenNow look(const Eigen::Vector2d& odom_point) const;
+  // Something at the point stands apart from what is behind it: the beams ending within
+  // `radius` of it are flanked by beams that end no nearer than the nearest of them, one at
+  // least `jump` farther. A person standing in a room or a hallway does; a piece of wall,
+  // seen head-on or at a grazing angle (its near side ends nearer), does not.
+  bool stands_apart(const Eigen::Vector2d& odom_point, double radius, double jump) const;
   bool empty() const { return beams_.size() < 2; }
 
  private:
@@ -118,6 +123,8 @@ class LocalMap
   const PeopleTracker& tracker() const { return tracker_; }
   // What the newest scan says about p (odom frame): unknown without scans.
   SeenNow seen_now(const Eigen::Vector2d& p) const;
+  // BeamView::stands_apart on the newest scan (false without scans).
+  bool stands_apart(const Eigen::Vector2d& p, double radius, double jump) const;
   double max_range() const { return options_.max_range; }
 
  private:

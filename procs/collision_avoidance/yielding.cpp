@@ -2,8 +2,9 @@
 // (collision_avoidance.h) that runs it: who is in the way, the way out of their path and the
 // wait beside it, in phases (looking behind when nothing around is known, leaving, waiting),
 // each sent as a trajectory so the drive stays the only one commanding the base.
+#include <algorithm>
 #include <cmath>
-#include <iostream>
+#include <limits>
 
 #include "collision_avoidance/collision_avoidance.h"
 
@@ -18,13 +19,32 @@ constexpr const char* kLeaving = "yielding: leaving the person's path sideways";
 constexpr const char* kWaitingThere = "yielding: beside the person's path, waiting for them to pass";
 constexpr const char* kLooking = "yielding: turning to look for room behind";
 constexpr const char* kReturning = "yielding: they passed, back to where it left its way";
-constexpr int kMaxPlans = 6;  // yield points chosen anew when the way there turns out blocked
+constexpr int kMaxPlans = 10;  // yield points chosen anew when the way there turns out blocked (or much longer)
+constexpr double kRecheck = 1.0;     // [s] leaving: how often to look for a nearer place out of the way
+constexpr double kMuchNearer = 1.0;  // [m] ... this much nearer than what is left of the way
 constexpr double kAhead = 1.05;  // [rad] someone in the way stands within this of the way to the target
 // A mover counts as a person once it moved this long while the robot held its heading
 // (people_tracker.h Track::moving_steady: walls coming into view as the robot turns move too).
 constexpr double kSteadyWalking = 0.3;  // [s] walking now
 constexpr double kSteadyStopped = 0.5;  // [s] walked up and stopped
 constexpr double kReturnMargin = 0.02;  // [m] the way back keeps this beyond the clearance
+// [m] the yield's manoeuvres count as blocked this much short of the clearance only: the
+// searches' legs graze the clearance (a detour's first leg from a tight spot keeps the clearance
+// of its start), and the scans on the way place a wall a few millimetres off; the safety margin
+// (0.1 m) is for what moves, and the yield waits for that
+constexpr double kGraze = 0.02;
+// [m] ... and going back into the way it left (a hallway): this much. What the map remembers of
+// walls seen before two turns on the spot sits where the odometry, bent by them, held it then:
+// a hallway looks narrower than it is by centimetres (the newest scans place it right).
+constexpr double kGrazeBack = 0.05;
+constexpr int kMaxReturns = 4;  // ways back chosen anew when blocked
+constexpr double kOnTheWay = 1.0;  // [m] where the yield began, this near the targets' polyline: back to it there
+constexpr double kSameWay = 0.1;  // [rad] a track's way since it began, near its velocity's
+constexpr double kHeadOn = 0.5;   // [rad] walking within this of straight down the robot's way, backwards (people crossing it, or two of them passing each other in the tracker, are not)
+constexpr double kOffTheWay = 0.5;  // [m] ... and this much farther from it than a path is wide, still on it
+constexpr double kWayAhead = 1.0;   // [m] the robot's way: toward its first target at least this far
+constexpr double kPersonRadius = 0.3;  // [m] a person's points lie this close to their track's centroid
+constexpr double kApart = 0.3;         // [m] beams beside a person reach this much farther
 
 // Turns on the spot and straight legs through `corners`, then a turn to `final_heading`: a
 // synchro drive can always do this from standing, and the legs are the search's free lines.
@@ -61,26 +81,25 @@ bool blocked_now(const LocalMap& map, const Chain& c, double s0, double clearanc
   // the clearance there with everything counted.
   const double c0 = map.clearance(c.pose_at(s0).translation(), clearance);
   for (double s = s0; s <= c.length() + 1e-9; s += step)
-    if (map.clearance_observed(c.pose_at(s).translation(), clearance) < required_clearance(clearance, c0, s - s0)) {
-      if (getenv("CA_DEBUG_YIELD")) std::cerr << "blocked_now at " << s << " of " << c.length() << " p " << c.pose_at(s).translation().transpose() << " clr " << map.clearance_observed(c.pose_at(s).translation(), clearance) << " c0 " << c0 << "\n";
+    if (map.clearance_observed(c.pose_at(s).translation(), clearance) < required_clearance(clearance, c0, s - s0))
       return true;
-    }
   return false;
 }
 
-// The way someone walks (unit): where their track went since it began, over a metre or more and
-// near their velocity's direction (a velocity fit over half a second sways a few degrees, and
-// a few degrees put a yield point metres down the path off by decimetres); else the velocity.
+// The way someone walks (unit): where their track went since it began, over a metre or more
+// and within a few degrees of their velocity's direction (a velocity fit over half a second
+// sways a little); else the velocity (where the track began, they may have walked another way:
+// toward a door from the side).
 Eigen::Vector2d walking_direction(const Eigen::Vector2d& velocity, const Eigen::Vector2d& since_first)
 {
   const Eigen::Vector2d v = velocity.normalized();
-  if (since_first.norm() >= 1.0 && since_first.normalized().dot(v) > std::cos(0.5)) return since_first.normalized();
+  if (since_first.norm() >= 1.0 && since_first.normalized().dot(v) > std::cos(kSameWay)) return since_first.normalized();
   return v;
 }
 
 }  // namespace
 
-std::optional<PersonPath> CollisionAvoidance::person_in_the_way() const
+std::optional<CollisionAvoidance::PersonInTheWay> CollisionAvoidance::person_in_the_way() const
 {
   const Eigen::Vector2d here = pose_.translation();
   const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
@@ -91,20 +110,28 @@ std::optional<PersonPath> CollisionAvoidance::person_in_the_way() const
   // look like someone who walked up and stopped; behind the robot it blocks nothing).
   const auto g = goals();
   const Eigen::Vector2d to_target = g.empty() ? Eigen::Vector2d::Zero() : Eigen::Vector2d(g.front().translation() - here);
-  std::optional<PersonPath> best;
+  const std::optional<Eigen::Vector2d> way = way_ahead();
+  if (!way || to_target.norm() < 1e-6) return std::nullopt;
+  std::optional<PersonInTheWay> best;
   double best_d = 0.0;
-  auto consider = [&](const Eigen::Vector2d& at, Eigen::Vector2d dir) {
+  // Only someone coming the other way along the robot's way: in a doorway or a hallway they
+  // cannot pass each other. Someone crossing it passes by (the robot waits a moment, as it
+  // always did), and who else stops in front of it is left to the older fallbacks.
+  auto consider = [&](const Eigen::Vector2d& at, Eigen::Vector2d dir, bool walking) {
     const Eigen::Vector2d to_robot = here - at;
     const double d = to_robot.norm();
-    if (d < 1e-6 || to_target.norm() < 1e-6) return;
-    if (-to_robot.dot(to_target) < std::cos(kAhead) * d * to_target.norm()) return;
-    dir.normalize();
-    if (to_robot.dot(dir) <= 0.0 || std::fabs(cross(dir, to_robot)) > on_path) return;
+    if (d < 1e-6 || -to_robot.dot(to_target) < std::cos(kAhead) * d * to_target.norm()) return;
+    if (dir.dot(*way) >= -std::cos(kHeadOn) * dir.norm()) return;
+    // Through a doorway or a hallway the robot's way runs along, theirs does too (one lane;
+    // where they came from, they may have walked toward it from the side, and a few degrees put
+    // the yield point decimetres off down the path). Their path: the robot's way backwards,
+    // from abreast of them.
+    if (std::fabs(cross(*way, -to_robot)) > on_path + kOffTheWay) return;
     if (best && d >= best_d) return;
-    PersonPath p;
-    p.from = at;
-    p.direction = dir;
-    p.length = yo.path_length;
+    PersonInTheWay p;
+    p.path.from = here + *way * way->dot(-to_robot);
+    p.path.direction = -*way;
+    p.walking = walking;
     best = p;
     best_d = d;
   };
@@ -112,20 +139,44 @@ std::optional<PersonPath> CollisionAvoidance::person_in_the_way() const
   for (const Track& t : map_.tracker().tracks()) {
     if (!t.moved || t.moving_steady < kSteadyWalking || t.centroids.empty() || t.velocity.norm() < min_speed) continue;
     const Eigen::Vector2d at = t.centroids.back().second;
-    if ((at - here).norm() <= options_.yield_notice) consider(at, walking_direction(t.velocity, at - t.first));
+    if ((at - here).norm() > options_.yield_notice) continue;
+    // Where the newest scan sees it, apart from what is behind it: a piece of wall that seems
+    // to slide along the wall as the robot turns or drives (the part in view changes) is not.
+    if (map_.seen_now(at) == SeenNow::kStillThere && !map_.stands_apart(at, kPersonRadius, kApart)) continue;
+    consider(at, walking_direction(t.velocity, at - t.first), true);
   }
   // Someone who walked up and stopped (their cells turned static, the track ended), and still
-  // stands there: they were walking the way they last moved; if that did not lead toward the
-  // robot (they stepped aside last), they want by where the robot stands.
+  // stands there: they were walking the way they last moved.
   for (const auto& m : map_.tracker().last_seen_movers()) {
     if ((m.position - here).norm() > options_.yield_notice_stopped || m.moving_steady < kSteadyStopped) continue;
-    // Still there: the newest scan ends at them (a remembered one may have walked on unseen).
-    if (map_.seen_now(m.position) != SeenNow::kStillThere) continue;
-    Eigen::Vector2d dir = m.walking.norm() < min_speed ? Eigen::Vector2d::Zero() : walking_direction(m.walking, m.position - m.first);
-    if (dir.dot(here - m.position) <= 0.0) dir = here - m.position;
-    consider(m.position, dir);
+    // Still there: the newest scan ends at them (a remembered one may have walked on unseen),
+    // and apart from what is behind them (not a piece of wall that a person walking past hid
+    // for a moment: it reappears piece by piece, and looks like someone who walked and stopped).
+    if (map_.seen_now(m.position) != SeenNow::kStillThere || !map_.stands_apart(m.position, kPersonRadius, kApart))
+      continue;
+    if (m.walking.norm() < min_speed) continue;
+    consider(m.position, walking_direction(m.walking, m.position - m.first), false);
   }
   return best;
+}
+
+double CollisionAvoidance::manoeuvre_time(const trajectory::Chain& c) const
+{
+  // As the drive runs it: its velocity profile (stopping at every turn on the spot).
+  trajectory::Limits lim = options_.planner.limits;
+  lim.v_max = std::min(lim.v_max, options_.yield_speed);
+  return trajectory::VelocityProfile::compute(c, lim, 0.0, 0.0, 0.05).total_time();
+}
+
+std::optional<Eigen::Vector2d> CollisionAvoidance::way_ahead() const
+{
+  const Eigen::Vector2d here = pose_.translation();
+  for (size_t i = next_; i < targets_.poses.size(); ++i) {
+    const Eigen::Vector2d d = targets_.poses[i].translation() - here;
+    if (d.norm() >= kWayAhead || i + 1 == targets_.poses.size())
+      return d.norm() > 1e-6 ? std::optional<Eigen::Vector2d>(d.normalized()) : std::nullopt;
+  }
+  return std::nullopt;
 }
 
 std::optional<trajectory::Trajectory> CollisionAvoidance::start_yield(time::Time now, const PersonPath& path)
@@ -154,10 +205,10 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::leave_path(time::Time 
     yield_.phase = YieldPhase::kLeaving;
     return stop(now, Mode::kReactive, "yielding: stopping to leave the person's path");
   }
-  if (getenv("CA_DEBUG_YIELD")) std::cerr << "leave_path: standing " << standing << " plans " << yield_.plans << " looked " << yield_.looked << " path " << yield_.path.from.transpose() << " dir " << yield_.path.direction.transpose() << "\n";
+  // Where they are now (they walk on while the robot turns and stops): their path from there.
+  if (const auto person = person_in_the_way()) yield_.path = person->path;
   const auto y = ++yield_.plans <= kMaxPlans ? choose_yield_point(map_, here, yield_.path, clearance, options_.give_way.yield)
                                               : std::nullopt;
-  if (getenv("CA_DEBUG_YIELD") && y) std::cerr << "  point " << y->point.transpose() << " corners " << y->corners.size() << " travel " << y->travel << "\n";
   if (!y) {
     if (yield_.looked || yield_.plans > kMaxPlans) {
       end_yield(now, false);
@@ -186,13 +237,10 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::leave_path(time::Time 
   }
   Chain c = polyline(pose_, y->corners, facing, options_.yield_speed);
   if (auto hit = first_collision(c, map_, clearance, options_.planner.check_step)) {
-    if (getenv("CA_DEBUG_YIELD")) { std::cerr << "  blocked at " << *hit << " of " << c.length() << " corners"; for (auto& k : y->corners) std::cerr << " " << k.transpose() << " (clr " << map_.clearance(k, 1.0) << ")"; std::cerr << " start clr " << map_.clearance(here, 1.0) << "\n"; }
     end_yield(now, false);
     return std::nullopt;
   }
-  double t = y->travel / options_.yield_speed;
-  for (const auto& seg : c.segments())
-    if (seg.kind() == trajectory::Kind::kTurn) t += trajectory::turn_duration(seg.turn_angle(), options_.omega_max, 1.0);
+  const double t = manoeuvre_time(c);
   yield_.phase = YieldPhase::kLeaving;
   yield_.phase_until = now + time::Duration(static_cast<int64_t>((t + 3.0) * 1e6));
   status_ = kLeaving;
@@ -239,11 +287,21 @@ std::optional<std::optional<trajectory::Trajectory>> CollisionAvoidance::yield_u
       }
       // Committed, but never blind: something on what remains of it (it came into view as the
       // robot turned, someone stepped into it), or the drive stuck: choose again from here.
-      if (yield_way_blocked() || now >= yield_.phase_until) {
+      // And the view opens on the way (out of a hallway's mouth, the room beside it): a place
+      // out of the way much nearer than the one it heads for is worth a stop.
+      bool nearer = false;
+      if (time::to_seconds(now - yield_.rechecked) >= kRecheck && active_) {
+        yield_.rechecked = now;
+        const double left = active_->chain.length() - (ours ? feedback_.progress : 0.0);
+        const auto y = choose_yield_point(map_, pose_.translation(), yield_.path, clearance, options_.give_way.yield);
+        nearer = y && y->travel + kMuchNearer < left;
+      }
+      if (nearer || yield_way_blocked() || now >= yield_.phase_until) {
         const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
         if (standing) return leave_path(now);
         yield_.trajectory_id = 0;  // stopping first, then choose again
-        return stop(now, Mode::kReactive, "yielding: the way out is blocked, stopping");
+        return stop(now, Mode::kReactive, nearer ? "yielding: a place nearer out of the way, stopping"
+                                                 : "yielding: the way out is blocked, stopping");
       }
       return keep_alive();
     }
@@ -279,10 +337,20 @@ std::optional<std::optional<trajectory::Trajectory>> CollisionAvoidance::yield_u
       return stop(now, Mode::kReactive, kWaitingThere);
     }
     case YieldPhase::kReturning:
-      // There (the planner goes on from its way), or something in the way back: the planner
-      // decides from here.
-      if (ended || yield_way_blocked() || now >= yield_.phase_until) {
-        if (getenv("CA_DEBUG_YIELD")) std::cerr << "return ends: ended " << ended << " blocked " << yield_way_blocked() << " late " << (now >= yield_.phase_until) << " here " << pose_.translation().transpose() << " to " << yield_.trail.front().transpose() << "\n";
+      // There: the planner goes on from its way. Something in the way back (the scans on the
+      // way place the walls of a narrow hallway a little off from where the odometry held
+      // them): choose the way back again from here, a few times; then the planner decides.
+      if (ended || now >= yield_.phase_until) {
+        end_yield(now, true);
+        return std::nullopt;
+      }
+      if ((active_ && active_->chain.empty()) || yield_way_blocked()) {  // stopped for it, or it is there
+        if (yield_.returns < kMaxReturns) {
+          const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
+          if (!standing) return stop(now, Mode::kReactive, "yielding: the way back is blocked, stopping");
+          ++yield_.returns;
+          if (auto again = return_to_way(now)) return again;
+        }
         end_yield(now, true);
         return std::nullopt;
       }
@@ -297,7 +365,8 @@ bool CollisionAvoidance::yield_way_blocked() const
   if (!active_) return false;
   const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
   const bool ours = has_feedback_ && feedback_.trajectory_id == active_->id;
-  return blocked_now(map_, active_->chain, ours ? feedback_.progress : 0.0, clearance, options_.planner.check_step);
+  const double graze = yield_.phase == YieldPhase::kReturning ? kGrazeBack : kGraze;
+  return blocked_now(map_, active_->chain, ours ? feedback_.progress : 0.0, clearance - graze, options_.planner.check_step);
 }
 
 std::optional<trajectory::Trajectory> CollisionAvoidance::return_to_way(time::Time now)
@@ -311,7 +380,26 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::return_to_way(time::Ti
   // the scans add on the way must not find them a millimetre short.
   const double clearance = options_.planner.robot_radius + options_.planner.safety_margin + kReturnMargin;
   const Eigen::Vector2d here = pose_.translation();
+  // Where it left its way, as its way is now: the targets follow the localization, the trail
+  // the odometry, which two turns on the spot have bent by degrees (decimetres, metres away).
   Eigen::Vector2d goal = yield_.trail.front();
+  double heading = yield_.start_heading;
+  double nearest = std::numeric_limits<double>::infinity();
+  const auto& way = targets_.poses;
+  for (size_t i = 0; i + 1 < way.size(); ++i) {
+    const Eigen::Vector2d a = way[i].translation(), ab = way[i + 1].translation() - a;
+    if (ab.norm() < 1e-6) continue;
+    const Eigen::Vector2d p = a + ab * std::clamp((yield_.trail.front() - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    if ((p - yield_.trail.front()).norm() < nearest) {
+      nearest = (p - yield_.trail.front()).norm();
+      goal = p;
+      heading = std::atan2(ab.y(), ab.x());
+    }
+  }
+  if (nearest > kOnTheWay) {
+    goal = yield_.trail.front();
+    heading = yield_.start_heading;
+  }
   if ((goal - here).norm() < 0.3) return std::nullopt;
   double best = map_.clearance(goal, clearance + 0.1);
   const Eigen::Vector2d from = goal;
@@ -325,13 +413,11 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::return_to_way(time::Ti
       }
     }
   if (best < clearance) return std::nullopt;
-  const auto corners = grid_path(map_, here, goal, clearance, options_.grid);
+  const auto corners = way_to(map_, here, goal, clearance, options_.give_way.yield);
   if (!corners) return std::nullopt;
-  Chain c = polyline(pose_, *corners, yield_.start_heading, options_.yield_speed);
-  if (blocked_now(map_, c, 0.0, clearance - kReturnMargin, options_.planner.check_step)) return std::nullopt;
-  double t = c.length() / options_.yield_speed;
-  for (const auto& seg : c.segments())
-    if (seg.kind() == trajectory::Kind::kTurn) t += trajectory::turn_duration(seg.turn_angle(), options_.omega_max, 1.0);
+  Chain c = polyline(pose_, *corners, heading, options_.yield_speed);
+  if (blocked_now(map_, c, 0.0, clearance - kReturnMargin - kGrazeBack, options_.planner.check_step)) return std::nullopt;
+  const double t = manoeuvre_time(c);
   yield_.phase = YieldPhase::kReturning;
   yield_.since = now;
   yield_.phase_until = now + time::Duration(static_cast<int64_t>((t + 3.0) * 1e6));

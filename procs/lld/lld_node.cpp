@@ -63,10 +63,9 @@ void LldNode::on_trajectory(const trajectory_t& msg)
   if (msg.trajectory_id == last_trajectory_id_ && msg.nsegments > 0) {
     // The sender re-sent the trajectory it still wants: keep following, no re-plan.
     std::lock_guard<std::mutex> lock(inbox_mutex_);
+    if (!take_stamp(msg.utime, options_.channels.trajectory)) return;
     inbox_.refresh_id = msg.trajectory_id;
     inbox_.has_refresh = true;
-    inbox_.anchor_utime = std::max(inbox_.anchor_utime, msg.utime);
-    inbox_.anchor_steady = Steady::now();
     retired = std::move(inbox_.retired);
     return;
   }
@@ -75,6 +74,10 @@ void LldNode::on_trajectory(const trajectory_t& msg)
   if (!t) {
     node_.drops().drop(options_.channels.trajectory, why);
     return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(inbox_mutex_);
+    if (!take_stamp(msg.utime, options_.channels.trajectory)) return;
   }
   last_trajectory_id_ = msg.trajectory_id;
   auto plan = make_plan(std::move(*t), options_.follower, v_command_.load());
@@ -86,8 +89,6 @@ void LldNode::on_trajectory(const trajectory_t& msg)
     superseded = std::move(inbox_.pending);  // never taken by the loop
     retired = std::move(inbox_.retired);
     inbox_.pending = std::move(plan);
-    inbox_.anchor_utime = std::max(inbox_.anchor_utime, msg.utime);
-    inbox_.anchor_steady = Steady::now();
   }
   // Both are freed here, in the Node's thread, after the lock.
 }
@@ -95,13 +96,40 @@ void LldNode::on_trajectory(const trajectory_t& msg)
 void LldNode::on_odometry(const odometry_t& msg)
 {
   std::lock_guard<std::mutex> lock(inbox_mutex_);
+  if (!take_stamp(msg.utime, options_.channels.odometry)) return;
   inbox_.odometry.pose = msg::to_pose2(msg.odom_from_base);
   inbox_.odometry.v = msg.v;
   inbox_.odometry.omega = msg.omega;
   inbox_.odometry.stamp = time::from_utime(msg.utime);
   inbox_.has_odometry = true;
-  inbox_.anchor_utime = std::max(inbox_.anchor_utime, msg.utime);
-  inbox_.anchor_steady = Steady::now();
+}
+
+bool LldNode::take_stamp(int64_t utime, const std::string& channel)
+{
+  const std::string why = clock_.observe(utime, channel);
+  if (!why.empty()) {
+    node_.drops().drop(channel, why);
+    return false;
+  }
+  if (clock_.now() > inbox_.anchor_utime) {
+    inbox_.anchor_utime = clock_.now();
+    inbox_.anchor_steady = Steady::now();
+  }
+  return true;
+}
+
+time::Time LldNode::message_now() const
+{
+  int64_t anchor_utime;
+  Steady::time_point anchor_steady;
+  {
+    std::lock_guard<std::mutex> lock(inbox_mutex_);
+    anchor_utime = inbox_.anchor_utime;
+    anchor_steady = inbox_.anchor_steady;
+  }
+  const int64_t since = anchor_utime == 0 ? 0
+      : std::chrono::duration_cast<std::chrono::microseconds>(Steady::now() - anchor_steady).count();
+  return time::from_utime(anchor_utime + since);
 }
 
 void LldNode::control_thread()
@@ -116,18 +144,8 @@ void LldNode::control_thread()
   }
   PeriodicLoop::Tick tick;
   while (loop_.wait(&tick)) {
-    int64_t anchor_utime;
-    Steady::time_point anchor_steady;
-    {
-      std::lock_guard<std::mutex> lock(inbox_mutex_);
-      anchor_utime = inbox_.anchor_utime;
-      anchor_steady = inbox_.anchor_steady;
-    }
-    // Message time now: the newest input's time plus the wall time since it arrived.
-    const int64_t since = anchor_utime == 0 ? 0
-        : std::chrono::duration_cast<std::chrono::microseconds>(Steady::now() - anchor_steady).count();
     const double dt = tick.index == 0 ? 1.0 / options_.loop.rate_hz : tick.dt;
-    control_step(time::from_utime(anchor_utime + since), dt, tick.jitter_ms);
+    control_step(message_now(), dt, tick.jitter_ms);
   }
 }
 

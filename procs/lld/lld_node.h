@@ -25,6 +25,7 @@
 #include "rgnav/trajectory_t.hpp"
 #include "rgnav/velocity_cmd_t.hpp"
 #include "runtime/node.h"
+#include "time/robot_clock.h"
 
 namespace rgnav::lld {
 
@@ -36,6 +37,10 @@ class LldNode
   ~LldNode();
   LldNode(const LldNode&) = delete;
   LldNode& operator=(const LldNode&) = delete;
+
+  // Message time now, as the control loop reads it: the newest input's stamp plus the wall time
+  // since it arrived.
+  time::Time message_now() const;
 
   // One control period at message time `now`.
   void control_step(time::Time now, double dt, double jitter_ms);
@@ -59,6 +64,15 @@ class LldNode
     int64_t anchor_utime = 0;         // newest input's message time ...
     Steady::time_point anchor_steady{};  // ... and when it arrived
   };
+  // [us] An input stamped more than this ahead of the newest one is held until another confirms
+  // it (RobotClock): one corrupted stamp would otherwise make the odometry look stale and stop
+  // the robot for as long as the stamp is ahead. Inputs come at 50 Hz; a real gap this long
+  // costs one input.
+  static constexpr int64_t kMaxStampJumpUs = 1'000'000;
+  static constexpr int64_t kStampConfirmUs = 250'000;
+
+  // Under inbox_mutex_: takes the input's stamp into the anchor, or drops the input (counted).
+  bool take_stamp(int64_t utime, const std::string& channel);
 
   void on_trajectory(const trajectory_t& msg);
   void on_odometry(const odometry_t& msg);
@@ -72,7 +86,8 @@ class LldNode
   StallCredit stall_credit_;   // control thread only
   PeriodicLoop loop_;
 
-  std::mutex inbox_mutex_;
+  mutable std::mutex inbox_mutex_;
+  time::RobotClock clock_{kMaxStampJumpUs, kStampConfirmUs};  // under inbox_mutex_
   Inbox inbox_;
   std::atomic<double> v_command_{0.0};   // for profiles of new plans
   std::atomic<int> state_{0};

@@ -183,16 +183,7 @@ void LocalizerNode::odometry_restarted(const std::string& why)
 
 std::optional<geometry::Pose2> LocalizerNode::odometry_at(int64_t utime) const
 {
-  const auto after = std::lower_bound(odometry_.begin(), odometry_.end(), utime,
-                                      [](const OdometrySample& s, int64_t t) { return s.utime < t; });
-  if (after == odometry_.end()) return std::nullopt;
-  if (after->utime == utime) return after->odom_from_base;
-  if (after == odometry_.begin()) return std::nullopt;
-  const OdometrySample& a = *(after - 1);
-  const OdometrySample& b = *after;
-  if (utime - a.utime > max_scan_age_us_ || b.utime - utime > max_scan_age_us_) return std::nullopt;
-  const double s = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
-  return geometry::interpolate(a.odom_from_base, b.odom_from_base, s);
+  return geometry::bracketed_at(odometry_, utime, max_scan_age_us_, [](const OdometrySample& s) { return s.odom_from_base; });
 }
 
 void LocalizerNode::drop_scan(const sensors::LaserScan& scan, const std::string& why)

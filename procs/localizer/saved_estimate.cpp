@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "persist/atomic_file.h"
+#include "persist/checked_json.h"
 
 namespace rgnav::localizer {
 
@@ -21,15 +21,15 @@ void save_estimate(const std::string& path, const SavedEstimate& e)
   j["region_from_base"] = {e.region_from_base.x(), e.region_from_base.y(), e.region_from_base.theta()};
   j["map_from_base"] = {e.map_from_base.x(), e.map_from_base.y(), e.map_from_base.theta()};
   j["map_version"] = e.map_version;
-  persist::write_atomically(path, j.dump());
+  persist::write_json_atomically(path, j, -1);
 }
 
 std::optional<SavedEstimate> load_estimate(const std::string& path, std::string* problem)
 {
   try {
-    const auto text = persist::read_checked(path);
-    if (!text) return std::nullopt;
-    const auto j = nlohmann::json::parse(*text);
+    const auto doc = persist::read_checked_json(path);
+    if (!doc) return std::nullopt;
+    const auto& j = *doc;
     if (j.at("schema").get<std::string>() != kSchema) throw std::invalid_argument("not a localizer estimate");
     const auto pose = [&](const char* key) {
       const auto& a = j.at(key);

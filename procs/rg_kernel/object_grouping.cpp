@@ -19,12 +19,6 @@ namespace {
 
 using geometry::cross;
 
-// Object grouping counts a segment shorter than 1e-9 m as a point.
-double point_segment_distance(const Vector2d& p, const Vector2d& a, const Vector2d& b)
-{
-  return geometry::point_segment_distance(p, a, b, 1e-18);
-}
-
 double length(const LineSegment& s) { return (s.b - s.a).norm(); }
 
 // A rectangle hypothesis: its sides (segment indices) and the rectangle they define.
@@ -177,27 +171,9 @@ Object2d to_object(const Hypothesis& h, double confidence)
 
 }  // namespace
 
-double segment_distance(const LineSegment& s, const LineSegment& t)
-{
-  // Lines count as parallel unless |cross(s, t)| is strictly more than 1e-12.
-  static const double kParallelBelow = std::nextafter(1e-12, 1.0);
-  const auto hit = geometry::ray_meets_line(s.a, s.b - s.a, t.a, t.b, kParallelBelow);
-  if (hit) {
-    const double a = hit->along_ray, b = hit->along_line;
-    if (a >= 0 && a <= 1 && b >= 0 && b <= 1) return 0;
-  }
-  return std::min({point_segment_distance(s.a, t.a, t.b), point_segment_distance(s.b, t.a, t.b),
-                   point_segment_distance(t.a, s.a, s.b), point_segment_distance(t.b, s.a, s.b)});
-}
+double segment_distance(const LineSegment& s, const LineSegment& t) { return geometry::segments_distance(s.a, s.b, t.a, t.b); }
 
-double corner_gap(const LineSegment& s, const LineSegment& t)
-{
-  const Vector2d r = s.b - s.a, q = t.b - t.a;
-  const auto hit = geometry::ray_meets_line(s.a, r, t.a, t.b, 1e-12 * r.norm() * q.norm());
-  if (!hit) return std::numeric_limits<double>::infinity();
-  const Vector2d x = s.a + r * hit->along_ray;
-  return std::max(point_segment_distance(x, s.a, s.b), point_segment_distance(x, t.a, t.b));
-}
+double corner_gap(const LineSegment& s, const LineSegment& t) { return geometry::corner_gap(s.a, s.b, t.a, t.b); }
 
 std::vector<Object2d> group_rectangles(const std::vector<LineSegment>& segs, const rgmap::FreespaceBitmap& fs,
                                        const ObjectOptions& o)

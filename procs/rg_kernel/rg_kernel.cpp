@@ -98,6 +98,20 @@ bool RgKernel::name_region(int64_t region_id, const std::string& name, std::stri
   return true;
 }
 
+bool RgKernel::add_objects3d(int64_t utime, const std::vector<rgmap::Rectangle3d>& in_map_frame)
+{
+  if (!options_.objects3d.enabled || in_map_frame.empty() || map_.current_region == 0) return false;
+  Region* r = map_.region(map_.current_region);
+  // Ids: region_id * 1000 + 500 + k, above the 2D objects' (object_grouping.h); never reused
+  // within the region (the next one follows the highest kept).
+  int64_t next_id = r->id * 1000 + 500;
+  for (const auto& o : r->objects3d) next_id = std::max(next_id, o.id + 1);
+  merge_objects3d(&r->objects3d, to_region_frame(in_map_frame, r->map_from_region), &next_id, options_.objects3d);
+  r->utime = utime;
+  ++map_.version;
+  return true;
+}
+
 Vector2d RgKernel::crossing_in_map(const Gateway& g) const
 {
   const Region* a = map_.region(g.region_a);

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "procs/rg_kernel/known_place.h"
+#include "procs/rg_kernel/objects3d.h"
 #include "procs/rg_kernel/region_builder.h"
 #include "rgmap/rg_map.h"
 
@@ -93,6 +94,7 @@ struct KernelOptions
   // and the line map's door points lie on the jambs' visible edges, and beams grazing past them
   // into the room behind carved it into the region in front (issue 8: seen-through losses).
   double gateway_line_extension = 0.5;
+  Objects3dOptions objects3d;            // the vision's 3D rectangles (objects3d.h)
 };
 
 struct ScanInput
@@ -136,6 +138,9 @@ class RgKernel
   // Both return true when the map changed.
   bool add_scan(const ScanInput& scan);
   bool add_gateway_event(const GatewayEventInput& event);
+  // 3D rectangles the vision saw (map frame: the node re-anchors them by scan id) into the
+  // current region's objects (objects3d.h). True when the map changed.
+  bool add_objects3d(int64_t utime, const std::vector<rgmap::Rectangle3d>& in_map_frame);
   // The operator's name for a region (a region merged away names the one it was merged into).
   // True when the map changed (its version goes up); false with *why set when refused (no such
   // live region, not a valid name, another live region's name: rgmap::region_to_name), false

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "msg/conversions.h"
+#include "rgmap/rgmap_conversions.h"
 
 namespace rgnav::rg_kernel {
 
@@ -31,6 +32,24 @@ GatewayEventInput to_input(const gateway_event_t& m)
   for (const auto& p : m.gateway_points) e.gateway_points.push_back(msg::to_vector(p));
   e.direction = m.direction;
   return e;
+}
+
+std::vector<rgmap::Rectangle3d> to_rectangles(const objects3d_t& m, const geometry::Pose2& map_from_base, std::string* why)
+{
+  std::vector<rgmap::Rectangle3d> out;
+  for (const auto& x : m.rectangles) {
+    rgmap::Rectangle3d r = rgmap::from_msg(x);
+    const bool plausible = r.corners.allFinite() && r.normal.allFinite() && r.corners.cwiseAbs().maxCoeff() < 100.0 &&
+                           std::isfinite(r.width) && std::isfinite(r.height) && r.width > 0.0 && r.width <= 10.0 &&
+                           r.height > 0.0 && r.height <= 10.0 && r.normal.norm() > 0.5;
+    if (!plausible) {
+      if (why) *why = "rectangle " + std::to_string(x.id) + " is no plausible rectangle";
+      return {};
+    }
+    r.normal.normalize();
+    out.push_back(rgmap::moved(r, map_from_base));
+  }
+  return out;
 }
 
 }  // namespace rgnav::rg_kernel

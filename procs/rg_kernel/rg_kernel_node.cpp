@@ -5,12 +5,13 @@
 #include <chrono>
 
 #include "config/string_fields.h"
+#include "msg/conversions.h"
 #include "persist/atomic_file.h"
 #include "persist/byte_codec.h"
 #include "procs/rg_kernel/rg_kernel_conversions.h"
 #include "procs/rg_kernel/rg_kernel_options.h"
 #include "rgmap/rgmap_conversions.h"
-#include "rgmap/rgmap_json.h"
+#include "rgmap/saved_map.h"
 
 namespace rgnav::rg_kernel {
 
@@ -30,7 +31,7 @@ NodeConfig load_node_config(const config::Config& cfg, const config::RobotDescri
   const auto ch = cfg.section("channels");
   config::read_strings(ch, {{"aligned_scan", &c.aligned_scan}, {"gateway_events", &c.gateway_events},
                             {"rg_map", &c.rg_map}, {"rg_region", &c.rg_region}, {"rg_graph", &c.rg_graph},
-                            {"region_name", &c.region_name}});
+                            {"region_name", &c.region_name}, {"objects3d", &c.objects3d}});
   return c;
 }
 
@@ -46,6 +47,8 @@ RgKernelNode::RgKernelNode(runtime::Node& node, NodeConfig config)
   node_.subscribe<gateway_event_t>(config_.gateway_events, [this](const gateway_event_t& m) { on_event(m, true); });
   if (!config_.region_name.empty())
     node_.subscribe<region_name_t>(config_.region_name, [this](const region_name_t& m) { on_region_name(m, true); });
+  if (!config_.objects3d.empty())
+    node_.subscribe<objects3d_t>(config_.objects3d, [this](const objects3d_t& m) { on_objects(m, true); });
   node_.every(std::chrono::seconds(1), [this] {
     if (kernel_.map().current_region != 0) publish();
   });
@@ -128,6 +131,9 @@ void RgKernelNode::restore()
     } else if (rec.tag == kRegionName) {
       region_name_t m;
       if (bus::decode(data, rec.bytes.size(), &m, &why)) on_region_name(m, false);
+    } else if (rec.tag == kObjects3dInMap) {
+      objects3d_t m;
+      if (bus::decode(data, rec.bytes.size(), &m, &why)) on_objects(m, false);
     }
     if (!why.empty()) spdlog::warn("journal record skipped: {}", why);
     ++inputs_;
@@ -188,7 +194,30 @@ void RgKernelNode::journal(Tag tag, const T& m)
 void RgKernelNode::on_scan(const aligned_scan_t& m, bool write_journal)
 {
   if (write_journal) journal(kAlignedScan, m);
+  map_from_odom_[m.scan_id] = msg::to_pose2(m.map_from_base) * msg::to_pose2(m.odom_from_base).inverse();
+  constexpr size_t kKeptScans = 2000;  // minutes of scans: objects arrive within a frame or two
+  while (map_from_odom_.size() > kKeptScans) map_from_odom_.erase(map_from_odom_.begin());
   if (kernel_.add_scan(to_input(m))) changed(m.utime);
+  if (write_journal) maybe_snapshot();
+}
+
+void RgKernelNode::on_objects(objects3d_t m, bool write_journal)
+{
+  if (write_journal) {
+    // Re-anchor by scan id (diss. 3.3.5): the correction of the scan taken at capture, else (the
+    // mapper keeps only some scans) the newest one; without any scan yet there is no map to put
+    // them in. Journaled in the map frame: the corrections are live state a replay lacks.
+    if (map_from_odom_.empty()) return node_.drops().drop(config_.objects3d, "no aligned scan yet to anchor objects to");
+    const auto it = map_from_odom_.find(m.scan_id);
+    const geometry::Pose2 map_from_odom = it != map_from_odom_.end() ? it->second : map_from_odom_.rbegin()->second;
+    m.odom_from_base = msg::to_msg(map_from_odom * msg::to_pose2(m.odom_from_base));
+  }
+  std::string why;
+  const auto rects = to_rectangles(m, msg::to_pose2(m.odom_from_base), &why);
+  if (!why.empty()) return node_.drops().drop(config_.objects3d, why);
+  if (rects.empty()) return;
+  if (write_journal) journal(kObjects3dInMap, m);
+  if (kernel_.add_objects3d(m.utime, rects)) changed(m.utime);
   if (write_journal) maybe_snapshot();
 }
 
@@ -269,7 +298,7 @@ void RgKernelNode::publish()
 void RgKernelNode::write_export(const rgmap::RgMap& map)
 {
   try {
-    persist::write_atomically(config_.state_dir + "/rgmap.json", rgmap::to_json(map).dump(1));
+    rgmap::save_map(map, config_.state_dir + "/rgmap.json");
     export_pending_ = false;
     last_export_ = std::chrono::steady_clock::now();
   } catch (const std::exception& e) {

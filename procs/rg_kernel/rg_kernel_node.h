@@ -10,6 +10,7 @@
 // a publication: what was published is durable.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -20,6 +21,7 @@
 #include "rgmap/rg_graph.h"
 #include "rgnav/aligned_scan_t.hpp"
 #include "rgnav/gateway_event_t.hpp"
+#include "rgnav/objects3d_t.hpp"
 #include "rgnav/rg_graph_t.hpp"
 #include "rgnav/region_name_t.hpp"
 #include "rgnav/rg_map_t.hpp"
@@ -43,6 +45,7 @@ struct NodeConfig
   std::string rg_region = "RG_REGION";
   std::string rg_graph = "RG_GRAPH";
   std::string region_name = "REGION_NAME";   // the operator's region names ("" = not subscribed)
+  std::string objects3d = "OBJECTS_3D";      // the vision's 3D rectangles ("" = not subscribed)
 };
 
 // The kernel's options (rg_kernel_options.h, with the robot description's radius) and the
@@ -68,8 +71,11 @@ class RgKernelNode
   StateStore* store() { return store_.get(); }
 
  private:
-  enum Tag : uint32_t { kAlignedScan = 1, kGatewayEvent = 2, kRegionName = 3 };
+  // kObjects3dInMap: an OBJECTS_3D message whose odom_from_base holds the map pose it was
+  // re-anchored to (the scan mapper's correction by scan id is live state a replay lacks).
+  enum Tag : uint32_t { kAlignedScan = 1, kGatewayEvent = 2, kRegionName = 3, kObjects3dInMap = 4 };
   void on_scan(const aligned_scan_t& m, bool journal);
+  void on_objects(objects3d_t m, bool journal);
   void on_event(const gateway_event_t& m, bool journal);
   void on_region_name(const region_name_t& m, bool journal);
   void changed(int64_t utime);
@@ -93,6 +99,9 @@ class RgKernelNode
   bool unpublished_change_ = false;
   bool replaying_ = false;
   bool export_pending_ = false;
+  // The scan mapper's correction (map_from_odom) of recent scans by id, to re-anchor the
+  // vision's objects to the scan taken at capture (diss. 3.3.5).
+  std::map<int64_t, geometry::Pose2> map_from_odom_;
   std::chrono::steady_clock::time_point last_export_{};
 };
 

@@ -83,6 +83,13 @@ KernelOptions load_kernel_options(const config::Config& cfg, const config::Robot
   c.build.freespace_max_range = fs.number("max_range_m", c.build.freespace_max_range, 1.0, 80.0);
   c.build.freespace_min_passage = fs.number("min_passage_m", c.build.freespace_min_passage, 0.0, 5.0);
   c.build.objects = load_object_options(cfg.section("objects"));
+  const auto o3 = cfg.section("objects3d");
+  auto& v = c.objects3d;
+  v.enabled = o3.boolean("enabled", v.enabled);
+  v.match_distance = o3.number("match_distance_m", v.match_distance, 0.01, 5.0);
+  v.match_angle_deg = o3.number("match_angle_deg", v.match_angle_deg, 0.0, 90.0);
+  v.match_size_ratio = o3.number("match_size_ratio", v.match_size_ratio, 0.0, 1.0);
+  v.max_per_region = static_cast<int>(o3.integer("max_per_region", v.max_per_region, 1, 100000));
   const auto dw = cfg.section("doorways");
   auto& d = c.build.doorways;
   d.enabled = dw.boolean("enabled", d.enabled);

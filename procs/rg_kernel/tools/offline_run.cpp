@@ -7,9 +7,8 @@
 #include <stdexcept>
 
 #include "offline_mapping.h"
-#include "persist/atomic_file.h"
+#include "rgmap/saved_map.h"
 #include "render/rgmap_picture.h"
-#include "rgmap/rgmap_json.h"
 
 namespace rgnav::rgmap_pipeline {
 
@@ -101,7 +100,7 @@ nlohmann::json write_run_outputs(const OfflineRun& r, const PipelineOptions& opt
   sm.stats = r.mapper_stats;
   scan_mapper::write_outputs(sm, options.mapper, dir);
 
-  persist::write_atomically(dir + "/rgmap.json", rgmap::to_json(r.map).dump(1));
+  rgmap::save_map(r.map, dir + "/rgmap.json");
   if (out.pictures) {
     render::render_rgmap(r.map, dir + "/rgmap.svg", out.pixels_per_metre);
     render::render_rgmap(r.map, dir + "/rgmap.png", out.pixels_per_metre);

@@ -143,7 +143,8 @@ TEST(StereoCaptureConfig, ShippedConfigValidates)
 {
   const auto cfg = config::Config::load(std::string(RGNAV_SOURCE_DIR) + "/config/stereo_capture.yaml");
   runtime::load_node_options(cfg.section("node"), "stereo_capture");
-  const auto o = load_capture_options(cfg.section("capture"), cfg.section("channels"), kData);
+  const auto o = load_capture_options(cfg.section("capture"), cfg.section("channels"), kData,
+                                      std::string(RGNAV_SOURCE_DIR) + "/config");
   EXPECT_NO_THROW(cfg.finish());
   EXPECT_NO_THROW(make_source(o));
 }

@@ -1,6 +1,7 @@
 #include "sim_runs.h"
 
 #include <chrono>
+#include <map>
 
 #include <spdlog/spdlog.h>
 #include <cmath>
@@ -211,7 +212,7 @@ std::vector<LabelledSequence> record_sequences(const sim::World& world, const De
 }
 
 DoorEvaluation evaluate_doors(const sim::World& world, const DetectorOptions& options, double scan_hz, uint64_t seed,
-                              std::vector<double>* scan_ms)
+                              std::vector<double>* scan_ms, const DoorVision* vision)
 {
   DoorEvaluation ev;
   sim::SimulatorOptions so;
@@ -231,6 +232,8 @@ DoorEvaluation evaluate_doors(const sim::World& world, const DetectorOptions& op
   sim::WaypointFollower follower(tour.waypoints, [&sim] { return sim.truth(); });
   sim.set_command_source(&follower);
   GatewayDetector det(options);
+  GatewayDetector det_vision(options);  // the same scans, and the camera's rectangles
+  std::map<int64_t, bool> vision_tracks;  // track -> classified a door
   const geometry::Pose2 mount(so.laser.mount_x, so.laser.mount_y, so.laser.mount_yaw);
 
   std::vector<size_t> doors;
@@ -247,6 +250,8 @@ DoorEvaluation evaluate_doors(const sim::World& world, const DetectorOptions& op
   };
   std::vector<double> last_report(doors.size(), -1e9);  // sim time of the newest approached passage per door
   std::vector<double> last_traversal(doors.size(), -1e9);
+  std::vector<double> last_door_class(doors.size(), -1e9);  // sim time the vision detector last called it a door
+  double next_frame = 0.0;
   const auto dt = std::chrono::microseconds(static_cast<int64_t>(1e6 / scan_hz));
   const double limit = tour.length / 0.3 + 120.0;
   Vec2 prev(sim.truth().x, sim.truth().y);
@@ -261,6 +266,24 @@ DoorEvaluation evaluate_doors(const sim::World& world, const DetectorOptions& op
     const auto t0 = std::chrono::steady_clock::now();
     const auto out = det.process(ps);
     if (scan_ms) scan_ms->push_back(elapsed_ms(t0));
+    if (vision && vision->see) {
+      if (sim.time_s() >= next_frame) {
+        next_frame = sim.time_s() + 1.0 / vision->rate_hz;
+        ++ev.vision_frames;
+        det_vision.add_rectangles(sim.now_utime(), ps.map_from_base, vision->see(sim.truth(), sim.doors_open(), ev.vision_frames));
+      }
+      for (const auto& e : det_vision.process(ps).events) {
+        if (e.gateway_class != kOutNarrowPassage && e.gateway_class != kOutDoor) continue;
+        bool& called_door = vision_tracks[e.track_id];
+        const int d = door_of(e.gateway_points);
+        if (e.gateway_class == kOutDoor && !called_door) {
+          called_door = true;
+          ++ev.vision_doors_classified;
+          if (d >= 0) ++ev.vision_classified_on_doors;
+        }
+        if (e.gateway_class == kOutDoor && d >= 0) last_door_class[static_cast<size_t>(d)] = sim.time_s();
+      }
+    }
     for (const auto& e : out.events) {
       if (e.kind != EventKind::kApproached || (e.gateway_class != kOutNarrowPassage && e.gateway_class != kOutDoor)) continue;
       ++ev.passages_reported;
@@ -282,6 +305,7 @@ DoorEvaluation evaluate_doors(const sim::World& world, const DetectorOptions& op
       // Detected if a matching passage was reported in the approach to this traversal (after
       // the previous traversal of the same door, within 20 s).
       if (last_report[k] > last_traversal[k] && sim.time_s() - last_report[k] < 20.0) ++ev.doors_detected;
+      if (last_door_class[k] > last_traversal[k] && sim.time_s() - last_door_class[k] < 20.0) ++ev.vision_doors_detected;
       else {
         ev.missed.push_back(world.gateways[doors[k]].name);
         spdlog::debug("t={:.1f} MISSED traversal of {} heading {:.2f}", sim.time_s(), world.gateways[doors[k]].name, sim.truth().theta);

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <functional>
 #include <vector>
 
 #include "gateway_detector/gateway_detector.h"
@@ -84,10 +85,31 @@ struct DoorEvaluation
   double precision() const { return passages_reported ? static_cast<double>(passages_on_doors) / passages_reported : 0.0; }
   double recall() const { return doors_traversed ? static_cast<double>(doors_detected) / doors_traversed : 0.0; }
   std::vector<std::string> missed;
+  // With vision (a second detector on the same scans that also gets the camera's rectangles):
+  // passages it classified as doors, how many of those lie on doors, and the door traversals
+  // whose passage it had classified as a door before the robot went through.
+  int vision_frames = 0;
+  int vision_doors_classified = 0;
+  int vision_classified_on_doors = 0;
+  int vision_doors_detected = 0;
+  double vision_precision() const
+  {
+    return vision_doors_classified ? static_cast<double>(vision_classified_on_doors) / vision_doors_classified : 0.0;
+  }
+  double vision_recall() const { return doors_traversed ? static_cast<double>(vision_doors_detected) / doors_traversed : 0.0; }
 };
 
-// Drives the world's planned tour (plan_tour) and scores narrow passages against the doors.
+// What a camera on the robot sees: its rectangles (base frame at capture) from the robot's true
+// pose in the world at a simulation time (the doors' state then), at rate_hz.
+struct DoorVision
+{
+  double rate_hz = 1.0;
+  std::function<std::vector<Rectangle3>(const sim::Pose2& truth, const std::vector<uint8_t>& doors_open, int64_t frame)> see;
+};
+
+// Drives the world's planned tour (plan_tour) and scores narrow passages against the doors;
+// with `vision`, also a detector that gets the camera's rectangles, in the same run.
 DoorEvaluation evaluate_doors(const sim::World& world, const DetectorOptions& options, double scan_hz, uint64_t seed,
-                              std::vector<double>* scan_ms);
+                              std::vector<double>* scan_ms, const DoorVision* vision = nullptr);
 
 }  // namespace rgnav::gateway_detector::tools

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "scan_fixture.h"
+
 namespace rgnav::collision_avoidance {
 namespace {
 
@@ -74,6 +76,35 @@ TEST(LocalMap, NewlySeenPartOfAStaticFaceIsNotPossiblyMoving)
   EXPECT_LT(map.clearance_moving({1.0, 1.0}, 0.5), 0.2);
   EXPECT_TRUE(std::isinf(map.clearance_moving({2.0, 0.12}, 0.5)));
   EXPECT_LT(map.clearance({2.0, 0.12}, 0.5), 0.05);  // still an obstacle, with the plain margin
+}
+
+TEST(LocalMap, APersonStandsApartFromTheWallsAPieceOfWallDoesNot)
+{
+  // A hallway 1.1 m wide along x, the laser in it at the origin facing +x; a person (a 0.4 m
+  // box) 2.5 m ahead in the middle. The walls' pieces 2-4 m ahead are seen at a grazing angle:
+  // with 1 degree beams, the beam beyond such a piece ends 0.3 m farther or more (as it would
+  // beside a person), but the beam before it nearer. (A piece of wall hidden for a moment
+  // and seen again looks like someone who walked up and stopped; a piece of the wall that
+  // moves along it as the robot turns, like someone walking.)
+  const std::vector<testing::Wall> hallway = {{{-3.0, -0.55}, {8.0, -0.55}}, {{-3.0, 0.55}, {8.0, 0.55}}};
+  auto with_person = hallway;
+  for (const auto& side : testing::box(2.5, -0.2, 2.9, 0.2)) with_person.push_back(side);
+  LocalMap map(LocalMapOptions{});
+  map.add_scan(testing::scan_points(Pose2(), with_person, time::from_utime(1'000'000), map.max_range()));
+  map.rebuild(time::from_utime(1'000'000));
+  constexpr double kRadius = 0.3, kJump = 0.3;
+  EXPECT_TRUE(map.stands_apart({2.6, 0.0}, kRadius, kJump));
+  for (const double x : {2.0, 3.0, 4.0})
+    for (const double y : {-0.55, 0.55}) EXPECT_FALSE(map.stands_apart({x, y}, kRadius, kJump)) << x << " " << y;
+  // The same pieces of wall with nobody in the hallway; and a wall across it, head-on.
+  LocalMap empty(LocalMapOptions{});
+  auto shut = hallway;
+  shut.push_back({{5.0, -0.55}, {5.0, 0.55}});
+  empty.add_scan(testing::scan_points(Pose2(), shut, time::from_utime(1'000'000), empty.max_range()));
+  empty.rebuild(time::from_utime(1'000'000));
+  for (const double x : {2.5, 3.5})
+    for (const double y : {-0.55, 0.55}) EXPECT_FALSE(empty.stands_apart({x, y}, kRadius, kJump)) << x << " " << y;
+  EXPECT_FALSE(empty.stands_apart({5.0, 0.0}, kRadius, kJump));
 }
 
 TEST(LocalMap, GridPointsAndScanCount)

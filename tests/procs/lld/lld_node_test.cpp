@@ -81,6 +81,36 @@ TEST(LldNode, RejectsBadTrajectory)
   EXPECT_EQ(node.drops().total(), 1);  // refused by the wire check or by from_msg: counted either way
 }
 
+// One input stamped far ahead (a corrupted copy) is dropped and counted, not taken as the
+// robot's time: taken, it would make the odometry look stale and stop the robot for as long as
+// the stamp is ahead. A second input stamped near it confirms a real jump.
+TEST(LldNode, OneInputStampedFarAheadIsDroppedUntilAnotherConfirmsIt)
+{
+  rgnav::testing::FakeBusNode n("lld");
+  bus::FakeBus* fake = n.bus;
+  LldNode lld(*n.node, LldOptions{}, false);
+  const int64_t t0 = 1'700'000'000'000'000;
+  odometry_t odo{};
+  odo.status = odometry_t::STATUS_OK;
+  auto send = [&](int64_t utime) {
+    odo.utime = utime;
+    ++odo.seq;
+    ASSERT_TRUE(bus::publish(*fake, "ODOMETRY", odo));
+  };
+  send(t0);
+  send(t0 + 20'000);
+  EXPECT_EQ(n.node->drops().total(), 0);
+  send(t0 + 600'000'000);  // ten minutes ahead
+  EXPECT_EQ(n.node->drops().total(), 1);
+  EXPECT_LT(time::to_utime(lld.message_now()), t0 + 60'000'000);  // wall time since: seconds at most
+  send(t0 + 40'000);  // the stream goes on: taken
+  EXPECT_EQ(n.node->drops().total(), 1);
+  send(t0 + 600'000'000);
+  send(t0 + 600'020'000);  // two near each other: the robot's time did jump
+  EXPECT_EQ(n.node->drops().total(), 2);
+  EXPECT_GE(time::to_utime(lld.message_now()), t0 + 600'020'000);
+}
+
 TEST(PeriodicLoop, TicksAndStops)
 {
   PeriodicLoop loop(std::chrono::milliseconds(5));

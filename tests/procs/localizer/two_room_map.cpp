@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "persist/atomic_file.h"
+#include "rgmap/saved_map.h"
 #include "rgmap/rgmap_json.h"
 
 namespace rgnav::testing {
@@ -112,7 +112,7 @@ sensors::LaserScan cast_scan(const Walls& walls, const Pose2& map_from_base, con
 
 void write_rgmap_json(const rgmap::RgMap& map, const std::string& dir)
 {
-  persist::write_atomically(dir + "/rgmap.json", rgmap::to_json(map).dump(1));
+  rgmap::save_map(map, dir + "/rgmap.json");
 }
 
 }  // namespace rgnav::testing

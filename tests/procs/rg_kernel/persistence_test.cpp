@@ -15,6 +15,7 @@
 #include "procs/rg_kernel/rg_kernel_node.h"
 #include "rgmap/rgmap_conversions.h"
 #include "rgmap/rgmap_json.h"
+#include "rgmap/saved_map.h"
 #include "rgnav/region_name_t.hpp"
 
 namespace rgnav::rg_kernel {
@@ -138,9 +139,7 @@ TEST_P(RestartContinues, AsIfUninterrupted)
   second.kernel->publish();
   // A clean stop leaves the final map in rgmap.json, the export tools read.
   second.kernel.reset();
-  const auto text = persist::read_checked(split + "/rgmap.json");
-  ASSERT_TRUE(text);
-  EXPECT_EQ(rgmap::to_json(rgmap::from_json(nlohmann::json::parse(*text))).dump(), expected);
+  EXPECT_EQ(rgmap::to_json(rgmap::load_saved_map(split + "/rgmap.json")).dump(), expected);
 }
 
 INSTANTIATE_TEST_SUITE_P(RgKernelPersistence, RestartContinues, ::testing::Values(0, 3));

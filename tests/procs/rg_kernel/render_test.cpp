@@ -6,7 +6,8 @@
 #include <fstream>
 
 #include "bad_files.h"
-#include "persist/atomic_file.h"
+#include "persist/checked_json.h"
+#include "rgmap/saved_map.h"
 #include "procs/rg_kernel/rg_kernel.h"
 #include "render/rgmap_picture.h"
 #include "rgmap/rgmap_json.h"
@@ -88,10 +89,10 @@ TEST(Render, BadFilesAreRefusedNamingThemAndNothingIsWritten)
 {
   rgnav::testing::TempDir dir("render_bad");
   const std::string valid = dir.file("rgmap.json");
-  persist::write_atomically(valid, rgmap::to_json(two_room_map()).dump(1));
+  rgmap::save_map(two_room_map(), valid);
   auto files = rgnav::testing::write_bad_files(dir.path(), "rgmap.json", rgnav::testing::read_file(valid));
   files.push_back({"not an RG map", dir.file("other.json")});
-  persist::write_atomically(files.back().path, "{\"schema\": \"something else\"}");
+  persist::write_json_atomically(files.back().path, {{"schema", "something else"}});
   for (const auto& f : files) {
     SCOPED_TRACE(f.kind);
     const std::string out = dir.file("out.png"), base = dir.file("export");

@@ -1,16 +1,19 @@
 // End to end: a short simulated drive through the office world (lobby, hallway, through a door
 // into an office) is written as an LCM log (LASER_FRONT + ODOMETRY, a few hundred scans), and
 // rgnav_rgmap_offline maps it twice: rgmap.json must exist, parse, hold a region, and be
-// byte-identical between the runs (deterministic on message time).
+// byte-identical between the runs (deterministic on message time); every file written opens in
+// the standard tool for its format.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "importers/lcm_log_io.h"
-#include "persist/atomic_file.h"
+#include "rgmap/saved_map.h"
 #include "rgmap/rgmap_json.h"
 #include "sim/simulator.h"
 #include "sim/waypoint_follower.h"
@@ -82,9 +85,7 @@ TEST(RgMapOffline, ShortSimulatedLogGivesTheSameRgMapTwice)
   }
   const fs::path a = dir / "a" / "rgmap.json";
   ASSERT_TRUE(fs::exists(a));
-  const auto text = persist::read_checked(a.string());
-  ASSERT_TRUE(text.has_value());
-  const rgmap::RgMap map = rgmap::from_json(nlohmann::json::parse(*text));
+  const rgmap::RgMap map = rgmap::load_saved_map(a.string());
   int live = 0;
   for (const auto& [id, r] : map.regions()) live += r.state != rgmap::Region::State::kMerged;
   EXPECT_GE(live, 1);
@@ -93,6 +94,20 @@ TEST(RgMapOffline, ShortSimulatedLogGivesTheSameRgMapTwice)
   for (const char* f : {"trajectory.txt", "aligned_scans.lcmlog", "map.png", "rgmap.svg", "rgmap.png",
                         "rgmap_global.pgm", "rgmap_global.yaml", "summary.json"})
     EXPECT_TRUE(fs::exists(dir / "a" / f)) << f;
+  // Each export opens in the standard tool for its format, as it is (issue 36: rgmap.json once
+  // had a header line before its JSON).
+  const std::vector<std::pair<std::string, std::string>> readers = {
+      {"rgmap.json", "python3 -m json.tool"},
+      {"summary.json", "python3 -m json.tool"},
+      {"rgmap.svg", "xmllint --noout"},
+      {"map.png", "identify"},
+      {"rgmap.png", "identify"},
+      {"rgmap_global.pgm", "identify"},
+      {"rgmap_global.yaml", "python3 -c 'import sys, yaml; assert isinstance(yaml.safe_load(open(sys.argv[1])), dict)'"}};
+  for (const auto& [file, reader] : readers) {
+    const std::string cmd = reader + " " + (dir / "a" / file).string() + " > " + (dir / "reader.out").string() + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << file << " refused by `" << reader << "`: " << slurp(dir / "reader.out");
+  }
   EXPECT_EQ(slurp(a), slurp(dir / "b" / "rgmap.json"));
   EXPECT_EQ(slurp(dir / "a" / "trajectory.txt"), slurp(dir / "b" / "trajectory.txt"));
 
@@ -100,9 +115,7 @@ TEST(RgMapOffline, ShortSimulatedLogGivesTheSameRgMapTwice)
   const std::string cmd = std::string(RGMAP_OFFLINE_BIN) + " " + (dir / "drive.lcmlog").string() + " --poses-as-given --no-pictures --out " +
                           (dir / "given").string() + " > " + (dir / "given.out").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir / "given.out");
-  const auto given = persist::read_checked((dir / "given" / "rgmap.json").string());
-  ASSERT_TRUE(given.has_value());
-  EXPECT_GE(rgmap::from_json(nlohmann::json::parse(*given)).regions().size(), 1u);
+  EXPECT_GE(rgmap::load_saved_map((dir / "given" / "rgmap.json").string()).regions().size(), 1u);
   EXPECT_FALSE(fs::exists(dir / "given" / "rgmap.svg"));
   fs::remove_all(dir);
 }
