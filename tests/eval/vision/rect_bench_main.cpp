@@ -30,11 +30,13 @@
 #include <random>
 #include <vector>
 
+#include "percentile.h"
 #include "rendered_doors.h"
 #include "vision/rectangle3d.h"
 
 namespace {
 
+using rgnav::bench::percentile;
 using rgnav::vision::Pinhole;
 using rgnav::vision::Quadrangle;
 using Corners = std::array<Eigen::Vector3d, 4>;
@@ -45,13 +47,6 @@ Corners rectangle(const Eigen::Vector3d& c, const Eigen::Matrix3d& r, double w, 
 {
   return {c + r * Eigen::Vector3d(-w / 2, -h / 2, 0), c + r * Eigen::Vector3d(w / 2, -h / 2, 0),
           c + r * Eigen::Vector3d(w / 2, h / 2, 0), c + r * Eigen::Vector3d(-w / 2, h / 2, 0)};
-}
-
-double percentile(std::vector<double> v, double p)
-{
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
 }
 
 double max_corner_error(const rgnav::vision::Rectangle3d& r, const Corners& truth)

@@ -1,5 +1,7 @@
 #include "rendered_doors.h"
 
+#include "percentile.h"
+
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
@@ -21,13 +23,6 @@ namespace {
 using Corners = std::array<Eigen::Vector3d, 4>;
 constexpr double kFrameWidth = 0.06;  // the renderer's jambs and lintel (render_faces.cpp) ...
 constexpr double kFrameDepth = 0.2;   // ... across the wall: their faces stand half this in front of it
-
-double percentile(std::vector<double> v, double p)
-{
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
-}
 
 // Largest corner distance under the best pairing of the corners around (either way, any start).
 double max_corner_distance(const Corners& a, const Corners& b)

@@ -27,6 +27,7 @@
 #include <set>
 
 #include "aloe_eval.h"
+#include "percentile.h"
 #include "config/config.h"
 #include "config/robot_description.h"
 #include "drivers/stereo/image_encoding.h"
@@ -40,15 +41,10 @@
 
 namespace {
 
+using rgnav::bench::percentile;
+
 using namespace rgnav;
 using Clock = std::chrono::steady_clock;
-
-double percentile(std::vector<double> v, double q)
-{
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5))];
-}
 
 double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b)
 {
