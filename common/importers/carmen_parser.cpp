@@ -8,8 +8,6 @@
 namespace rgnav::importers {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 int64_t seconds_to_utime(double s) { return static_cast<int64_t>(std::llround(s * 1e6)); }
 
 bool numbers(const std::vector<std::string_view>& f, size_t from, size_t count, std::vector<double>* out,
@@ -57,9 +55,9 @@ bool parse_old_laser(const std::vector<std::string_view>& f, bool front, const C
   sensors::LaserScan s;
   s.utime = utime;
   // 180 beams cover [-90, 89] deg at 1 deg; 181/361 beams cover [-90, 90] deg inclusive.
-  const double fov = kPi;
+  const double fov = M_PI;
   s.angle_increment = static_cast<float>(n % 2 == 0 && !o.fov_inclusive ? fov / n : fov / (n - 1));
-  s.angle_min = static_cast<float>(front ? -kPi / 2 : kPi / 2);
+  s.angle_min = static_cast<float>(front ? -M_PI / 2 : M_PI / 2);
   s.range_min = 0.001f;
   s.range_max = o.old_laser_range_max;
   s.ranges.assign(ranges.begin(), ranges.end());

@@ -9,8 +9,6 @@
 namespace rgnav::importers {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 struct Ticks
 {
   int64_t left = 0, right = 0;
@@ -27,7 +25,7 @@ ImportedLog read_mines(const std::string& path, const MinesOptions& o)
   std::optional<Ticks> prev;
   std::optional<size_t> beams;  // every line of a log has the same count
   PoseRecord pose;
-  const double m_per_tick = 2.0 * kPi * o.wheel_radius_m / o.ticks_per_turn;
+  const double m_per_tick = 2.0 * M_PI * o.wheel_radius_m / o.ticks_per_turn;
   while (reader.next(&line)) {
     const auto f = split_fields(line);
     if (f.empty()) continue;
@@ -67,7 +65,7 @@ ImportedLog read_mines(const std::string& path, const MinesOptions& o)
       continue;
     }
     beams = n;
-    const double inc = o.angle_increment_deg * kPi / 180.0;
+    const double inc = o.angle_increment_deg * M_PI / 180.0;
     s.angle_increment = static_cast<float>(inc);
     s.angle_min = static_cast<float>(-0.5 * inc * static_cast<double>(n - 1));
     s.range_min = o.range_min_m;
@@ -81,7 +79,7 @@ ImportedLog read_mines(const std::string& path, const MinesOptions& o)
       const double dth = (dr - dl) / (2.0 * o.half_axle_m);
       pose.x += d * std::cos(pose.theta + 0.5 * dth);
       pose.y += d * std::sin(pose.theta + 0.5 * dth);
-      pose.theta = std::remainder(pose.theta + dth, 2.0 * kPi);
+      pose.theta = std::remainder(pose.theta + dth, 2.0 * M_PI);
     }
     prev = t;
     pose.utime = utime;

@@ -4,15 +4,11 @@
 #include <cmath>
 #include <complex>
 
+#include "trajectory/gauss_legendre.h"
+
 namespace rgnav::trajectory {
 
 namespace {
-
-// 10-point Gauss-Legendre nodes and weights on [-1, 1].
-constexpr double kGlX[5] = {0.1488743389816312, 0.4333953941292472, 0.6794095682990244,
-                            0.8650633666889845, 0.9739065285171717};
-constexpr double kGlW[5] = {0.2955242247147529, 0.2692667193099963, 0.2190863625159820,
-                            0.1494513491505806, 0.0666713443086881};
 
 // integral over [lo, hi] of f, by composite 10-point Gauss-Legendre with `panels` panels.
 template <class F>
@@ -22,8 +18,8 @@ void gauss_legendre(double lo, double hi, int panels, F&& f)
   for (int p = 0; p < panels; ++p) {
     const double mid = lo + (p + 0.5) * h, half = 0.5 * h;
     for (int i = 0; i < 5; ++i) {
-      f(mid - half * kGlX[i], half * kGlW[i]);
-      f(mid + half * kGlX[i], half * kGlW[i]);
+      f(mid - half * kGaussLegendreX[i], half * kGaussLegendreW[i]);
+      f(mid + half * kGaussLegendreX[i], half * kGaussLegendreW[i]);
     }
   }
 }

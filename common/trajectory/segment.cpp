@@ -4,17 +4,13 @@
 #include <cmath>
 
 #include "trajectory/fresnel.h"
+#include "trajectory/gauss_legendre.h"
 
 namespace rgnav::trajectory {
 
 using geometry::normalize_angle;
 
 namespace {
-
-constexpr double kGlX[5] = {0.1488743389816312, 0.4333953941292472, 0.6794095682990244,
-                            0.8650633666889845, 0.9739065285171717};
-constexpr double kGlW[5] = {0.2955242247147529, 0.2692667193099963, 0.2190863625159820,
-                            0.1494513491505806, 0.0666713443086881};
 
 Pose2 advance(const Pose2& start, const Eigen::Vector2d& local, double dtheta)
 {
@@ -113,7 +109,7 @@ double ellipse_arc_length(double a, double b, double ta, double tb)
   for (int p = 0; p < panels; ++p) {
     const double mid = ta + (p + 0.5) * h, half = 0.5 * h;
     for (int i = 0; i < 5; ++i)
-      sum += half * kGlW[i] * (speed(mid - half * kGlX[i]) + speed(mid + half * kGlX[i]));
+      sum += half * kGaussLegendreW[i] * (speed(mid - half * kGaussLegendreX[i]) + speed(mid + half * kGaussLegendreX[i]));
   }
   return std::fabs(sum);
 }

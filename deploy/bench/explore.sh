@@ -49,8 +49,8 @@
 #   collisions (+ contacts), timed_out, ended_done, rooms_missed, seg_precision/recall.
 # Env: EXPLORE_ONLY (space-separated world names) runs only those; EXPLORE_STARTS random starts per
 #   world; EXPLORE_METHODS ("rgnav frontier"); EXPLORE_SPIN=S: the robot first turns on the spot S
-#   seconds (0.5 rad/s) before the explorer takes over (default 0: the explorer starts from what
-#   the forward laser saw); EXPLORE_JOBS runs at once (default 2); EXPLORE_ARGS adds bench flags
+#   seconds (0.5 rad/s) before the explorer takes over (default 0; the explorer itself looks
+#   behind first, config/explorer.yaml recovery.look_at_start); EXPLORE_JOBS runs at once (default 2); EXPLORE_ARGS adds bench flags
 #   (e.g. "--seed 3 --max-sim-s 1800"); EXPLORE_TRACE=1 prints a line per simulated second per run
 #   (true and SLAM pose, collision avoidance's mode, area seen, rooms, the explorer's phase,
 #   activity, region, completeness, stack, goal and the planner's status and route) and every goal

@@ -11,6 +11,7 @@
 #   tests/fault/drive_stack.pmd  the demo's drive chain driving (protocol mode: targets ->
 #                                collision_avoidance -> lld -> base_driver -> emulated drives),
 #                                laser_driver, gateway_detector, stereo_capture, sim_operator
+#   tests/fault/vision_stack.pmd the vision and the viewer on the simulated head
 # Stateful processes must come back with their state (RG_MAP, the scan mapper's checkpoint,
 # the planner's goal, the explorer's gateway stack); the localizer and the planner run on a
 # saved map (the two-room map of their tests) and are restarted on it;
@@ -56,6 +57,11 @@ run drive_stack tests/fault/drive_stack.pmd --prepare "$root/tests/fault/drive_s
   "${drive_procs[@]}" --fault sigkill --fault sigstop --fault busy_loop --fault crash_loop --host-stall-ms 60 --host-stall-ms 100
 run drive_stack_inputs tests/fault/drive_stack.pmd --prepare "$root/tests/fault/drive_stack_configs.sh" --no-supervisor-fault \
   "${drive_procs[@]}" --fault flood --fault malformed --fault loss_dup_delay
+# The vision and the viewer on the simulated head (the robot driving the office tour on the tour
+# runner's follower), their inputs behind relays; the flood paced at 60 Hz per input, as stereo
+# pairs are ~100 kB each.
+run vision_stack tests/fault/vision_stack.pmd --prepare "$root/tests/fault/vision_stack_configs.sh" --no-supervisor-fault \
+  --process vision --process viewer --flood 600 --flood-rate 60
 # The demo's stack under stress-ng (both cores and the disk): false restarts, stall-caused stops,
 # collisions, and the time to detect a SIGSTOP of each process under that load.
 echo "faults: stress (demo stack, ${RGNAV_STRESS_SOAK_S:-300} s soak)" >&2

@@ -37,9 +37,21 @@
 #     segment end points), mean_region_bytes (freespace bitmap + segments), consistency_problems,
 #     overlapping_regions (pairs of regions, the smaller with half its freespace in the other's:
 #     one place mapped twice, or a small room seen whole through a wide opening).
-# summary.<worlds|worlds_true_poses>.<ipa_plain|ipa_furnished> — means of seg_precision /
-#   seg_recall over the IPA maps (Bormann et al. report means over their maps), gateway sums,
-#   isomorphic count, failed runs (left out of the means), and the Voronoi method's figures.
+# worlds.rand_<seed>, rand_<seed>_furnished — generated buildings (issue 33; tests/eval/buildings,
+#   rgnav_building_gen: hallways straight, L, T, crossing or a ring, 1.2-3.5 m wide, offices to
+#   open halls, doors 0.8-1.6 m and openings 2-3 m, rooms behind rooms, walls 1-4 px with scan
+#   noise; the furnished variant with tables and chairs by their legs, cabinets, clutter), the
+#   same keys plus "random_building": true. RANDOM_BUILDINGS of them (default 50; 0: none), seeds
+#   RANDOM_SEED (default 1) on, written to <RGMAP_WORK>/random/; RANDOM_VARIANTS (default
+#   "plain furnished") which maps of each are driven.
+# summary.<worlds|worlds_true_poses>.<ipa_plain|ipa_furnished|random_plain|random_furnished> —
+#   means of seg_precision / seg_recall over the maps (Bormann et al. report means over their
+#   maps), gateway sums (gateways_crossed(_matched) too), isomorphic count, failed runs (left out
+#   of the means), broken_maps, and doorways_crossed_gateway_ratio (crossed doorways that became
+#   gateways / crossed doorways), false_gateway_ratio (false / reported gateways),
+#   isomorphic_ratio (isomorphic / worlds run); the IPA groups also the Voronoi method's figures.
+# random_buildings — generated buildings driven; broken_maps / broken_map_list — worlds (named and
+#   generated, scan mapper poses) whose map is broken: alignment_rmse_m > 0.3 m (name -> RMSE).
 # logs.<name> — corrected real logs of ../shared/data/laser/corrected (poses taken as given, as
 #   the dissertation did); no ground truth: counts only (false_positives is null).
 #   gateways, doors, neutralized, not_traversed (Table 6.1 columns), regions, merged_regions,
@@ -51,7 +63,7 @@
 # Env: RGMAP_SIM_MAX_S caps simulated seconds per world (default 2400: office_g's 742 m tour
 #   takes 1550 s); RGMAP_JSON and RGMAP_WORK write elsewhere (default logs/bench/rgmap.json,
 #   logs/bench/rgmap/); RGMAP_ONLY (space-separated names, e.g. "office lab_ipa") runs only those
-#   worlds and no real log unless named; RGMAP_TRUE_POSES=0 leaves out the true-pose runs;
+#   worlds and no real log unless named ("random": all generated buildings); RGMAP_TRUE_POSES=0 leaves out the true-pose runs;
 #   RGMAP_RG_CONFIG runs another RG kernel config (default config/rg_kernel.yaml), e.g. one with a
 #   rule switched off: build/bin/config_overlay config/rg_kernel.yaml OFF.yaml kernel.door_exits=false.
 # The benchmark itself: tests/eval/rgmap (rgnav_rgmap_bench).
@@ -91,6 +103,11 @@ sims=()
 for spec in "${specs[@]}"; do
   wanted "${spec%%=*}" && sims+=(--sim "$spec")
 done
+# Generated buildings (tests/eval/buildings): no rule was fitted to them.
+source "$ROOT/tests/eval/buildings/random_building_specs.sh"
+random=$(random_building_specs "$BUILD/bin/rgnav_building_gen" "$WORK/random" "${RANDOM_BUILDINGS:-50}" "${RANDOM_SEED:-1}" \
+  "${RANDOM_VARIANTS:-plain furnished}" "$ONLY")
+while read -r spec; do [ -z "$spec" ] || sims+=(--sim-random "$spec"); done <<< "$random"
 flags=()
 [ "${RGMAP_TRUE_POSES:-1}" = 0 ] || flags+=(--true-poses)
 exec "$bin" --config "$ROOT/config/scan_mapper.yaml" --gateway-config "$ROOT/config/gateway_detector_aligned.yaml" \

@@ -19,8 +19,18 @@
 #   door_precision_laser, door_precision_vision, door_recall_vision: the gateway bench's door
 #     evaluation alone (gateway_bench --only none): one drive of the office world's tour, a
 #     detector on the laser and one that also gets the simulated head's rectangles (2 Hz).
+#   courses, collisions_vision_off, collisions_vision_on (and reached_vision_off/on): rgnav_vision_courses
+#     (tests/eval/vision/vision_courses_main.cpp): generated furnished rooms (tables whose tops the
+#     laser misses, pedestal chairs, wall shelves), each driven by collision avoidance + lld around
+#     the simulator twice in the same run, without and with the vision's grid (the head rendered in
+#     lock-step at stereo_capture's rate); a collision is the robot body meeting any solid up to its
+#     height. The rest of its output under obstacle_courses.
+#   calib_reprojection_px: rgnav_stereo_calibrate on the shared chessboard pairs (9x6 inner corners,
+#     25 mm squares assumed): cv::stereoCalibrate's RMS reprojection error; the file it writes is
+#     the one checked in as config/stereo/chessboard_demo.yml.
 # VISION_ARGS adds flags to rgnav_vision_bench (e.g. "--frames 40 --approaches 5 --pictures DIR"),
-# RECT_ARGS to rgnav_rect_bench; VISION_DOORS=0 skips the door evaluation (minutes).
+# RECT_ARGS to rgnav_rect_bench, COURSES_ARGS to rgnav_vision_courses (e.g. "--courses 5");
+# VISION_DOORS=0 skips the door evaluation (minutes), VISION_COURSES=0 the courses (~half an hour).
 # The benchmarks: tests/eval/vision (rgnav_vision_bench, rgnav_rect_bench), tests/eval/gateways.
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
@@ -36,6 +46,11 @@ taskset -c 0 "$BIN" --out "$OUT/stereo.json" ${VISION_ARGS:-}
 "$BUILD/bin/rgnav_rect_bench" ${RECT_ARGS:-} > "$OUT/rectangles.json"
 if [[ "${VISION_DOORS:-1}" != 0 ]]; then
   "$BUILD/bin/gateway_bench" --config-dir "$ROOT/config" --only none --out "$OUT/doors.json"
+fi
+"$BUILD/bin/rgnav_stereo_calibrate" --out "$OUT/chessboard_demo.yml" --report "$OUT/calibration.json" >&2
+if [[ "${VISION_COURSES:-1}" != 0 ]]; then
+  # shellcheck disable=SC2086
+  taskset -c 0 "$BUILD/bin/rgnav_vision_courses" --out "$OUT/courses.json" ${COURSES_ARGS:-}
 fi
 python3 - "$OUT" "$ROOT/logs/bench/vision.json" <<'PY'
 import json, os, sys
@@ -60,6 +75,15 @@ if os.path.exists(doors_file):
         merged["door_precision_vision"] = doors["with_vision"]["precision"]
         merged["door_recall_vision"] = doors["with_vision"]["recall"]
     merged["doors"] = doors
+calib = json.load(open(os.path.join(out, "calibration.json")))
+merged["calib_reprojection_px"] = calib["calib_reprojection_px"]
+merged["calibration"] = calib
+courses_file = os.path.join(out, "courses.json")
+if os.path.exists(courses_file):
+    courses = json.load(open(courses_file))
+    for k in ("courses", "collisions_vision_off", "collisions_vision_on", "reached_vision_off", "reached_vision_on"):
+        merged[k] = courses[k]
+    merged["obstacle_courses"] = {k: v for k, v in courses.items() if k != "per_course"}
 tmp = whole + ".tmp"
 with open(tmp, "w") as f:
     json.dump(merged, f, indent=2, sort_keys=True)

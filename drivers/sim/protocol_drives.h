@@ -35,6 +35,7 @@ class ProtocolDrives final : public DriveCommandSource
 
   // Boot-up messages; the drives then wait in pre-operational for the master.
   void power_on(int64_t utime);
+  bool ramped_by_drives() const override { return true; }
   void handle_translation(const can_frame& f, int64_t utime) { translation_.handle(f, emulator_time(utime)); }
   void handle_rotation(const can_frame& f, int64_t utime) { rotation_.handle(f, emulator_time(utime)); }
   // Ramps, heartbeats, heartbeat consumers, event TPDOs.

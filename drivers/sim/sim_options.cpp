@@ -23,6 +23,8 @@ SimulatorOptions load_simulator_options(const config::Config& cfg, const config:
   o.drive.v_max = drive.number("v_max", o.drive.v_max, 0.01, 5.0);
   o.drive.omega_max = drive.number("omega_max", o.drive.omega_max, 0.01, 10.0);
   o.drive.accel = drive.number("accel", o.drive.accel, 0.01, 20.0);
+  o.drive.brake_decel = drive.number("brake_decel", o.drive.brake_decel, 0.01, 20.0);
+  if (o.drive.brake_decel < o.drive.accel) drive.fail("brake_decel", "a body brakes at least as hard as it accelerates");
   o.drive.alpha = drive.number("alpha", o.drive.alpha, 0.01, 50.0);
 
   const auto odo = cfg.section("odometry");

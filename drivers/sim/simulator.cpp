@@ -91,7 +91,7 @@ void Simulator::physics(int64_t t_end_us, StepOutput* out)
   const std::optional<DriveCommand> told = source_ ? source_->command_at(now_utime()) : std::nullopt;
   commanded_ = told.has_value();
   const DriveCommand cmd = told.value_or(DriveCommand{});
-  BaseMotion motion = drive_.step(cmd, dt);
+  BaseMotion motion = drive_.step(cmd, dt, source_ && source_->ramped_by_drives());
   const double r = options_.robot.radius;
   auto body_clearance = [&](const Pose2& p) { return clearance({p.x, p.y}, r + 0.05); };
   Pose2 next = apply_motion(truth_, motion.ds, motion.dtheta);

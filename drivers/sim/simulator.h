@@ -59,6 +59,11 @@ class DriveCommandSource
   // The velocities the drive is told to reach at message time `utime`; nullopt when there is
   // no valid command (none yet, or stale): the drive then decelerates to a stop.
   virtual std::optional<DriveCommand> command_at(int64_t utime) = 0;
+  // True when the commands are drives' velocities after their own ramps (protocol mode: the
+  // emulated CiA 402 drives' profile and quick-stop decelerations): the body then slows as the
+  // drives do, up to its grip (SynchroDriveOptions::brake_decel). False for raw commands
+  // (direct mode): the simulated drive ramps them at its cruise accel both ways.
+  virtual bool ramped_by_drives() const { return false; }
 };
 
 // The newest command, valid until its deadline; afterwards (or before any command) the drive

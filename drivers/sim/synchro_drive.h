@@ -12,7 +12,13 @@ struct SynchroDriveOptions
 {
   double v_max = 0.9;        // [m/s]
   double omega_max = 2.0;    // [rad/s]
-  double accel = 0.8;        // [m/s^2] translational acceleration and deceleration limit
+  double accel = 0.8;        // [m/s^2] translational acceleration (the motor's cruise ramp)
+  // [m/s^2] translational deceleration of the body behind drives that ramp themselves
+  // (protocol mode): while the speed's magnitude falls the body slows as hard as the drives
+  // command, up to what the tyres' grip allows (a quick stop brakes far harder than the motor
+  // accelerates). Rubber on a dry office floor grips with mu ~0.45-0.6: the low end, 0.46 g.
+  // Above the CiA 402 drives' quick stop (4 m/s^2, 0x6085), so those set it.
+  double brake_decel = 4.5;
   double alpha = 2.5;        // [rad/s^2] rotational acceleration limit
 };
 
@@ -35,7 +41,10 @@ class SynchroDrive
   explicit SynchroDrive(const SynchroDriveOptions& options) : options_(options) {}
 
   // Advances the drive velocities toward `target` for dt seconds and returns the motion.
-  BaseMotion step(const DriveCommand& target, double dt);
+  // `ramped_by_drives`: the target is what drives with their own ramps already command (the
+  // body then slows at up to brake_decel); otherwise it is a raw command, ramped at accel both
+  // ways as the simulated drive's profile.
+  BaseMotion step(const DriveCommand& target, double dt, bool ramped_by_drives = false);
   // The translation motor stops dead (a collision): rotation is unaffected.
   void stop_translation() { v_ = 0.0; }
 

@@ -2,7 +2,10 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <set>
+#include <stdexcept>
 
 #include "config/config.h"
 #include "config/file_checks.h"
@@ -119,6 +122,49 @@ StereoCalibration load_stereo_calibration(const std::string& path)
   c.head_from_left_camera_xyz = vector3(fs, path, "head_from_left_camera_xyz", 1.0);
   c.head_from_left_camera_rpy = vector3(fs, path, "head_from_left_camera_rpy", M_PI);
   return c;
+}
+
+std::string stereo_calibration_text(const StereoCalibration& c, const std::string& comment,
+                                    const StereoRectification& rectification)
+{
+  cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+  const auto vec3 = [](const Eigen::Vector3d& v) { return cv::Mat(cv::Matx31d(v.x(), v.y(), v.z())); };
+  fs << "image_width" << c.image_size.width << "image_height" << c.image_size.height;
+  fs << "M1" << cv::Mat(c.M1) << "D1" << c.D1 << "M2" << cv::Mat(c.M2) << "D2" << c.D2;
+  fs << "R" << cv::Mat(c.R) << "T" << cv::Mat(cv::Matx31d(c.T[0], c.T[1], c.T[2]));
+  const std::pair<const char*, const cv::Mat*> rect[] = {{"R1", &rectification.R1}, {"R2", &rectification.R2},
+                                                          {"P1", &rectification.P1}, {"P2", &rectification.P2},
+                                                          {"Q", &rectification.Q}};
+  for (const auto& [key, m] : rect)
+    if (!m->empty()) fs << key << *m;
+  fs << "base_from_head" << vec3(c.base_from_head) << "head_from_left_camera_xyz" << vec3(c.head_from_left_camera_xyz)
+     << "head_from_left_camera_rpy" << vec3(c.head_from_left_camera_rpy);
+  std::string body = fs.releaseAndGetString();
+  // OpenCV writes "%YAML:1.0\n---\n..."; the comment goes between the two, as in the shipped files.
+  const size_t first = body.find('\n');
+  std::string text = body.substr(0, first + 1);
+  size_t from = 0;
+  while (from <= comment.size() && !comment.empty()) {
+    const size_t end = comment.find('\n', from);
+    const std::string line = comment.substr(from, end == std::string::npos ? std::string::npos : end - from);
+    text += line.empty() ? "#\n" : "# " + line + "\n";
+    if (end == std::string::npos) break;
+    from = end + 1;
+  }
+  return text + body.substr(first + 1);
+}
+
+void write_stereo_calibration(const std::string& path, const StereoCalibration& c, const std::string& comment,
+                              const StereoRectification& rectification)
+{
+  const std::string text = stereo_calibration_text(c, comment, rectification);
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << text;
+    if (!out.flush()) throw std::runtime_error(tmp + ": cannot be written");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error(path + ": cannot be written (rename failed)");
 }
 
 std::string stereo_calibration_path(const std::string& config_dir, const std::string& id)

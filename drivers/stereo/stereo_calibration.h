@@ -39,6 +39,21 @@ struct StereoCalibration
 // takes, R a rotation, a baseline within (0.01, 2] m, mounting within 5 m of the base.
 StereoCalibration load_stereo_calibration(const std::string& path);
 
+// The optional rectification keys stereo_calib writes beside the calibration (cv::stereoRectify's
+// outputs); empty matrices are left out.
+struct StereoRectification
+{
+  cv::Mat R1, R2, P1, P2, Q;
+};
+
+// The file load_stereo_calibration reads, as text: "%YAML:1.0", `comment` (every line made a
+// '#' comment), then the keys. Atomic write to `path` (a temporary file renamed); throws
+// std::runtime_error when it cannot be written.
+std::string stereo_calibration_text(const StereoCalibration& c, const std::string& comment,
+                                    const StereoRectification& rectification = {});
+void write_stereo_calibration(const std::string& path, const StereoCalibration& c, const std::string& comment,
+                              const StereoRectification& rectification = {});
+
 // <config_dir>/stereo/<calibration_id>.yml. Throws config::ConfigError for an id that is empty
 // or not a plain name (letters, digits, '_', '-', '.'; no path separators).
 std::string stereo_calibration_path(const std::string& config_dir, const std::string& calibration_id);

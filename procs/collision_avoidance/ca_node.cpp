@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <climits>
 
+#include "collision_avoidance/grid_obstacles.h"
 #include "msg/conversions.h"
 #include "rgnav/ca_status_t.hpp"
 #include "rgnav/heartbeat_t.hpp"
@@ -56,13 +57,9 @@ CaNode::CaNode(runtime::Node& node, const CaNodeOptions& options)
     decide(t);
   });
   node_.subscribe<obstacle_grid_t>(ch.obstacles, [this](const obstacle_grid_t& m) {
-    std::vector<Eigen::Vector2d> pts;
-    const Pose2 odom_from_grid = msg::to_pose2(m.odom_from_grid);
-    for (int32_t y = 0; y < m.height; ++y)
-      for (int32_t x = 0; x < m.width; ++x)
-        if (m.cells[static_cast<size_t>(y) * m.width + x] >= options_.ca.map.grid_occupied_min)
-          pts.push_back(odom_from_grid * Eigen::Vector2d((x + 0.5) * m.resolution, (y + 0.5) * m.resolution));
-    ca_.on_obstacle_points(time::from_utime(m.utime), std::move(pts));
+    ca_.on_obstacle_points(time::from_utime(m.utime),
+                           grid_obstacle_points(msg::to_pose2(m.odom_from_grid), m.resolution, m.width, m.height, m.cells,
+                                                options_.ca.map.grid_occupied_min));
   });
   node_.subscribe<lld_status_t>(ch.lld_status, [this](const lld_status_t& m) {
     DriveFeedback f;

@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "planner/no_path_reason.h"
+
 namespace rgnav::explorer {
 
 using Eigen::Vector2d;
@@ -15,6 +17,8 @@ namespace {
 
 constexpr double kSamePlace = 0.5;   // [m] a newly chosen goal this near the running one is the same goal
 constexpr double kMovedSinceFailure = 0.5;   // [m] the robot this far from the last failure's place is elsewhere
+constexpr double kTrackStep = 0.2;           // [m] the robot's track keeps a place every this far ...
+constexpr size_t kTrackPlaces = 100;         // ... the newest this many (20 m)
 
 nlohmann::json point_json(const Vector2d& p) { return {p.x(), p.y()}; }
 
@@ -27,6 +31,18 @@ Vector2d point_from(const nlohmann::json& j)
 }
 
 }  // namespace
+
+const char* to_string(ExploreGoal::Kind k)
+{
+  switch (k) {
+    case ExploreGoal::Kind::kFrontier: return "frontier";
+    case ExploreGoal::Kind::kGateway: return "gateway";
+    case ExploreGoal::Kind::kRegion: return "region";
+    case ExploreGoal::Kind::kLook: return "look";
+    case ExploreGoal::Kind::kStep: return "step";
+  }
+  return "?";
+}
 
 const char* to_string(Phase p)
 {
@@ -42,7 +58,13 @@ Explorer::Explorer(ExplorerOptions options) : options_(options), stack_(options.
 
 void Explorer::set_map(std::shared_ptr<const rgmap::RgMap> map) { map_ = std::move(map); }
 
-void Explorer::set_pose(const RobotPose& pose) { pose_ = pose; }
+void Explorer::set_pose(const RobotPose& pose)
+{
+  pose_ = pose;
+  const Vector2d at = pose.map_from_base.translation();
+  if (track_.empty() || (at - track_.back()).norm() >= kTrackStep) track_.push_back(at);
+  if (track_.size() > kTrackPlaces) track_.erase(track_.begin());
+}
 
 void Explorer::add_sightings(const std::vector<GatewaySighting>& sightings, int64_t utime)
 {
@@ -57,7 +79,12 @@ void Explorer::goal_report(int64_t goal_id, GoalOutcome outcome, const std::stri
   switch (outcome) {
     case GoalOutcome::kActive: return;
     case GoalOutcome::kReached: end_goal(true, "reached", utime); return;
-    case GoalOutcome::kNoPath: end_goal(false, reason.empty() ? "no path" : "no path: " + reason, utime); return;
+    case GoalOutcome::kNoPath: {
+      const auto cause = planner::no_path_cause(reason);
+      end_goal(false, reason.empty() ? "no path" : "no path: " + reason, utime, cause == planner::NoPathCause::kStartCutOff,
+               cause == planner::NoPathCause::kClosedGateway);
+      return;
+    }
     case GoalOutcome::kCancelled: end_goal(false, "cancelled", utime); return;
   }
 }
@@ -172,6 +199,7 @@ std::optional<ExploreGoal> Explorer::choose(int64_t utime)
 
 bool Explorer::goal_still_open() const
 {
+  if (is_recovery(*goal_)) return true;
   if (goal_->kind == ExploreGoal::Kind::kGateway) {
     const StackEntry* e = stack_.entry(goal_->entry_id);
     return e && e->state != StackEntry::State::kDone;
@@ -183,11 +211,30 @@ bool Explorer::goal_still_open() const
   return false;
 }
 
-void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime)
+void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, bool start_cut_off, bool behind_closed)
 {
   if (!goal_) return;
   if (reached) ++goals_reached_;
   else ++goals_failed_;
+  if (is_recovery(*goal_)) {
+    // A look or a step ended (done or not): the goals are chosen anew from the new view.
+    goal_.reset();
+    decide_now_ = true;
+    return;
+  }
+  if (!reached && start_cut_off && pose_) {
+    // Not the goal's fault: the robot's place joins nothing, and standing there nothing changes.
+    // It looks behind; still cut off there, it steps back along its track; cut off after both,
+    // the goal fails as any other (tried again when the robot moved or the map changed).
+    const Vector2d here = pose_->map_from_base.translation();
+    const auto new_place = [&](const std::optional<Vector2d>& p) { return !p || (here - *p).norm() >= kMovedSinceFailure; };
+    recovery_due_ = new_place(looked_at_) ? Recovery::kLook : new_place(stepped_from_) ? Recovery::kStep : Recovery::kNone;
+    if (recovery_due_ != Recovery::kNone) {
+      goal_.reset();
+      decide_now_ = true;
+      return;
+    }
+  }
   // A failure counts toward max_attempts only when something could have made it come out
   // otherwise since the last one: the robot got elsewhere or the map changed. Failing again from
   // the same place on the same map says nothing new (the planner's answer then is the same), and
@@ -199,6 +246,8 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime)
              map_->version != last_failure_->second;
     last_failure_ = std::make_pair(here, map_->version);
   }
+  // A gateway taken for closed for a while: the goal is due again later, no attempt of its own.
+  if (behind_closed) counts = false;
   if (goal_->kind == ExploreGoal::Kind::kGateway) {
     if (reached) {
       const StackEntry* e = stack_.entry(goal_->entry_id);
@@ -221,6 +270,39 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime)
   decide_now_ = true;
 }
 
+std::optional<ExploreGoal> Explorer::recovery_goal() const
+{
+  const int64_t cur = map_->resolve(map_->current_region);
+  const rgmap::Region* r = map_->region(cur);
+  if (!r) return std::nullopt;
+  const geometry::Pose2 region_from_base = r->map_from_region.inverse() * pose_->map_from_base;
+  const Vector2d robot = pose_->map_from_base.translation();
+  ExploreGoal g;
+  g.region_id = cur;
+  if (recovery_due_ == Recovery::kLook) {
+    // Face away from where the robot looked: the laser sees the half ahead of it.
+    g.kind = ExploreGoal::Kind::kLook;
+    g.region_point = region_from_base.translation();
+    g.map_point = robot;
+    g.heading = geometry::normalize_angle(region_from_base.theta() + M_PI);
+    g.heading_tolerance = options_.recovery.heading_tolerance;
+    g.tolerance = options_.goal_tolerance;
+    return g;
+  }
+  // Back along the way it came: its body was there, so the place is free and joins where it came from.
+  for (auto it = track_.rbegin(); it != track_.rend(); ++it) {
+    if ((*it - robot).norm() < options_.recovery.step_m) continue;
+    g.kind = ExploreGoal::Kind::kStep;
+    g.map_point = *it;
+    g.region_point = r->map_from_region.inverse() * *it;
+    const Vector2d d = g.region_point - region_from_base.translation();
+    g.heading = std::atan2(d.y(), d.x());
+    g.tolerance = 0.5 * options_.recovery.step_m;
+    return g;
+  }
+  return std::nullopt;
+}
+
 bool Explorer::waiting_to_retry(int64_t utime) const
 {
   for (const auto& e : stack_.entries())
@@ -240,7 +322,11 @@ Command Explorer::step(int64_t utime)
   }
   phase_ = Phase::kExploring;
   const int64_t cur = map_->resolve(map_->current_region);
-  if (start_region_ == 0) start_region_ = cur;
+  if (start_region_ == 0) {
+    start_region_ = cur;
+    // What the robot saw so far lies ahead of it: it looks behind before it chooses.
+    if (options_.recovery.look_at_start) recovery_due_ = Recovery::kLook;
+  }
   const Vector2d robot = pose_->map_from_base.translation();
   stack_.update(robot, *map_);
 
@@ -251,7 +337,14 @@ Command Explorer::step(int64_t utime)
   }
   last_region_ = cur;
 
-  if (goal_) {
+  if (goal_ && is_recovery(*goal_)) {
+    // A look ends when the planner says the heading is reached (the robot stands at its goal
+    // from the start); a step when the robot is there.
+    if (goal_->kind == ExploreGoal::Kind::kStep && (robot - goal_->map_point).norm() <= goal_->tolerance)
+      end_goal(true, "reached", utime);
+    else if (utime - goal_sent_utime_ > static_cast<int64_t>(options_.recovery.timeout_s * 1e6))
+      end_goal(false, "timed out", utime);
+  } else if (goal_) {
     if (!goal_still_open()) end_goal(true, goal_->kind == ExploreGoal::Kind::kGateway ? "gone through" : "explored", utime);
     else if ((robot - goal_->map_point).norm() <= goal_->tolerance) end_goal(true, "reached", utime);
     else if (utime - goal_sent_utime_ > static_cast<int64_t>(options_.goal_timeout_s * 1e6)) end_goal(false, "timed out", utime);
@@ -260,11 +353,28 @@ Command Explorer::step(int64_t utime)
   last_decision_utime_ = utime;
   decide_now_ = false;
 
+  if (recovery_due_ != Recovery::kNone && !goal_) {
+    std::optional<ExploreGoal> g = recovery_goal();
+    // Tried from here, whether or not there was a way to try it (no track to step back along).
+    (recovery_due_ == Recovery::kLook ? looked_at_ : stepped_from_) = robot;
+    recovery_due_ = Recovery::kNone;
+    if (g) {
+      g->goal_id = next_goal_id_++;
+      goal_ = g;
+      goal_sent_utime_ = utime;
+      ++goals_sent_;
+      activity_ = fmt::format("goal {}: {} to change the view", g->goal_id,
+                              g->kind == ExploreGoal::Kind::kLook ? "looking behind" : "a step back along the track");
+      cmd.goal = g;
+      return cmd;
+    }
+  }
+
   std::optional<ExploreGoal> next = choose(utime);
   if (goal_) {
     // A gateway goal runs until it ends; a frontier goal gives way to a better choice: a region
     // that became current, or a frontier much nearer than the one driven to.
-    if (goal_->kind == ExploreGoal::Kind::kGateway || !next) return cmd;
+    if (goal_->kind == ExploreGoal::Kind::kGateway || is_recovery(*goal_) || !next) return cmd;
     if ((next->map_point - goal_->map_point).norm() < kSamePlace) return cmd;
     if (next->region_id == goal_->region_id && next->kind == goal_->kind) {
       const double dn = (next->map_point - robot).norm(), dc = (goal_->map_point - robot).norm();

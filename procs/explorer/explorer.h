@@ -6,7 +6,11 @@
 // is waiting. It ends when no frontier of any region and no stacked gateway is left that it can
 // still try. Goals go to the planner (NAV_GOAL); a goal beyond a gateway lies in unknown space
 // and is sent with beyond_known (the planner drives from the nearest known free place straight
-// on). Regions the robot has finished are offered for naming.
+// on). Regions the robot has finished are offered for naming. The robot first looks behind (its
+// laser sees the half ahead); when the planner answers that the robot's own place joins nothing
+// ("start cut off", planner/no_path_reason.h) it looks behind again, then steps back along its
+// own track (RecoveryOptions), instead of standing where nothing changes; a goal only a gateway
+// taken for closed is in the way of counts no failed attempt.
 //
 // Pure algorithm, message time only: the node feeds it the RG map, the robot's pose, the
 // detector's gateway sightings and the planner's goal status, and calls step() at its own pace.
@@ -39,17 +43,22 @@ struct RobotPose
 // A goal for the planner (NAV_GOAL), in a region's frame.
 struct ExploreGoal
 {
-  enum class Kind : int8_t { kFrontier = 1, kGateway = 2, kRegion = 3 };
+  // kLook: a turn on the spot to see behind; kStep: back along the robot's own track (both to
+  // change the view of a robot whose place the planner finds cut off: RecoveryOptions).
+  enum class Kind : int8_t { kFrontier = 1, kGateway = 2, kRegion = 3, kLook = 4, kStep = 5 };
   int64_t goal_id = 0;
   Kind kind = Kind::kFrontier;
   int64_t region_id = 0;
   Eigen::Vector2d region_point{0, 0};
-  double heading = 0;              // [rad] region frame (any heading is accepted)
+  double heading = 0;              // [rad] region frame
+  double heading_tolerance = 4.0;  // [rad] >= pi: any heading
   double tolerance = 0.5;          // [m]
   bool beyond_known = false;       // the point may lie in unknown space past the region's freespace
   int64_t entry_id = 0;            // kGateway: the stack entry
   Eigen::Vector2d map_point{0, 0}; // the same point in the map frame
 };
+
+const char* to_string(ExploreGoal::Kind k);
 
 // What the planner says of a goal (GLOBAL_PATH's status).
 enum class GoalOutcome : int8_t { kActive = 0, kNoPath = 1, kReached = 2, kCancelled = 3 };
@@ -87,7 +96,8 @@ class Explorer
   void set_pose(const RobotPose& pose);
   // Sightings of the gateway detector at utime, map frame.
   void add_sightings(const std::vector<GatewaySighting>& sightings, int64_t utime);
-  // The planner's status of goal `goal_id` (ignored for any goal but the running one).
+  // The planner's status of goal `goal_id` (ignored for any goal but the running one); a NO_PATH's
+  // reason begins with its cause (planner/no_path_reason.h).
   void goal_report(int64_t goal_id, GoalOutcome outcome, const std::string& reason, int64_t utime);
 
   // Decides; at most once per decide_period_s unless something ended the running goal.
@@ -114,7 +124,17 @@ class Explorer
   // The region's frontiers that are goals of its own: those at a stacked gateway's opening are not.
   std::vector<Frontier> open_frontiers(int64_t region_id) const;
   bool goal_still_open() const;
-  void end_goal(bool reached, const std::string& reason, int64_t utime);
+  // kStartCutOff: the robot's own place joins nothing (not the goal's fault); kClosedGateway: only
+  // a gateway taken for closed for a while is in the way (no attempt of the goal's either).
+  void end_goal(bool reached, const std::string& reason, int64_t utime, bool start_cut_off = false,
+                bool behind_closed = false);
+  // The robot's place is cut off: a look behind, else a step back along its track, else nothing
+  // (looked and stepped from here already).
+  std::optional<ExploreGoal> recovery_goal() const;
+  bool is_recovery(const ExploreGoal& g) const
+  {
+    return g.kind == ExploreGoal::Kind::kLook || g.kind == ExploreGoal::Kind::kStep;
+  }
   bool visited(const Eigen::Vector2d& map_point) const;
   bool failed_here(const Eigen::Vector2d& map_point, int64_t utime) const;
   // Something set aside will be due again: not done yet.
@@ -135,6 +155,10 @@ class Explorer
   struct FailedPlace { Eigen::Vector2d map_point; int64_t retry_utime; int attempts; };
   std::vector<FailedPlace> failed_;             // frontier goals the planner could not reach
   std::optional<std::pair<Eigen::Vector2d, int64_t>> last_failure_;   // robot position and map version then
+  std::vector<Eigen::Vector2d> track_;          // map frame: where the robot was, newest last
+  enum class Recovery : int8_t { kNone, kLook, kStep };
+  Recovery recovery_due_ = Recovery::kNone;
+  std::optional<Eigen::Vector2d> looked_at_, stepped_from_;   // where the last look / step began
   std::set<int64_t> finished_regions_, offered_regions_;
   int64_t last_region_ = 0;
   int goals_sent_ = 0, goals_reached_ = 0, goals_failed_ = 0;

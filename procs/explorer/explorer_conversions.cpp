@@ -69,7 +69,8 @@ nav_goal_t to_msg(const ExploreGoal& goal, int64_t utime)
   m.has_pose = true;
   m.region_from_goal = msg::to_msg(geometry::Pose2(goal.region_point, goal.heading));
   m.position_tolerance = goal.tolerance;
-  m.heading_tolerance = M_PI;   // any heading: the robot looks where it drives
+  // Any heading (the robot looks where it drives) but for a look behind.
+  m.heading_tolerance = std::min(goal.heading_tolerance, M_PI);
   m.beyond_known = goal.beyond_known;
   m.cancel = false;
   return m;

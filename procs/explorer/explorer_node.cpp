@@ -13,12 +13,13 @@
 #include "explorer/explorer_state.h"
 #include "rgmap/rgmap_conversions.h"
 #include "rgnav/heartbeat_t.hpp"
+#include "time/units.h"
 
 namespace rgnav::explorer {
 
 namespace {
 
-constexpr double kUs = 1e-6;
+using time::kUs;
 // No robot is 10 km from the map's origin: such a pose is a corrupted one.
 constexpr double kMaxCoordinate = 1e4;
 // A goal the planner has not answered (a lost datagram, a planner restarting) is sent again
@@ -195,7 +196,7 @@ void ExplorerNode::step()
   if (c.goal) {
     const ExploreGoal& g = *c.goal;
     spdlog::info("goal {}: {} in region {} at ({:.2f}, {:.2f}) map ({:.2f}, {:.2f}){}", g.goal_id,
-                 g.kind == ExploreGoal::Kind::kFrontier ? "frontier" : g.kind == ExploreGoal::Kind::kGateway ? "gateway" : "region",
+                 to_string(g.kind),
                  g.region_id, g.region_point.x(), g.region_point.y(), g.map_point.x(), g.map_point.y(),
                  g.beyond_known ? ", beyond the known" : "");
     node_.publish(ch.nav_goal, to_msg(g, clock_.now()));

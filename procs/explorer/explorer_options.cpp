@@ -32,6 +32,16 @@ StackOptions load_stack(const config::Config& c)
   return s;
 }
 
+RecoveryOptions load_recovery(const config::Config& c)
+{
+  RecoveryOptions r;
+  r.look_at_start = c.boolean("look_at_start", r.look_at_start);
+  r.heading_tolerance = c.number("heading_tolerance_rad", r.heading_tolerance, 0.05, 1.5);
+  r.step_m = c.number("step_m", r.step_m, 0.1, 5.0);
+  r.timeout_s = c.number("timeout_s", r.timeout_s, 1.0, 600.0);
+  return r;
+}
+
 }  // namespace
 
 ExplorerOptions load_explorer_options(const config::Config& cfg, const config::RobotDescription& robot)
@@ -41,6 +51,7 @@ ExplorerOptions load_explorer_options(const config::Config& cfg, const config::R
   o.robot_radius = robot.radius;
   o.frontier = load_frontier(cfg.section("frontier"));
   o.stack = load_stack(cfg.section("stack"));
+  o.recovery = load_recovery(cfg.section("recovery"));
   const auto g = cfg.section("goals");
   o.goal_tolerance = g.number("tolerance_m", o.goal_tolerance, 0.05, 5.0);
   o.gateway_goal_tolerance = g.number("gateway_tolerance_m", o.gateway_goal_tolerance, 0.05, 5.0);

@@ -29,10 +29,24 @@ struct StackOptions
   bool breadth_first = true;       // order: fewest RG-graph hops from the start region first (else nearest first)
 };
 
+// When the planner says the robot's own place joins nothing (its region grid has the robot in a
+// scrap of free space: clutter, ragged freespace, unknown space behind it, the laser seeing only
+// ahead), standing there changes nothing: the robot changes its view. It turns on the spot to
+// face away from where it looks (the laser sees the half behind it), and if that does not do,
+// steps back along its own track (where its body was: free) and tries again.
+struct RecoveryOptions
+{
+  bool look_at_start = true;       // the first thing: a look behind (a map of what lies ahead only cuts the start off)
+  double heading_tolerance = 0.35; // [rad] the turn is done this near the heading behind
+  double step_m = 0.8;             // [m] the step back goes to the place on the track this far away
+  double timeout_s = 30.0;         // [s] a look or a step not done in this long has failed
+};
+
 struct ExplorerOptions
 {
   FrontierOptions frontier;
   StackOptions stack;
+  RecoveryOptions recovery;
   double robot_radius = 0.26;      // [m] from the robot description
   double goal_tolerance = 0.5;     // [m] NAV_GOAL position tolerance of a frontier goal
   double gateway_goal_tolerance = 0.4;  // [m] ... of a goal beyond a gateway

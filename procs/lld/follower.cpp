@@ -54,6 +54,7 @@ const FollowerStatus& Follower::step(time::Time now, double dt, const OdometryIn
   const bool odometry_fresh =
       odo && time::to_seconds(now - odo->stamp) <= options_.odometry_timeout && time::to_seconds(now - odo->stamp) >= -1.0;
 
+  if (adopt_pending_ && plan_ && halted_at_ && plan_->trajectory.stamp <= *halted_at_) adopt_pending_ = false;  // queued in a gap
   if (adopt_pending_) {
     adopt_pending_ = false;
     status_.stop_reason = StopReason::kNone;
@@ -96,6 +97,16 @@ const FollowerStatus& Follower::step(time::Time now, double dt, const OdometryIn
   if (status_.state == FollowerState::kStopping && status_.command.v == 0.0 && status_.command.omega == 0.0)
     status_.state = status_.stop_reason == StopReason::kEndOfPlan ? FollowerState::kDone : FollowerState::kIdle;
   if (status_.state == FollowerState::kTracking && !plan_) status_.state = FollowerState::kIdle;
+  return status_;
+}
+
+const FollowerStatus& Follower::halt(time::Time now)
+{
+  status_.command = {};
+  status_.state = FollowerState::kIdle;
+  status_.stop_reason = StopReason::kLoopGap;
+  adopt_pending_ = false;
+  halted_at_ = now;
   return status_;
 }
 

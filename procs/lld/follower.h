@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "lld/tracking_law.h"
 #include "time/message_time.h"
@@ -76,6 +77,7 @@ enum class StopReason : int8_t
   kStaleTrajectory,
   kCancelled,
   kEndOfPlan,
+  kLoopGap,  // the control loop itself was held up past its bounds (halt())
 };
 
 struct FollowerStatus
@@ -105,6 +107,14 @@ class Follower
 
   // One control period: `now` in message time, dt the period just elapsed [s].
   const FollowerStatus& step(time::Time now, double dt, const OdometryInput* odometry);
+  // Instead of step() after the control loop was held up longer than the base follows one
+  // command (the process was stopped and continued, or the host stalled): the command last
+  // computed and the inputs found on waking (queued during the gap) describe a past that is
+  // gone, and anything tracked from them (the reference ran on by the gap) is a stale moving
+  // command. Commands zero at once (no ramp: the base's own deadman has been stopping the robot
+  // since the commands ceased) and stays idle until a plan stamped after `now` arrives, so
+  // trajectories queued during the gap are not taken up either.
+  const FollowerStatus& halt(time::Time now);
 
   const FollowerStatus& status() const { return status_; }
   VelocityCommand last_command() const { return status_.command; }
@@ -121,6 +131,7 @@ class Follower
   time::Time plan_refreshed_{};
   double tau_ = 0.0;  // [s] reference time along the active profile
   double settle_ = 0.0;  // [s] time spent at the end waiting to arrive
+  std::optional<time::Time> halted_at_;  // the last halt(): plans stamped up to it are not adopted
   FollowerStatus status_;
 };
 

@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "msg/conversions.h"
 #include "runtime/realtime.h"
 #include "rgnav/heartbeat_t.hpp"
@@ -18,6 +20,7 @@ const char* reason_text(StopReason r)
     case StopReason::kStaleTrajectory: return "stale trajectory";
     case StopReason::kCancelled: return "cancelled";
     case StopReason::kEndOfPlan: return "end of plan";
+    case StopReason::kLoopGap: return "control loop held up past its bounds";
     default: return "";
   }
 }
@@ -181,7 +184,23 @@ void LldNode::control_step(time::Time now, double dt, double jitter_ms)
     odometry.stamp += time::Duration(static_cast<int64_t>(stall_credit_.credit_s() * 1e6));
   }
 
-  const FollowerStatus& st = follower_.step(now, dt, has_odometry ? &odometry : nullptr);
+  // The loop held up longer than the base follows one command (loop.command_deadline_ms): the
+  // base's deadman has stopped the robot meanwhile (or will, if it stalled too), so the last
+  // command and the reference that ran on describe a past that is gone, and so may the inputs
+  // found on waking (the node's thread may already have taken in odometry queued during the
+  // gap: it looks fresh). Whether this process alone was stopped (SIGSTOP, then the supervisor's
+  // SIGCONT) or the whole host stalled, the first cycle after it commands zero (Follower::halt).
+  // Shorter stalls are the stall credit's business: the base kept following meanwhile.
+  const double period = 1.0 / options_.loop.rate_hz;
+  const bool gap = dt - period > 1e-3 * static_cast<double>(options_.loop.command_deadline_ms);
+  const FollowerStatus& before = follower_.status();
+  const bool driving = before.state == FollowerState::kTracking || before.state == FollowerState::kStopping ||
+                       before.command.v != 0.0 || before.command.omega != 0.0;
+  if (gap && driving) {  // logged (a stop); standing still, nothing stops
+    loop_gaps_.fetch_add(1, std::memory_order_relaxed);
+    last_gap_ms_.store(1e3 * (dt - period), std::memory_order_relaxed);
+  }
+  const FollowerStatus& st = gap ? follower_.halt(now) : follower_.step(now, dt, has_odometry ? &odometry : nullptr);
   v_command_.store(st.command.v);
   state_.store(static_cast<int>(st.state));
   stop_reason_.store(static_cast<int>(st.stop_reason));
@@ -228,6 +247,14 @@ void LldNode::update_heartbeat()
   const auto state = static_cast<FollowerState>(state_.load());
   const auto reason = static_cast<StopReason>(stop_reason_.load());
   const int64_t overruns = loop_.overruns();
+  const int64_t gaps = loop_gaps_.load(std::memory_order_relaxed);
+  if (gaps != loop_gaps_logged_) {
+    // Worded as the other stops for stale input: a host stall that causes one is counted as such.
+    spdlog::warn("controlled stop: stale state, the control loop was held up {:.0f} ms (longer than the base follows a "
+                 "command, {} ms; {} times in all): commanded zero, waiting for a trajectory planned after it",
+                 last_gap_ms_.load(std::memory_order_relaxed), options_.loop.command_deadline_ms, gaps);
+    loop_gaps_logged_ = gaps;
+  }
   const bool stale_stop = state == FollowerState::kStopping &&
                           (reason == StopReason::kStaleOdometry || reason == StopReason::kStaleTrajectory);
   // In the log too: a stop for stale input while driving is what a stalled host looks like

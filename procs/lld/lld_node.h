@@ -93,6 +93,9 @@ class LldNode
   std::atomic<int> state_{0};
   std::atomic<int> stop_reason_{0};
   bool stale_stop_logged_ = false;   // a stop for stale input is logged once, when it begins
+  std::atomic<int64_t> loop_gaps_{0};  // control cycles that came after a gap (halt()); logged by the Node's thread
+  std::atomic<double> last_gap_ms_{0.0};  // the newest gap's lateness
+  int64_t loop_gaps_logged_ = 0;       // Node's thread only
   int64_t last_trajectory_id_ = 0;       // Node's thread only
 
   // Control thread only: reused messages and buffers.

@@ -8,6 +8,7 @@
 #include <queue>
 #include <set>
 
+#include "planner/no_path_reason.h"
 #include "rgmap/rg_graph.h"
 
 namespace rgnav::planner {
@@ -135,7 +136,10 @@ const RegionPlanner* GlobalPlanner::region_planner(int64_t region)
         for (auto& p : points) p = g.region_a_from_region_b.inverse() * p;
       gateways.push_back(std::move(points));
     }
-    p = std::make_unique<RegionPlanner>(*map_.region(region), options_.grid, neighbours(region), gateways);
+    std::vector<Eigen::Vector2d> blocked;
+    for (const auto& b : places_)
+      if (map_.resolve(b.region) == region) blocked.push_back(b.point);
+    p = std::make_unique<RegionPlanner>(*map_.region(region), options_.grid, neighbours(region), gateways, blocked);
     planner_utime_[region] = newest_utime(region);
   }
   return p.get();
@@ -171,6 +175,20 @@ std::optional<Eigen::Vector2d> GlobalPlanner::region_goal_point(int64_t region)
   return best;
 }
 
+void GlobalPlanner::forget_planner(int64_t region)
+{
+  planners_.erase(region);
+  planner_utime_.erase(region);
+  paths_.clear();
+}
+
+void GlobalPlanner::block_place(int64_t region, const Eigen::Vector2d& point, double until_s)
+{
+  region = map_.resolve(region);
+  places_.push_back({region, point, until_s});
+  forget_planner(region);
+}
+
 int64_t GlobalPlanner::region_named(const std::string& name) const
 {
   const std::string want = lower(name);
@@ -200,7 +218,13 @@ const std::optional<RegionPath>& GlobalPlanner::region_path(const Arc& arc, int 
       if (n.reach > 0) return n.reach;
       return n.gateway ? options_.global.crossing_reach : options_.grid.adapt_distance;
     };
-    if (rp) path = rp->plan(u.point, v.point, nullptr, reach(u), reach(v), v.clear_of_walls);
+    if (rp && v.robot) {
+      // Planned from the robot's place (it may step off a scrap of free space), stored a -> b.
+      path = rp->plan(v.point, u.point, nullptr, reach(v), reach(u), u.clear_of_walls, true);
+      if (path) std::reverse(path->points.begin(), path->points.end());
+    } else if (rp) {
+      path = rp->plan(u.point, v.point, nullptr, reach(u), reach(v), v.clear_of_walls, u.robot);
+    }
     it = cache.emplace(key, std::move(path)).first;
     if (stats) {
       stats->region_ms += ms_since(t0);
@@ -219,18 +243,28 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
     if (why) *why = text;
     return std::nullopt;
   };
+  for (auto it = places_.begin(); it != places_.end();) {
+    if (it->until_s > request.now_s) {
+      ++it;
+      continue;
+    }
+    forget_planner(map_.resolve(it->region));
+    it = places_.erase(it);
+  }
   const int64_t sr = map_.resolve(request.start_region), gr = map_.resolve(request.goal_region);
   if (!is_live(sr)) return fail("start region " + std::to_string(request.start_region) + " is not in the map");
-  if (!is_live(gr)) return fail("goal region " + std::to_string(request.goal_region) + " is not in the map");
-  if (!region_planner(sr)->standable(request.start)) return fail("the start is blocked in region " + std::to_string(sr));
-  if (!region_planner(gr)->standable(request.goal, request.goal_reach))
-    return fail("the goal is blocked in region " + std::to_string(gr));
+  if (!is_live(gr))
+    return fail(no_path_reason(NoPathCause::kGoalUnreachable, "goal region " + std::to_string(request.goal_region) + " is not in the map"));
+  // (A start on no free cell may still step straight to a goal near it: RegionPlanner::plan.)
+  const bool a_step = sr == gr && (request.goal - request.start).norm() <= options_.grid.robot_step;
+  if (!a_step && !region_planner(gr)->standable(request.goal, request.goal_reach))
+    return fail(no_path_reason(NoPathCause::kGoalUnreachable, "the goal is blocked in region " + std::to_string(gr)));
 
   // Search nodes: the graph's, then the start and the goal, joined to the crossing points of
   // their regions (and to each other in one region).
   std::vector<SearchNode> nodes = nodes_;
   const int start = static_cast<int>(nodes.size()), goal = start + 1;
-  nodes.push_back({sr, 0, request.start, map_.region(sr)->map_from_region * request.start});
+  nodes.push_back({sr, 0, request.start, map_.region(sr)->map_from_region * request.start, -1, false, true});
   nodes.push_back({gr, 0, request.goal, map_.region(gr)->map_from_region * request.goal, request.goal_reach,
                    request.goal_reach > 0});
   std::vector<Arc> arcs = arcs_;
@@ -260,7 +294,8 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
     if (a.gateway) {
       if (a.gateway_id == request.avoid_gateway) return std::nullopt;
       const auto* g = map_.gateway(a.gateway_id);
-      return g ? costs_.gateway_cost(*g, request.now_s) : std::nullopt;
+      const double now_s = request.ignore_closed ? std::numeric_limits<double>::infinity() : request.now_s;
+      return g ? costs_.gateway_cost(*g, now_s) : std::nullopt;
     }
     const auto& u = nodes[static_cast<size_t>(a.from)];
     const auto& v = nodes[static_cast<size_t>(a.to)];
@@ -317,8 +352,18 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
       std::string closed;
       for (const auto& [gid, gw] : map_.gateways())
         if (costs_.closed(gid, request.now_s)) closed += (closed.empty() ? "" : ", ") + std::to_string(gid);
-      return fail("no route from region " + std::to_string(sr) + " to region " + std::to_string(gr) +
-                  (closed.empty() ? "" : " (closed gateways: " + closed + ")"));
+      const std::string route = "no route from region " + std::to_string(sr) + " to region " + std::to_string(gr);
+      // Why, for the goal's sender: the robot's own place joins nothing (standing there, nothing
+      // changes: the view must), or only gateways taken for closed for a while are in the way
+      // (the same goal once they reopen), or the goal is out of reach from here.
+      if (region_planner(sr)->cut_off(request.start))
+        return fail(no_path_reason(NoPathCause::kStartCutOff, route + ": the robot stands apart from the region's free space"));
+      if (!closed.empty() && !request.ignore_closed) {
+        PlanRequest open = request;
+        open.ignore_closed = true;
+        if (plan(open, nullptr)) return fail(no_path_reason(NoPathCause::kClosedGateway, route + " (closed gateways: " + closed + ")"));
+      }
+      return fail(no_path_reason(NoPathCause::kGoalUnreachable, route + (closed.empty() ? "" : " (closed gateways: " + closed + ")")));
     }
     route_arcs.clear();
     for (int n = goal; n != start;) {

@@ -40,6 +40,7 @@ struct PlanRequest
   double goal_reach = -1;
   double now_s = 0;                // message time, for closed gateways
   int64_t avoid_gateway = 0;       // a gateway not to cross (is there a way round it?)
+  bool ignore_closed = false;      // plan as if no gateway were closed (is a closed one all that is in the way?)
 };
 
 struct PlanStats
@@ -61,8 +62,8 @@ class GlobalPlanner
   EdgeCosts& costs() { return costs_; }
   const EdgeCosts& costs() const { return costs_; }
 
-  // The cheapest route; nullopt with *why set when there is none ("start region 7 unknown",
-  // "goal not reachable: gateway 4 closed", ...).
+  // The cheapest route; nullopt with *why set when there is none, beginning with its cause
+  // (no_path_reason.h: "start cut off: ...", "goal unreachable: ...", "behind a closed gateway: ...").
   std::optional<Route> plan(const PlanRequest& request, std::string* why, PlanStats* stats = nullptr);
 
   // The region planner of a live region (built on first use); nullptr for an unknown region.
@@ -72,6 +73,11 @@ class GlobalPlanner
   std::optional<Eigen::Vector2d> region_goal_point(int64_t region);
   // The live region named `name` (case-insensitive), 0 if none.
   int64_t region_named(const std::string& name) const;
+  // Collision avoidance could not pass at `point` (region frame) where the grid sees a way (what
+  // the line map holds too thinly, people standing): an obstacle there until until_s (message
+  // time), routes planned round it. Places past their time are dropped at the next plan().
+  void block_place(int64_t region, const Eigen::Vector2d& point, double until_s);
+  size_t blocked_places() const { return places_.size(); }
 
  private:
   // A traversal the search may take: through a region between two points (graph nodes, or the
@@ -91,6 +97,7 @@ class GlobalPlanner
     Eigen::Vector2d map_point{0, 0};
     double reach = -1;             // [m] onto the region's free cells (< 0: by kind, see region_path)
     bool clear_of_walls = false;   // a goal past the freespace: reached through no wall
+    bool robot = false;            // the robot's start: its body stands there (RegionPlanner::plan's from_is_robot)
   };
   using PathKey = std::tuple<int64_t, int, int>;   // region, from node, to node (from < to)
 
@@ -117,6 +124,10 @@ class GlobalPlanner
   std::map<int64_t, std::unique_ptr<RegionPlanner>> planners_;      // per live region
   std::map<int64_t, int64_t> planner_utime_;                         // region utime they were built from
   std::map<PathKey, std::optional<RegionPath>> paths_;               // between graph nodes, this map version
+  struct BlockedPlace { int64_t region; Eigen::Vector2d point; double until_s; };
+  std::vector<BlockedPlace> places_;
+  // Rebuilds the region planner of `region` (its blocked places changed).
+  void forget_planner(int64_t region);
 };
 
 }  // namespace rgnav::planner

@@ -1,6 +1,9 @@
 #include "planner/planner.h"
 
 #include "planner/route_time.h"
+#include "time/units.h"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,10 +14,13 @@ using geometry::Pose2;
 
 namespace {
 
-constexpr double kUs = 1e-6;
+using time::kUs;
 // A goal with no route is planned again this often (a closed gateway's retry time may come,
 // people may leave) besides on every map change.
 constexpr double kNoPathRetryS = 10.0;
+// [m] a turn on the spot's target lies this far out along the wanted heading: beyond collision
+// avoidance's goal tolerance, near enough that it has barely set off when the heading is reached.
+constexpr double kTurnTargetM = 0.5;
 
 }  // namespace
 
@@ -169,7 +175,6 @@ bool Planner::track_progress()
   if (arc >= progress_arc_ + kProgressStep) {
     progress_arc_ = arc;
     progress_utime_ = now;
-    replanned_stuck_ = false;
   }
   if (leg.exit_gateway && !gateway_reached_utime_ &&
       (leg.points.back() - pose_->region_from_base.translation()).norm() <= options_.execution.gateway_reach_m)
@@ -231,12 +236,23 @@ void Planner::handle_stuck(int64_t utime)
   const auto* gw = global_.map().gateway(leg.exit_gateway);
   const double to_gateway = (leg.points.back() - pose_->region_from_base.translation()).norm();
   if (!gw || to_gateway > e.gateway_reach_m) {
-    // Away from gateways: plan again from here (once per stuck spell).
-    if (!replanned_stuck_) {
-      replanned_stuck_ = true;
+    // Away from gateways, collision avoidance cannot pass where the grid has a way (furniture
+    // the line map holds too thinly, people standing about): the place just ahead on the route
+    // is taken for an obstacle for closed_retry_s and the route planned round it. Planning again
+    // on the same grid gave the same route, and the robot stood until the goal's sender gave up.
+    const double ahead = std::min(along_ + options_.grid.robot_radius + options_.grid.blocked_radius, leg.length);
+    const Eigen::Vector2d at = point_along(leg, ahead);
+    // Nothing ahead to block (a turn on the spot, the goal under the robot): the goal's sender decides.
+    if ((at - pose_->region_from_base.translation()).norm() < options_.grid.robot_radius) return;
+    if (options_.grid.blocked_radius <= 0) {
+      // Places are not blocked (config): plan again from here, as it was before places were.
       replan_due_ = true;
       replan_reason_ = "blocked";
+      return;
     }
+    global_.block_place(leg.region_id, at, utime * kUs + options_.global.closed_retry_s);
+    replan_due_ = true;
+    replan_reason_ = fmt::format("blocked at ({:.2f}, {:.2f}) in region {}", at.x(), at.y(), leg.region_id);
     return;
   }
   // Before the route's next gateway. With another way round it is left at once (marked closed
@@ -253,10 +269,54 @@ void Planner::handle_stuck(int64_t utime)
   }
 }
 
+std::optional<Route> Planner::turn_on_the_spot() const
+{
+  // Only the heading differs: nothing to plan (the round robot turns where it stands, whatever
+  // the grid calls the cells round it), and a robot cut off from the region's free space can
+  // still look round. The goal must be in the region the robot is in.
+  if (!goal_ || !pose_ || !goal_->has_pose || goal_->heading_tolerance >= M_PI || goal_region_ != pose_->region_id)
+    return std::nullopt;
+  const Eigen::Vector2d here = pose_->region_from_base.translation();
+  if ((goal_point_ - here).norm() > goal_->position_tolerance) return std::nullopt;
+  const double heading = goal_->region_from_goal.theta();
+  if (std::abs(geometry::normalize_angle(pose_->region_from_base.theta() - heading)) <= goal_->heading_tolerance)
+    return std::nullopt;
+  Route turn;
+  RouteLeg leg;
+  leg.region_id = goal_region_;
+  leg.points = {here, here};
+  turn.legs.push_back(leg);
+  turn.has_goal_heading = true;
+  turn.goal_heading = heading;
+  // Collision avoidance takes positions: a target out along the heading, which it turns toward
+  // on the spot before driving (its turn-first rule); the goal is reached, and the targets
+  // withdrawn, once the heading is.
+  const Eigen::Vector2d out = here + kTurnTargetM * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+  turn.targets.push_back({0, 0.0, Pose2(out, heading)});
+  turn.map_version = map_version_;
+  return turn;
+}
+
 bool Planner::replan(int64_t utime, const std::string& why)
 {
   last_replan_utime_ = utime;
   replan_due_ = false;
+  if (auto turn = turn_on_the_spot()) {
+    ++replans_;
+    status_ = GoalStatus::kActive;
+    reason_ = "turning on the spot";
+    route_ = std::move(*turn);
+    leg_ = 0;
+    along_ = 0;
+    leg_entered_utime_ = utime;
+    gateway_reached_utime_ = 0;
+    blocked_since_ = utime;
+    progress_utime_ = utime;
+    progress_arc_ = 0;
+    path_changed_ = true;
+    targets_due_ = true;
+    return true;
+  }
   const PlanRequest req = request_from_pose(utime);
   std::string fail;
   auto route = global_.plan(req, &fail, &last_stats_);
@@ -294,7 +354,6 @@ bool Planner::replan(int64_t utime, const std::string& why)
   blocked_since_ = utime;   // blocked time counts afresh on the new route
   progress_utime_ = utime;
   progress_arc_ = 0;
-  replanned_stuck_ = false;
   path_changed_ = true;
   targets_due_ = true;
   return true;

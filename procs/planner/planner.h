@@ -8,14 +8,18 @@
 //     and every resend period.
 // Execution monitoring: a gateway crossed is timed and learned (EdgeCosts), so is a region
 // crossed between two gateways. When collision avoidance reports it cannot pass and the robot
-// made no progress for blocked_after_s near the next gateway of the route, that gateway is
+// made no progress for blocked_after_s away from gateways, the place just ahead on the route is
+// taken for an obstacle for a while (GlobalPlanner::block_place) and the route planned round it;
+// near the next gateway of the route, that gateway is
 // marked closed (its cost raised) and the route replanned around it if there is another way;
 // with none, the robot waits until closed_after_s before the gateway counts as closed and the
 // goal has NO_PATH; the goal stays, so that it is planned again when the closed mark expires or
 // the map changes. Replans happen at
 // most once per min_replan_period_s; a new route replaces a still valid one only when it is
 // switch_gain cheaper than what is left of the old, so the robot does not oscillate between
-// two routes. Runs on message time (utime), never the wall clock.
+// two routes. A goal where the robot stands that asks only for another heading is a turn on the
+// spot (no path to plan: the robot may be cut off from its region's free space). Runs on message
+// time (utime), never the wall clock.
 #pragma once
 
 #include <cstdint>
@@ -108,6 +112,8 @@ class Planner
  private:
   // Plans from the current pose; returns whether the route changed.
   bool replan(int64_t utime, const std::string& why);
+  // A goal where the robot stands that asks only for another heading: the route of a turn on the spot.
+  std::optional<Route> turn_on_the_spot() const;
   void finish(GoalStatus status, const std::string& reason, int64_t utime);
   // Progress: which leg the robot is on (by its region) and how far along; false if off route.
   bool track_progress();
@@ -142,7 +148,6 @@ class Planner
   int64_t progress_utime_ = 0;            // when the robot last got kProgressStep further along the route
   double progress_arc_ = 0;               // [m] how far along the route it was then
   int64_t last_stuck_check_utime_ = 0;
-  bool replanned_stuck_ = false;          // replanned once in this stuck spell away from gateways
   bool replan_due_ = false;
   std::string replan_reason_;
   bool path_changed_ = false;

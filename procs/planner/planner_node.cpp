@@ -15,12 +15,13 @@
 #include "rgmap/rgmap_conversions.h"
 #include "rgmap/saved_map.h"
 #include "rgnav/heartbeat_t.hpp"
+#include "time/units.h"
 
 namespace rgnav::planner {
 
 namespace {
 
-constexpr double kUs = 1e-6;
+using time::kUs;
 // No robot is 10 km from its region's origin: such a pose is a corrupted one.
 constexpr double kMaxCoordinate = 1e4;
 // A final status (reached, cancelled) is repeated this many times (once a second) after its

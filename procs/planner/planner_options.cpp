@@ -29,6 +29,8 @@ GridOptions load_grid(const config::Config& c, const config::RobotDescription& r
   g.passage_depth = c.number("passage_depth_m", g.passage_depth, 0.0, 5.0);
   g.beyond_known_reach = c.number("beyond_known_reach_m", g.beyond_known_reach, g.adapt_distance, 10.0);
   g.unknown_overlap = c.number("unknown_overlap_m", g.unknown_overlap, 0.0, g.robot_radius);
+  g.blocked_radius = c.number("blocked_radius_m", g.blocked_radius, 0.0, 2.0);   // 0: no place is blocked
+  g.robot_step = c.number("robot_step_m", g.robot_step, 0.0, 5.0);
   return g;
 }
 

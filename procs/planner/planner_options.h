@@ -28,6 +28,10 @@ struct GridOptions
   double beyond_known_reach = 1.5; // [m] a goal sent beyond_known may lie this far from the region's free cells
   double unknown_overlap = 0.15;   // [m] the robot's body may reach this far into space the region has not seen (never
                                    // into a wall): freshly mapped space is ragged at its edges (0: unknown is a wall)
+  double robot_step = 1.2;         // [m] a robot cut off from its goal's free space goes straight to a goal this near
+                                   // when no line of the map is in the way (a step back to where its body just was)
+  double blocked_radius = 0.0;     // [m] a place where collision avoidance could not pass counts as an obstacle this wide
+                                   // (radius) for a while, so that routes go round it (GlobalPlanner::block_place); 0: off
 };
 
 // Global planning over the RG graph (diss. 5.4): edge costs are times [s]; a region edge starts

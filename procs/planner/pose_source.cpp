@@ -1,9 +1,11 @@
 #include "planner/pose_source.h"
 
+#include "time/units.h"
+
 namespace rgnav::planner {
 
 namespace {
-constexpr double kUs = 1e-6;
+using time::kUs;
 }
 
 const PoseSource::Fix* PoseSource::preferred(int64_t utime) const

@@ -39,7 +39,8 @@ void extent(const rgmap::Region& region, Eigen::Vector2d* lo, Eigen::Vector2d* h
 
 RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
                        const std::vector<NeighbourRegion>& neighbours,
-                       const std::vector<std::vector<Eigen::Vector2d>>& gateways)
+                       const std::vector<std::vector<Eigen::Vector2d>>& gateways,
+                       const std::vector<Eigen::Vector2d>& blocked)
     : options_(options), resolution_(options.resolution)
 {
   Eigen::Vector2d lo, hi;
@@ -91,16 +92,23 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
   }
   for (const auto& points : gateways) carve_gateway(free_mask, points);
   for (const auto& seg : region.segments) draw(free_mask, seg.a, seg.b);
+  const int blocked_cells = std::max(1, static_cast<int>(std::lround(options_.blocked_radius / resolution_)));
+  auto draw_blocked = [&](cv::Mat& mask) {
+    for (const auto& p : blocked) {
+      const Cell c = cell_of(p);
+      cv::circle(mask, cv::Point(c.x(), c.y()), blocked_cells, cv::Scalar(0), cv::FILLED, cv::LINE_8);
+    }
+  };
+  draw_blocked(free_mask);
   cv::Mat dist;
   cv::distanceTransform(free_mask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
   // The walls alone (and the grid's border): the robot's body may reach unknown_overlap into
   // space the region has not seen, never into a wall.
   cv::Mat walls(height_, width_, CV_8UC1, cv::Scalar(255)), wall_dist;
-  if (options_.unknown_overlap > 0) {
-    cv::rectangle(walls, cv::Rect(0, 0, width_, height_), cv::Scalar(0), 1);
-    for (const auto& seg : region.segments) draw(walls, seg.a, seg.b);
-    cv::distanceTransform(walls, wall_dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-  }
+  cv::rectangle(walls, cv::Rect(0, 0, width_, height_), cv::Scalar(0), 1);
+  for (const auto& seg : region.segments) draw(walls, seg.a, seg.b);
+  draw_blocked(walls);
+  cv::distanceTransform(walls, wall_dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
 
   // Cost levels: 0 in open space; 1 in the comfort band [r + margin, r + margin + comfort)
   // (a slight push away from walls); 2 .. levels-1 split [r, r + margin) evenly, rising to
@@ -116,11 +124,13 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
         1.0 + options_.comfort_cost + (options_.wall_cost - options_.comfort_cost) * (k + 1.0) / tight;
   clearance_.resize(static_cast<size_t>(width_) * height_);
   level_.resize(clearance_.size());
+  wall_clearance_.resize(clearance_.size());
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
       const size_t i = index(Cell(x, y));
       const float c = dist.at<float>(y, x) * static_cast<float>(resolution_);
       clearance_[i] = c;
+      wall_clearance_[i] = wall_dist.at<float>(y, x) * static_cast<float>(resolution_);
       const bool blocked = options_.unknown_overlap > 0
                                ? c < r - options_.unknown_overlap || wall_dist.at<float>(y, x) * resolution_ < r
                                : c < r;
@@ -147,13 +157,26 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
   cv::Mat labels;
   const int n = cv::connectedComponents(traversable, labels, 8, CV_32S);
   std::vector<uint8_t> own_label(static_cast<size_t>(n), 0);
+  std::vector<int> own_cells(static_cast<size_t>(n), 0);
   for (int y = 0; y < height_; ++y)
     for (int x = 0; x < width_; ++x)
-      if (own.at<uint8_t>(y, x) && traversable.at<uint8_t>(y, x)) own_label[static_cast<size_t>(labels.at<int>(y, x))] = 1;
+      if (own.at<uint8_t>(y, x) && traversable.at<uint8_t>(y, x)) {
+        const auto l = static_cast<size_t>(labels.at<int>(y, x));
+        own_label[l] = 1;
+        ++own_cells[l];
+      }
   own_.assign(level_.size(), 0);
+  component_.assign(level_.size(), 0);
   for (int y = 0; y < height_; ++y)
     for (int x = 0; x < width_; ++x)
-      if (traversable.at<uint8_t>(y, x)) own_[index(Cell(x, y))] = own_label[static_cast<size_t>(labels.at<int>(y, x))];
+      if (traversable.at<uint8_t>(y, x)) {
+        const int l = labels.at<int>(y, x);
+        own_[index(Cell(x, y))] = own_label[static_cast<size_t>(l)];
+        component_[index(Cell(x, y))] = l;
+      }
+  for (int l = 1; l < n; ++l)
+    if (own_cells[static_cast<size_t>(l)] > (main_component_ ? own_cells[static_cast<size_t>(main_component_)] : 0))
+      main_component_ = l;
 }
 
 void RegionGrid::carve_gateway(cv::Mat& free_mask, const std::vector<Eigen::Vector2d>& points) const
@@ -238,6 +261,39 @@ std::optional<Cell> RegionGrid::nearest_free(const Cell& c, double reach_m) cons
     }
   }
   return best;
+}
+
+std::optional<Cell> RegionGrid::nearest_reachable_in(const Eigen::Vector2d& from, int32_t piece, double reach_m) const
+{
+  if (piece <= 0) return std::nullopt;
+  const Cell c = cell_of(from);
+  const int reach = static_cast<int>(std::ceil(reach_m / resolution_));
+  struct Candidate { double d2; Cell cell; };
+  std::vector<Candidate> candidates;
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const Cell n(c.x() + dx, c.y() + dy);
+      if (!in_bounds(n) || component_[index(n)] != piece || !own_[index(n)]) continue;
+      const double d2 = (center_of(n) - from).squaredNorm();
+      if (d2 <= reach_m * reach_m) candidates.push_back({d2, n});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.d2 < b.d2; });
+  for (const auto& cand : candidates)
+    if (clear_of_lines(from, center_of(cand.cell))) return cand.cell;
+  return std::nullopt;
+}
+
+bool RegionGrid::clear_of_lines(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const
+{
+  // Never nearer a line than the robot radius, or than the body already stands (a robot the map
+  // shows against furniture may still back off it).
+  const float keep = std::min(static_cast<float>(options_.robot_radius), wall_clearance(cell_of(from))) - 1e-4f;
+  const double len = (to - from).norm();
+  const int n = std::max(1, static_cast<int>(std::ceil(len / (0.5 * resolution_))));
+  for (int i = 1; i <= n; ++i)
+    if (wall_clearance(cell_of(from + (to - from) * (static_cast<double>(i) / n))) < keep) return false;
+  return true;
 }
 
 }  // namespace rgnav::planner

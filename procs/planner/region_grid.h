@@ -40,8 +40,11 @@ class RegionGrid
 {
  public:
   // gateways: each gateway of the region as its points in the region frame (rgmap::gateway_edges).
+  // blocked: places (region frame) where collision avoidance could not pass, obstacles of
+  // options.blocked_radius as solid as the map's lines.
   RegionGrid(const rgmap::Region& region, const GridOptions& options, const std::vector<NeighbourRegion>& neighbours = {},
-             const std::vector<std::vector<Eigen::Vector2d>>& gateways = {});
+             const std::vector<std::vector<Eigen::Vector2d>>& gateways = {},
+             const std::vector<Eigen::Vector2d>& blocked = {});
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -68,6 +71,22 @@ class RegionGrid
   // connected to the region's own freespace, preferring higher clearance among equally near
   // ones (start and goal adaption); nullopt if none.
   std::optional<Cell> nearest_free(const Cell& c, double reach = -1) const;
+  // The connected piece of free cells `c` belongs to (8-connected; 0: blocked or outside). Ragged
+  // freespace leaves scraps beside the region's main space, a place among furniture one too.
+  int32_t component(const Cell& c) const { return in_bounds(c) ? component_[index(c)] : 0; }
+  // The largest piece of the region's own free cells: where the region's ways on are.
+  int32_t main_component() const { return main_component_; }
+  // [m] distance from the cell centre to the nearest line of the region's map (or the grid's edge).
+  float wall_clearance(const Cell& c) const { return in_bounds(c) ? wall_clearance_[index(c)] : 0.f; }
+  // The robot's body stands at `from` whatever the grid calls the cells around it (unknown space
+  // behind a laser that sees only ahead, scraps of ragged freespace): the nearest free cell of
+  // `piece` within `reach` [m] that the robot gets to straight from where it stands, the line
+  // coming no nearer a line of the map than the robot radius (or than it stands now, if nearer).
+  // nullopt if none.
+  std::optional<Cell> nearest_reachable_in(const Eigen::Vector2d& from, int32_t piece, double reach) const;
+  // The straight line from the robot's place `from` to `to` comes no nearer a line of the map
+  // than the robot radius, or than the robot stands now if nearer (the rule of nearest_reachable_in).
+  bool clear_of_lines(const Eigen::Vector2d& from, const Eigen::Vector2d& to) const;
 
   static constexpr uint8_t kBlocked = 255;
 
@@ -82,6 +101,9 @@ class RegionGrid
   std::vector<float> clearance_;
   std::vector<uint8_t> level_;
   std::vector<uint8_t> own_;   // 1: free and connected to the region's own freespace
+  std::vector<int32_t> component_;   // connected piece of free cells (0: blocked)
+  int32_t main_component_ = 0;
+  std::vector<float> wall_clearance_;   // [m] to the nearest line of the map
   std::vector<double> level_cost_;
 };
 

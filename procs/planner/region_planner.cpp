@@ -16,8 +16,9 @@ constexpr int kMaxQuadCells = 32;
 
 RegionPlanner::RegionPlanner(const rgmap::Region& region, const GridOptions& options,
                              const std::vector<NeighbourRegion>& neighbours,
-                             const std::vector<std::vector<Eigen::Vector2d>>& gateways)
-    : grid_(region, options, neighbours, gateways), tree_(grid_, kMaxQuadCells)
+                             const std::vector<std::vector<Eigen::Vector2d>>& gateways,
+                             const std::vector<Eigen::Vector2d>& blocked)
+    : grid_options_(options), grid_(region, options, neighbours, gateways, blocked), tree_(grid_, kMaxQuadCells)
 {
   for (const auto& s : region.segments) walls_.emplace_back(s.a, s.b);
 }
@@ -27,16 +28,43 @@ bool RegionPlanner::standable(const Eigen::Vector2d& p, double reach) const
   return grid_.nearest_free(grid_.cell_of(p), reach).has_value();
 }
 
+bool RegionPlanner::cut_off(const Eigen::Vector2d& p, double reach) const
+{
+  const double r = reach < 0 ? grid_options_.adapt_distance : reach;
+  const auto c = grid_.nearest_free(grid_.cell_of(p), r);
+  if (c && grid_.component(*c) == grid_.main_component()) return false;
+  return !grid_.nearest_reachable_in(p, grid_.main_component(), r).has_value();
+}
+
 std::optional<RegionPath> RegionPlanner::plan(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::string* why,
-                                              double from_reach, double to_reach, bool to_clear_of_walls) const
+                                              double from_reach, double to_reach, bool to_clear_of_walls,
+                                              bool from_is_robot) const
 {
   auto fail = [&](const char* text) -> std::optional<RegionPath> {
     if (why) *why = text;
     return std::nullopt;
   };
-  const auto start = grid_.nearest_free(grid_.cell_of(from), from_reach);
-  if (!start) return fail("start is blocked");
+  auto start = grid_.nearest_free(grid_.cell_of(from), from_reach);
   const auto goal = grid_.nearest_free(grid_.cell_of(to), to_reach);
+  if (from_is_robot && goal && (!start || grid_.component(*start) != grid_.component(*goal))) {
+    // The nearest free cell is a scrap apart from the goal's space: the robot steps straight
+    // into that space where it can.
+    const double reach = from_reach < 0 ? grid_options_.adapt_distance : from_reach;
+    if (const auto joined = grid_.nearest_reachable_in(from, grid_.component(*goal), reach)) start = joined;
+  }
+  if (from_is_robot && (!start || !goal || grid_.component(*start) != grid_.component(*goal)) &&
+      (to - from).norm() <= grid_options_.robot_step && grid_.clear_of_lines(from, to)) {
+    // Cut off from the goal's space, but the goal a step away with nothing of the map between:
+    // straight there (a step back to where the body just was; collision avoidance sees the rest).
+    RegionPath step;
+    step.points = {from, to};
+    step.length = (to - from).norm();
+    step.cost = step.length * grid_.max_level_cost();
+    step.min_clearance = grid_.line_clearance(from, to);
+    if (why) why->clear();
+    return step;
+  }
+  if (!start) return fail("start is blocked");
   if (!goal) return fail("goal is blocked");
   if (to_clear_of_walls && *goal != grid_.cell_of(to)) {
     const Eigen::Vector2d g = grid_.center_of(*goal);

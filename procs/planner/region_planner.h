@@ -29,23 +29,33 @@ class RegionPlanner
 {
  public:
   RegionPlanner(const rgmap::Region& region, const GridOptions& options, const std::vector<NeighbourRegion>& neighbours = {},
-                const std::vector<std::vector<Eigen::Vector2d>>& gateways = {});
+                const std::vector<std::vector<Eigen::Vector2d>>& gateways = {},
+                const std::vector<Eigen::Vector2d>& blocked = {});
 
   // A path from `from` to `to`; each end may be moved onto a free cell up to its reach [m]
   // (< 0: GridOptions::adapt_distance). With to_clear_of_walls the straight piece from the
   // free cell to a moved `to` must cross no line of the region's map (a goal in unknown space
-  // past the freespace, reached through an opening, not through a wall). nullopt with *why set
-  // when there is none.
+  // past the freespace, reached through an opening, not through a wall). With from_is_robot the
+  // robot stands at `from`: when the nearest free cell there is a scrap of free space apart from
+  // the one `to` is in (ragged freespace, unknown cells round a robot whose laser sees only
+  // ahead), `from` joins `to`'s piece at its nearest cell within reach that the robot gets to
+  // straight, clear of the map's lines. nullopt with *why set when there is none.
   std::optional<RegionPath> plan(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::string* why = nullptr,
-                                 double from_reach = -1, double to_reach = -1, bool to_clear_of_walls = false) const;
+                                 double from_reach = -1, double to_reach = -1, bool to_clear_of_walls = false,
+                                 bool from_is_robot = false) const;
   const RegionGrid& grid() const { return grid_; }
   const FramedQuadtree& tree() const { return tree_; }
   // Whether the robot can stand at p (free, or adaptable onto a free cell within reach).
   bool standable(const Eigen::Vector2d& p, double reach = -1) const;
+  // The robot at p is cut off from the region's main free space: no cell of it within reach
+  // (< 0: adapt_distance) that it gets to straight, clear of the map's lines. Standing there,
+  // nothing changes that.
+  bool cut_off(const Eigen::Vector2d& p, double reach = -1) const;
 
  private:
   std::vector<Eigen::Vector2d> smooth(const std::vector<Eigen::Vector2d>& points) const;
 
+  GridOptions grid_options_;
   RegionGrid grid_;
   FramedQuadtree tree_;
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> walls_;   // the region's line map

@@ -40,6 +40,19 @@ double project_onto_leg(const RouteLeg& leg, const Eigen::Vector2d& p, double fr
   return std::max(from, best_s);
 }
 
+Eigen::Vector2d point_along(const RouteLeg& leg, double arc)
+{
+  if (leg.points.empty()) return Eigen::Vector2d::Zero();
+  double s0 = 0;
+  for (size_t i = 0; i + 1 < leg.points.size(); ++i) {
+    const Eigen::Vector2d d = leg.points[i + 1] - leg.points[i];
+    const double len = d.norm();
+    if (s0 + len >= arc && len > 0) return leg.points[i] + d * (std::max(0.0, arc - s0) / len);
+    s0 += len;
+  }
+  return leg.points.back();
+}
+
 double Route::leg_start(size_t leg) const
 {
   double s = 0;

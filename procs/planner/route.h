@@ -59,6 +59,9 @@ struct Route
 // last target is the route's end. Each is in the frame of the leg it lies in.
 std::vector<RouteTarget> cut_targets(const Route& route, double spacing_min, double spacing_max);
 
+// The point of the leg's path `arc` metres from its start (its ends beyond them).
+Eigen::Vector2d point_along(const RouteLeg& leg, double arc);
+
 // Where p (leg `leg`'s frame) projects onto that leg's path, as arc length from its start, not
 // before `from` (progress only moves forward); *distance gets how far p is from the path.
 double project_onto_leg(const RouteLeg& leg, const Eigen::Vector2d& p, double from, double* distance);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "procs/rg_kernel/line_map.h"
 #include "procs/rg_kernel/line_map_fidelity.h"
 #include "procs/rg_kernel/region_builder.h"
 
@@ -28,8 +29,6 @@ double line_angle(const Vector2d& u, const Vector2d& v)
   const double c = std::fabs(u.normalized().dot(v.normalized()));
   return std::acos(std::min(1.0, c));
 }
-
-double length(const rgmap::LineSegment& s) { return (s.b - s.a).norm(); }
 
 double segment_distance(const Vector2d& p, const rgmap::LineSegment& s) { return point_segment_distance(p, s.a, s.b); }
 

@@ -140,8 +140,6 @@ CommonLine common_line(const LineSegment& a, const LineSegment& b)
   return {m.mean, es.eigenvectors().col(1), std::sqrt(std::max(0.0, es.eigenvalues()(0)))};
 }
 
-double length(const LineSegment& s) { return (s.b - s.a).norm(); }
-
 // The angle two segments may differ by: alpha_max, or for a short segment the angle its end
 // points can swing through within D_L^max of the line — its direction is known no better, and
 // the distance test below then decides.

@@ -16,6 +16,9 @@
 
 namespace rgnav::rg_kernel {
 
+// [m] a line segment's length.
+inline double length(const rgmap::LineSegment& s) { return (s.b - s.a).norm(); }
+
 struct ExtractOptions
 {
   double split_distance = 0.03;    // [m] a point farther than this from the fitted line splits it

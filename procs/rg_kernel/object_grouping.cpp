@@ -8,6 +8,7 @@
 #include <set>
 
 #include "geometry/segment2.h"
+#include "procs/rg_kernel/line_map.h"
 
 namespace rgnav::rg_kernel {
 
@@ -18,8 +19,6 @@ using rgmap::Object2d;
 namespace {
 
 using geometry::cross;
-
-double length(const LineSegment& s) { return (s.b - s.a).norm(); }
 
 // A rectangle hypothesis: its sides (segment indices) and the rectangle they define.
 struct Hypothesis

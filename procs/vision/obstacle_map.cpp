@@ -55,6 +55,8 @@ void ObstacleMap::reset_trees()
   stereo_ = make_tree(options_, options_.stereo_prob_hit, options_.stereo_prob_miss);
   laser_ = make_tree(options_, options_.laser_prob_hit, options_.laser_prob_miss);
   floor_ = make_tree(options_, options_.stereo_prob_hit, options_.stereo_prob_miss);
+  stereo_hit_.clear();
+  last_forget_utime_ = 0;
 }
 
 void ObstacleMap::reset()
@@ -91,11 +93,39 @@ void ObstacleMap::trim(const Eigen::Vector2d& odom_center)
 {
   for (octomap::OcTree* tree : {stereo_.get(), laser_.get(), floor_.get()})
     trim_tree(*tree, odom_center - anchor_, options_.keep_radius);
+  for (auto it = stereo_hit_.begin(); it != stereo_hit_.end();) {
+    const octomap::point3d p = stereo_->keyToCoord(it->first);
+    if ((Eigen::Vector2d(p.x(), p.y()) - (odom_center - anchor_)).norm() > options_.keep_radius) it = stereo_hit_.erase(it);
+    else ++it;
+  }
   ++trims_;
 }
 
+void ObstacleMap::stamp_and_forget(const octomap::KeySet& hit, int64_t utime)
+{
+  for (const auto& k : hit) stereo_hit_[k] = utime;
+  const int64_t after_us = static_cast<int64_t>(std::llround(options_.forget_after * 1e6));
+  // A sweep over the stamps at most every tenth of forget_after: forgetting is not urgent.
+  if (last_forget_utime_ != 0 && utime - last_forget_utime_ < after_us / 10) return;
+  last_forget_utime_ = utime;
+  for (auto it = stereo_hit_.begin(); it != stereo_hit_.end();) {
+    if (utime - it->second < after_us) {
+      ++it;
+      continue;
+    }
+    // Back to unknown (log-odds 0: neither an obstacle nor seen free); a cell seen free since
+    // keeps that.
+    octomap::OcTreeNode* node = stereo_->search(it->first);
+    if (node != nullptr && node->getLogOdds() > 0.f) {
+      stereo_->setNodeValue(it->first, 0.f);
+      ++forgotten_;
+    }
+    it = stereo_hit_.erase(it);
+  }
+}
+
 InsertStats ObstacleMap::insert_stereo(const std::vector<Eigen::Vector3f>& base_points, const Eigen::Vector3d& base_camera,
-                                       const geometry::Pose2& odom_from_base, double focal_baseline)
+                                       const geometry::Pose2& odom_from_base, double focal_baseline, int64_t utime)
 {
   follow(odom_from_base);
   const Eigen::Matrix2d rot = odom_from_base.rotation();
@@ -111,7 +141,8 @@ InsertStats ObstacleMap::insert_stereo(const std::vector<Eigen::Vector3f>& base_
   InsertStats stats;
   octomap::Pointcloud cloud;
   cloud.reserve(base_points.size());
-  octomap::KeySet floor_seen, drop_offs;
+  octomap::KeySet floor_seen, drop_offs, hit;
+  const bool forgetting = options_.forget_after > 0 && utime > 0;
   // Height error per metre of range: a depth error of Z^2 / (f B) * sigma moves a point along its
   // ray, its height by (camera height - point height) / Z of that.
   const double height_error_per_m = focal_baseline > 0 ? options_.disparity_sigma / focal_baseline : 0.0;
@@ -143,6 +174,7 @@ InsertStats ObstacleMap::insert_stereo(const std::vector<Eigen::Vector3f>& base_
       continue;
     }
     cloud.push_back(to_tree(to_odom(b)));
+    if (forgetting && (b - base_camera).squaredNorm() <= max_range2) hit.insert(stereo_->coordToKey(cloud.back()));
   }
   stats.points = cloud.size();
   const auto t0 = std::chrono::steady_clock::now();
@@ -152,6 +184,7 @@ InsertStats ObstacleMap::insert_stereo(const std::vector<Eigen::Vector3f>& base_
   for (const auto& k : floor_seen) floor_->updateNode(k, false);
   for (const auto& k : drop_offs)
     if (!floor_seen.count(k)) floor_->updateNode(k, true);
+  if (forgetting) stamp_and_forget(hit, utime);
   return stats;
 }
 

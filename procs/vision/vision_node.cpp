@@ -9,7 +9,6 @@
 #include "bus/lcm_bus.h"
 #include "config/config.h"
 #include "drivers/stereo/image_encoding.h"
-#include "geometry/pose_track.h"
 #include "msg/conversions.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "vision/vision_conversions.h"
@@ -21,8 +20,6 @@ namespace {
 // utime beyond this is refused, so that differences of them cannot overflow.
 constexpr int64_t kMaxStamp = int64_t{1} << 62;
 bool stamp_ok(int64_t v) { return v > 0 && v < kMaxStamp; }
-// Odometry kept: a few seconds cover any frame that can still be processed.
-constexpr int64_t kKeepOdometryUs = 3'000'000;
 
 VisionPipeline make_pipeline(const StereoRig& rig, const VisionNodeOptions& options)
 {
@@ -31,14 +28,19 @@ VisionPipeline make_pipeline(const StereoRig& rig, const VisionNodeOptions& opti
   return VisionPipeline(rig, options.vision);
 }
 
+FrameSyncOptions sync_options(const VisionNodeOptions& o) { return {o.max_pose_gap, o.laser_period, o.base_from_laser}; }
+
 }  // namespace
 
 VisionNode::VisionNode(runtime::Node& node, const VisionNodeOptions& options, const StereoRig& rig)
     : node_(node),
       options_(options),
       pipeline_(make_pipeline(rig, options)),
-      max_gap_us_(static_cast<int64_t>(std::llround(options.max_pose_gap * 1e6))),
-      laser_period_us_(static_cast<int64_t>(std::llround(options.laser_period * 1e6)))
+      sync_(pipeline_, sync_options(options),
+            {[this](const StereoFrame& f, const FrameResult& r) { on_processed(f, r); },
+             [this](const std::string& why) { drop_frame(why); },
+             [this](const std::string& why) { node_.drops().drop(options_.channels.laser, why); },
+             [this] { node_.note_progress(); }})
 {
   const auto& ch = options_.channels;
   const auto stereo = node_.subscribe<stereo_images_t>(ch.stereo, [this](const stereo_images_t& m) { on_stereo(m); });
@@ -76,93 +78,50 @@ void VisionNode::on_stereo(const stereo_images_t& m)
     return drop_frame(fmt::format("frame {}: images {}x{} / {}x{}, the calibration is for {}x{}", m.frame_id, left->cols,
                                   left->rows, right->cols, right->rows, size.width, size.height));
   last_frame_utime_ = m.utime;
-  if (pending_frame_) ++superseded_;   // its odometry never came in time; the newer one is worth more
   StereoFrame f;
   f.utime = m.utime;
   f.left = std::move(*left);
   f.right = std::move(*right);
   f.pan = m.pan;
   f.tilt = m.tilt;
-  pending_frame_ = std::move(f);
-  try_frame();
+  sync_.on_frame(std::move(f));
 }
 
 void VisionNode::on_odometry(const odometry_t& m)
 {
   if (!stamp_ok(m.utime) || m.seq < 0) return node_.drops().drop(options_.channels.odometry, "odometry utime or seq out of range");
-  const bool restarted = !odometry_.empty() && (m.utime <= odometry_.back().utime || m.seq < last_odometry_seq_);
-  if (restarted) {
-    // A new odometry frame: the map's coordinates mean nothing in it.
-    spdlog::warn("odometry went back (seq {} -> {}): the map starts afresh", last_odometry_seq_, m.seq);
-    odometry_.clear();
-    pipeline_.reset_map();
-    pending_laser_.reset();
-    last_laser_utime_ = 0;
-    ++resets_;
-  }
-  last_odometry_seq_ = m.seq;
-  odometry_.push_back({m.utime, msg::to_pose2(m.odom_from_base)});
-  while (odometry_.size() > 2 && odometry_[1].utime < m.utime - kKeepOdometryUs) odometry_.pop_front();
-  try_frame();
-  try_laser();
+  sync_.on_odometry(m.utime, m.seq, msg::to_pose2(m.odom_from_base));
 }
 
-std::optional<geometry::Pose2> VisionNode::odometry_at(int64_t utime) const
+void VisionNode::on_processed(const StereoFrame& f, const FrameResult& r)
 {
-  return geometry::bracketed_at(odometry_, utime, max_gap_us_, [](const OdometrySample& s) { return s.odom_from_base; });
-}
-
-bool VisionNode::odometry_past(int64_t utime) const { return !odometry_.empty() && odometry_.back().utime >= utime; }
-
-void VisionNode::try_frame()
-{
-  if (!pending_frame_ || !odometry_past(pending_frame_->utime)) return;
-  StereoFrame f = std::move(*pending_frame_);
-  pending_frame_.reset();
-  const auto pose = odometry_at(f.utime);
-  if (!pose) return drop_frame(fmt::format("frame at {}: no odometry within max_pose_gap_s on both sides", f.utime));
-  f.odom_from_base = *pose;
-  last_ = pipeline_.process(f, [this] { node_.note_progress(); });
-  ++frames_;
+  last_ = r;
   last_frame_wall_ = std::chrono::steady_clock::now();
   node_.publish(options_.channels.obstacles, to_msg(last_.grid));
   if (last_.rectangles_run)
-    node_.publish(options_.channels.objects, to_msg(last_.rectangles, f.utime, frames_, last_scan_id_, f.odom_from_base));
+    node_.publish(options_.channels.objects,
+                  to_msg(last_.rectangles, f.utime, sync_.frames_processed(), last_scan_id_, f.odom_from_base));
   node_.note_progress();
   spdlog::debug("frame at {}: {:.0f} ms ({} points), {:.3f} s behind the odometry", f.utime, last_.total_ms, last_.points,
-                static_cast<double>(odometry_.back().utime - f.utime) * 1e-6);
+                sync_.odometry_lead_s(f.utime));
 }
 
 void VisionNode::on_laser(const laser_scan_t& m)
 {
   if (!stamp_ok(m.utime)) return node_.drops().drop(options_.channels.laser, "scan utime out of range");
   last_scan_id_ = std::max(last_scan_id_, m.scan_id);
-  if (last_laser_utime_ != 0 && m.utime > last_laser_utime_ && m.utime - last_laser_utime_ < laser_period_us_) return;
-  pending_laser_ = msg::to_laser_scan(m);
-  try_laser();
-}
-
-void VisionNode::try_laser()
-{
-  if (!pending_laser_ || !odometry_past(pending_laser_->utime)) return;
-  const sensors::LaserScan scan = std::move(*pending_laser_);
-  pending_laser_.reset();
-  const auto pose = odometry_at(scan.utime);
-  if (!pose) return node_.drops().drop(options_.channels.laser, "scan without odometry within max_pose_gap_s around it");
-  pipeline_.insert_laser(scan, *pose, options_.base_from_laser);
-  last_laser_utime_ = scan.utime;
-  ++lasers_;
+  sync_.on_laser(msg::to_laser_scan(m));
 }
 
 void VisionNode::report()
 {
   const auto& map = pipeline_.map();
   std::string text = fmt::format("{} frames ({} superseded), last {:.0f} ms, {} points; {} scans fused; map {} leaves, {:.1f} MB",
-                                 frames_, superseded_, last_.total_ms, last_.points, lasers_, map.leaf_count(),
+                                 frames_processed(), frames_superseded(), last_.total_ms, last_.points, laser_scans_fused(), map.leaf_count(),
                                  static_cast<double>(map.memory_bytes()) / 1e6);
-  const bool stale = frames_ == 0 || std::chrono::steady_clock::now() - last_frame_wall_ >
+  const bool stale = frames_processed() == 0 || std::chrono::steady_clock::now() - last_frame_wall_ >
                                          std::chrono::duration<double>(options_.stale_after);
-  if (stale) text += frames_ == 0 ? "; no frame processed yet" : "; no frame processed lately";
+  if (stale) text += frames_processed() == 0 ? "; no frame processed yet" : "; no frame processed lately";
   if (text == reported_) return;
   reported_ = text;
   node_.set_status(stale ? heartbeat_t::STATE_DEGRADED : heartbeat_t::STATE_RUNNING, text);

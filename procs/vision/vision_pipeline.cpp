@@ -55,7 +55,7 @@ FrameResult VisionPipeline::process(const StereoFrame& frame, const std::functio
   const auto t3 = Clock::now();
 
   r.insert = map_.insert_stereo(points, base_from_camera.translation(), frame.odom_from_base,
-                                matching_camera_.focal * matching_camera_.baseline);
+                                matching_camera_.focal * matching_camera_.baseline, frame.utime);
   const auto t4 = Clock::now();
   stage_done();
   r.grid = map_.project(frame.odom_from_base, frame.utime);

@@ -243,13 +243,15 @@ class Harness
     if (chs && chs.IsMap() && chs["base_cmd"]) channels.base_cmd = "BASE_CMD";  // the hold's channel
     // The simulator in protocol mode (sim + drive sections, a truth channel): the drives are its
     // emulated CiA 402 drives, its truth is the robot's real motion, observable whichever process
-    // is down, and its body brakes no faster than its drive's own limits.
+    // is down, and its body brakes no faster than its own braking limit (drive.brake_decel; an
+    // older config without one brakes at its acceleration).
     const auto sim = y["sim"], body = y["drive"];
     if (sim && sim.IsMap() && body && body.IsMap() && !str("channels", "truth").empty()) {
       const std::string flag = arg_after(c.argv, "--interface");
       if ((flag.empty() ? str("sim", "interface") : flag) == "protocol") {
         channels.truth = str("channels", "truth");
         if (body["accel"]) sim_accel_ = body["accel"].as<double>();
+        if (body["brake_decel"]) sim_accel_ = body["brake_decel"].as<double>();
         if (body["alpha"]) sim_alpha_ = body["alpha"].as<double>();
       }
     }

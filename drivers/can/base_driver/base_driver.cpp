@@ -59,6 +59,12 @@ void BaseDriver::command(const VelocityCommand& cmd, std::chrono::microseconds d
   controller_.command(cmd, Clock::now(), deadline);
 }
 
+void BaseDriver::quick_stop(bool hold, const std::string& why)
+{
+  std::lock_guard<std::mutex> lock(mu_);
+  controller_.quick_stop(hold, why);
+}
+
 BaseSnapshot BaseDriver::snapshot() const
 {
   std::lock_guard<std::mutex> lock(mu_);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include "base_driver/base_driver_options.h"
@@ -44,6 +45,8 @@ class BaseDriver
 
   // A velocity command, received now, void after `deadline` (capped by the configured one).
   void command(const VelocityCommand& cmd, std::chrono::microseconds deadline);
+  // Holds the drives in quick stop while `hold` (SynchroDriveController::quick_stop).
+  void quick_stop(bool hold, const std::string& why = "");
   BaseSnapshot snapshot() const;
 
  private:

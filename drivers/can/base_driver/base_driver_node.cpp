@@ -61,13 +61,21 @@ BaseDriverNode::~BaseDriverNode() { driver_->stop(); }
 
 void BaseDriverNode::on_command(const velocity_cmd_t& msg)
 {
-  const CommandDecision d = gate_.on_command(msg.source, msg.v, msg.omega, command_deadline(msg), std::chrono::steady_clock::now());
+  const auto now = std::chrono::steady_clock::now();
+  const CommandDecision d = gate_.on_command(msg.source, msg.v, msg.omega, command_deadline(msg), now);
+  // A second source is a safety event: the drives quick-stop from this very message on, and stay
+  // held while it speaks (released by publish_odometry() or the owner's next command once it
+  // has been silent for foreign_quiet).
+  if (gate_.locked_out(now))
+    driver_->quick_stop(true, "second source on BASE_CMD ('" + gate_.foreign_source() + "')");
+  else
+    driver_->quick_stop(false);
   if (d.verdict == CommandVerdict::kFollow) {
     driver_->command(to_velocity_command(msg), command_deadline(msg));
     return;
   }
-  // The hold, or a second source: zero, a controlled stop on the drives' profile ramps (as
-  // for a stale command), from this very message on.
+  // The hold (or the quick stop's target): zero; the hold is a controlled stop on the drives'
+  // profile ramps, as for a stale command.
   driver_->command(VelocityCommand{}, command_deadline(msg));
   if (!d.alert.empty()) {
     spdlog::error("ALERT: {}", d.alert);
@@ -93,6 +101,7 @@ void BaseDriverNode::publish_odometry()
   }
   // A second source on BASE_CMD holds the drives at zero until it is silent: that alert first.
   const bool locked_out = gate_.locked_out(std::chrono::steady_clock::now());
+  if (!locked_out) driver_->quick_stop(false);
   if (locked_out_ && !locked_out)
     spdlog::warn("BASE_CMD: '{}' silent for {} ms: following '{}' again ({} commands refused in all)", gate_.foreign_source(),
                  options_.sources.foreign_quiet.count(), options_.sources.owner, gate_.refused());

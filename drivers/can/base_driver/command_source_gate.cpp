@@ -34,7 +34,8 @@ CommandDecision CommandSourceGate::on_command(const std::string& source, double 
     return {CommandVerdict::kStop, ""};
   }
   if (source == options_.owner) {
-    if (locked_out(now) || now < hold_until_) return {CommandVerdict::kStop, ""};
+    if (locked_out(now)) return {CommandVerdict::kQuickStop, ""};
+    if (now < hold_until_) return {CommandVerdict::kStop, ""};
     return {CommandVerdict::kFollow, ""};
   }
   // A second source (or the hold asking for motion, which it never does).
@@ -42,12 +43,12 @@ CommandDecision CommandSourceGate::on_command(const std::string& source, double 
   const bool news = !locked_out(now) || printable(source) != foreign_;
   last_foreign_ = now;
   foreign_ = printable(source);
-  if (!news) return {CommandVerdict::kStop, ""};
+  if (!news) return {CommandVerdict::kQuickStop, ""};
   alert_ = "BASE_CMD from '" + printable(source) + "' refused: the channel belongs to '" + printable(options_.owner) + "'" +
            (from_hold ? " ('" + printable(source) + "' may only command zero)" : std::string()) +
-           "; drives stopped until '" + printable(source) + "' is silent for " +
+           "; drives quick-stopped until '" + printable(source) + "' is silent for " +
            std::to_string(options_.foreign_quiet.count()) + " ms";
-  return {CommandVerdict::kStop, alert_};
+  return {CommandVerdict::kQuickStop, alert_};
 }
 
 }  // namespace rgnav::can::base

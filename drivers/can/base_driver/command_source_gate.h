@@ -5,8 +5,9 @@
 // robot), plus the one second source that is allowed: the supervisor's hold, the safety net,
 // which only ever commands zero and then always wins (for that command's deadline). Any other
 // source — or the hold source commanding motion — is refused the moment it is heard, the
-// drives are commanded to stop, and an alert names both sources; the owner is followed again
-// once the foreign source has been silent for `foreign_quiet`. No LCM, no clock of its own.
+// drives are quick-stopped (a safety event: nobody knows who drives the robot) and held so,
+// and an alert names both sources; the owner is followed again once the foreign source has
+// been silent for `foreign_quiet`. No LCM, no clock of its own.
 #pragma once
 
 #include <chrono>
@@ -25,8 +26,9 @@ struct CommandSourceOptions
 
 enum class CommandVerdict
 {
-  kFollow,  // pass the command to the drives
-  kStop,    // command zero instead (the hold, or the channel has a second source)
+  kFollow,     // pass the command to the drives
+  kStop,       // command zero instead: a controlled stop (the hold)
+  kQuickStop,  // the channel has a second source: quick stop, held while locked_out()
 };
 
 struct CommandDecision
@@ -45,7 +47,7 @@ class CommandSourceGate
   // A command from `source`, received at `now`, void after `deadline`.
   CommandDecision on_command(const std::string& source, double v, double omega, Clock::duration deadline,
                              Clock::time_point now);
-  // A foreign source was heard less than foreign_quiet ago: the drives are held at zero.
+  // A foreign source was heard less than foreign_quiet ago: the drives are held in quick stop.
   bool locked_out(Clock::time_point now) const;
   // The alert of the current (or last) lockout, "" if there never was one.
   const std::string& alert() const { return alert_; }

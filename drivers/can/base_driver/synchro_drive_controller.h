@@ -8,6 +8,8 @@
 //  - faults (EMCY, drive fault, heartbeat loss, missing PDOs, bus-off) stop the robot: the
 //    drives still reachable are held in quick stop until every drive is healthy again, then
 //    the 402 state machine is re-run (recovery);
+//  - safety stops asked for from outside (quick_stop(): a second source on BASE_CMD) hold both
+//    drives in quick stop (0x6085 ramp) until released, then re-enable them like a recovery;
 //  - odometry integrated exactly from both encoders once per SYNC cycle.
 #pragma once
 
@@ -65,6 +67,11 @@ class SynchroDriveController
   void tick(Clock::time_point now);
   // Stop following commands for good (shutdown): targets 0 from now on.
   void release() { released_ = true; }
+  // Holds both drives in quick stop while `hold` (a safety event: they ramp down at 0x6085, far
+  // harder than the controlled stop's profile ramp); `why` is the odometry's reason meanwhile.
+  // Released (once no drive is still ramping down), the drives are re-enabled (within
+  // enable_timeout, else it is a fault) and follow fresh commands from standstill.
+  void quick_stop(bool hold, const std::string& why = "");
 
   const BaseOdometry& odometry() const { return odom_; }
   bool at_standstill() const;
@@ -74,6 +81,7 @@ class SynchroDriveController
 
  private:
   void integrate_odometry();
+  void release_quick_stop(Clock::time_point now);
   std::string fault_reason() const;
 
   BaseDriverOptions options_;
@@ -88,6 +96,10 @@ class SynchroDriveController
   VelocityCommand ramped_;  // acceleration-limited command
   bool ever_enabled_ = false;
   bool released_ = false;
+  bool safety_stop_ = false;          // quick_stop(true) holds
+  bool release_pending_ = false;      // quick_stop(false) asked while held
+  std::string safety_stop_why_;
+  std::optional<Clock::time_point> reenable_until_;  // after a safety stop: not enabled yet is no fault
   uint64_t used_samples_t_ = 0, used_samples_r_ = 0;
   uint32_t epoch_t_ = 0, epoch_r_ = 0;
 };

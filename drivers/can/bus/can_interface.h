@@ -7,7 +7,9 @@
 #include <linux/can.h>
 #include <linux/can/error.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -20,6 +22,9 @@ class CanError : public std::runtime_error
  public:
   using std::runtime_error::runtime_error;
 };
+
+// "what: <the text of errno>": the message of a CanError after a failed system call.
+inline std::string errno_text(const std::string& what) { return what + ": " + std::strerror(errno); }
 
 class CanInterface
 {

@@ -16,11 +16,6 @@ namespace rgnav::can {
 
 namespace {
 
-std::string errno_text(const std::string& what)
-{
-  return what + ": " + std::strerror(errno);
-}
-
 // Always watched, whatever the caller asked for: bus-off tracking depends on them.
 constexpr can_err_mask_t kInternalErrors = CAN_ERR_BUSOFF | CAN_ERR_RESTARTED;
 

@@ -19,8 +19,6 @@ namespace rgnav::can {
 
 namespace {
 
-std::string errno_text(const std::string& what) { return what + ": " + std::strerror(errno); }
-
 // Whether a broker is already answering on this address.
 bool someone_listens(const vcan::UnixAddress& a)
 {

@@ -7,6 +7,7 @@
 
 #include "base_driver/base_driver_node.h"
 #include "bus/typed.h"
+#include "canopen/cia402.h"
 #include "canopen/emcy.h"
 #include "fake_bus_node.h"
 #include "realtime_rig.h"
@@ -140,8 +141,9 @@ TEST(BaseDriverNode, CommandsInOdometryOutFaultsInTheHeartbeat)
 
 // A second source on BASE_CMD while the owner drives: refused from its first command (the
 // alert naming both is in the heartbeat as soon as that command is handled, before any other
-// message), the drives stop although the owner keeps commanding motion, and the owner drives
-// again once the other source is silent.
+// message), the drives quick-stop (a safety event: the 0x6085 ramp, not the profile ramp)
+// although the owner keeps commanding motion, and the owner drives again once the other source
+// is silent.
 TEST(BaseDriverNode, ASecondSourceIsRefusedStopsTheDrivesAndRaisesAnAlertNamingBoth)
 {
   testing::RealtimeRig rig("node2");
@@ -208,11 +210,17 @@ TEST(BaseDriverNode, ASecondSourceIsRefusedStopsTheDrivesAndRaisesAnAlertNamingB
     send("teleop", 0.5);
     t_other = std::chrono::steady_clock::now();
   };
-  const auto stopped = rig.pump_until([&] { return last_odometry()->v == 0.0; }, 3000ms, both);
+  bool quick_stopped = false;  // the translation drive was seen in Quick stop active
+  const auto stopped = rig.pump_until([&] {
+    quick_stopped = quick_stopped || rig.translation().power_state() == canopen::cia402::PowerState::kQuickStopActive;
+    return last_odometry()->v == 0.0;
+  }, 3000ms, both);
   ASSERT_TRUE(stopped) << "still moving at " << last_odometry()->v << " m/s";
-  std::printf("[ figures  ] second BASE_CMD source at 0.3 m/s -> ODOMETRY v = 0 after %lld ms (controlled stop, %.1f m/s^2)\n",
+  EXPECT_TRUE(quick_stopped) << "stopped, but not by the drives' quick stop";
+  EXPECT_NE(last_odometry()->status, odometry_t::STATUS_FAULT);  // held on purpose, not a drive fault
+  std::printf("[ figures  ] second BASE_CMD source at 0.3 m/s -> ODOMETRY v = 0 after %lld ms (quick stop, %.1f m/s^2)\n",
               static_cast<long long>(std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t_foreign).count()),
-              rig.options().translation.max_acceleration);
+              rig.options().translation.quick_stop_deceleration);
   const size_t from = fb->published_on("ODOMETRY").size();
   rig.pump_for(400ms, both);
   for (const auto& m : rgnav::testing::decoded<odometry_t>(*fb, "ODOMETRY")) EXPECT_LE(m.v, 0.3 + 1e-6);

@@ -131,7 +131,7 @@ TEST(BaseDriverProcesses, OdometryFollowsBaseCmdAndSigtermExitsCleanly)
               static_cast<long long>(std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - t_stop).count()));
 
   // A second BASE_CMD source while the owner drives: refused at its first command, the drives
-  // stop although the owner keeps commanding motion, and the heartbeat names both sources.
+  // quick-stop although the owner keeps commanding motion, and the heartbeat names both sources.
   v_cmd = 0.3;
   ASSERT_TRUE(pump_until([&] { return odo.last->status == odometry_t::STATUS_OK && std::fabs(odo.last->v - 0.3) < 1e-3; },
                          5000ms, command));
@@ -153,7 +153,7 @@ TEST(BaseDriverProcesses, OdometryFollowsBaseCmdAndSigtermExitsCleanly)
     return static_cast<long long>(std::chrono::duration_cast<std::chrono::milliseconds>(t - t_foreign).count());
   };
   std::printf("[ figures  ] processes: a second BASE_CMD source at 0.3 m/s -> braking seen on ODOMETRY after %lld ms, "
-              "v = 0 after %lld ms (controlled stop)\n", ms_since(*braking), ms_since(Clock::now()));
+              "v = 0 after %lld ms (quick stop)\n", ms_since(*braking), ms_since(Clock::now()));
   EXPECT_TRUE(hb.wait_until("base_driver", 2000ms, [](const heartbeat_t& h) {
     return h.state == heartbeat_t::STATE_DEGRADED && h.status.find("'teleop'") != std::string::npos &&
            h.status.find("'lld'") != std::string::npos;

@@ -1,5 +1,5 @@
 // The BASE_CMD owner rule on explicit time: the configured owner is followed, the hold's zero
-// always wins, and a second source is refused at its first command (stop + an alert naming
+// always wins, and a second source is refused at its first command (quick stop + an alert naming
 // both) until it has been silent for foreign_quiet.
 #include "base_driver/command_source_gate.h"
 
@@ -27,9 +27,9 @@ TEST(CommandSourceGate, OwnerIsFollowedAndASecondSourceIsRefusedAtItsFirstComman
   EXPECT_EQ(g.on_command("lld", 0.3, 0.0, 150ms, t0).verdict, CommandVerdict::kFollow);
   EXPECT_FALSE(g.locked_out(t0));
 
-  // The very first command of another source: stop, with an alert naming both.
+  // The very first command of another source: quick stop, with an alert naming both.
   const auto d = g.on_command("teleop", 0.5, 0.1, 150ms, t0 + 50ms);
-  EXPECT_EQ(d.verdict, CommandVerdict::kStop);
+  EXPECT_EQ(d.verdict, CommandVerdict::kQuickStop);
   EXPECT_NE(d.alert.find("'teleop'"), std::string::npos) << d.alert;
   EXPECT_NE(d.alert.find("'lld'"), std::string::npos) << d.alert;
   EXPECT_TRUE(g.locked_out(t0 + 50ms));
@@ -37,16 +37,16 @@ TEST(CommandSourceGate, OwnerIsFollowedAndASecondSourceIsRefusedAtItsFirstComman
 
   // The owner is not followed while the other one speaks (they would fight); the alert is not
   // repeated for every command of the same source.
-  EXPECT_EQ(g.on_command("lld", 0.3, 0.0, 150ms, t0 + 100ms).verdict, CommandVerdict::kStop);
+  EXPECT_EQ(g.on_command("lld", 0.3, 0.0, 150ms, t0 + 100ms).verdict, CommandVerdict::kQuickStop);
   const auto again = g.on_command("teleop", 0.5, 0.1, 150ms, t0 + 100ms);
-  EXPECT_EQ(again.verdict, CommandVerdict::kStop);
+  EXPECT_EQ(again.verdict, CommandVerdict::kQuickStop);
   EXPECT_TRUE(again.alert.empty());
   // A third source is news again.
   EXPECT_NE(g.on_command("lld2", 0.2, 0.0, 150ms, t0 + 150ms).alert.find("'lld2'"), std::string::npos);
 
   // Silent for foreign_quiet: the owner drives again.
   EXPECT_TRUE(g.locked_out(t0 + 1149ms));
-  EXPECT_EQ(g.on_command("lld", 0.3, 0.0, 150ms, t0 + 1149ms).verdict, CommandVerdict::kStop);
+  EXPECT_EQ(g.on_command("lld", 0.3, 0.0, 150ms, t0 + 1149ms).verdict, CommandVerdict::kQuickStop);
   EXPECT_FALSE(g.locked_out(t0 + 1150ms));
   EXPECT_EQ(g.on_command("lld", 0.3, 0.0, 150ms, t0 + 1150ms).verdict, CommandVerdict::kFollow);
   // The alert stays readable for the record.
@@ -73,7 +73,7 @@ TEST(CommandSourceGate, TheHoldSourceCommandingMotionIsASecondSource)
 {
   CommandSourceGate g(options());
   const auto d = g.on_command("supervisor", 0.2, 0.0, 100ms, Clock::time_point{});
-  EXPECT_EQ(d.verdict, CommandVerdict::kStop);
+  EXPECT_EQ(d.verdict, CommandVerdict::kQuickStop);
   EXPECT_NE(d.alert.find("'supervisor'"), std::string::npos) << d.alert;
   EXPECT_NE(d.alert.find("only command zero"), std::string::npos) << d.alert;
   EXPECT_TRUE(g.locked_out(Clock::time_point{}));
@@ -83,7 +83,7 @@ TEST(CommandSourceGate, UnprintableAndEmptySourcesAreNamedSafely)
 {
   CommandSourceGate g(options());
   const auto d = g.on_command(std::string("evil\n\x01name") + std::string(100, 'x'), 0.1, 0.0, 100ms, Clock::time_point{});
-  EXPECT_EQ(d.verdict, CommandVerdict::kStop);
+  EXPECT_EQ(d.verdict, CommandVerdict::kQuickStop);
   EXPECT_EQ(d.alert.find('\n'), std::string::npos);
   EXPECT_NE(d.alert.find("evil??name"), std::string::npos) << d.alert;
   EXPECT_LT(d.alert.size(), 300u);

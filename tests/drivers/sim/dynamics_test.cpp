@@ -62,6 +62,50 @@ TEST(SynchroDrive, RespectsAccelerationAndVelocityLimits)
   EXPECT_EQ(total.dtheta, 0.0);
 }
 
+// The body speeds up on the motor's ramp but brakes as hard as the drive commands, up to its
+// grip: a quick stop is not slowed to the cruise acceleration.
+TEST(SynchroDrive, BehindRampingDrivesBrakesAtItsBrakingLimitAndSpeedsUpAtItsAcceleration)
+{
+  SynchroDriveOptions o;
+  o.accel = 0.8;
+  o.brake_decel = 4.5;
+  const double dt = 0.001;
+  SynchroDrive d(o);
+  while (d.v() < 0.6) d.step({0.6, 0.0}, dt, true);
+  // Commanded zero at once: at rest after v / brake_decel, over v^2 / (2 brake_decel).
+  double ds = 0.0;
+  int steps = 0;
+  double prev = d.v();
+  while (d.v() > 0.0 && steps < 10000) {
+    ds += d.step({0.0, 0.0}, dt, true).ds;
+    EXPECT_LE(prev - d.v(), o.brake_decel * dt + 1e-12);
+    prev = d.v();
+    ++steps;
+  }
+  EXPECT_NEAR(steps * dt, 0.6 / 4.5, 2 * dt);
+  EXPECT_NEAR(ds, 0.6 * 0.6 / (2 * 4.5), 1e-3);
+  // Slowing to a lower speed brakes too; speeding up again is on the cruise ramp.
+  SynchroDrive e(o);
+  while (e.v() < 0.6) e.step({0.6, 0.0}, dt, true);
+  e.step({0.2, 0.0}, 0.05, true);
+  EXPECT_NEAR(e.v(), 0.6 - 4.5 * 0.05, 1e-9);
+  e.step({0.2, 0.0}, 0.05, true);
+  EXPECT_NEAR(e.v(), 0.2, 1e-9);
+  e.step({0.6, 0.0}, 0.05, true);
+  EXPECT_NEAR(e.v(), 0.2 + 0.8 * 0.05, 1e-9);
+  // A reversal within one step: braking to zero, then the rest of the step speeding up backwards.
+  SynchroDrive r(o);
+  while (r.v() < 0.45) r.step({0.45, 0.0}, dt, true);
+  r.step({-0.5, 0.0}, 0.2, true);  // 0.1 s to stop, 0.1 s at 0.8 m/s^2 backwards
+  EXPECT_NEAR(r.v(), -0.08, 1e-9);
+  // Raw commands (direct mode): the simulated drive ramps them at its cruise accel both ways.
+  SynchroDrive raw(o);
+  while (raw.v() < 0.6) raw.step({0.6, 0.0}, dt);
+  const double v_raw = raw.v();
+  raw.step({0.0, 0.0}, 0.05);
+  EXPECT_NEAR(raw.v(), v_raw - 0.8 * 0.05, 1e-9);
+}
+
 TEST(SynchroDrive, ArcsAreExact)
 {
   // A full circle of radius 1 comes back to the start.

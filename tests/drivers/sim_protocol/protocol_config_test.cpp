@@ -14,12 +14,13 @@
 #include "config/config.h"
 #include "sick/laser_driver_options.h"
 #include "sim/protocol_options.h"
+#include "source_paths.h"
 
 namespace rgnav::sim {
 namespace {
 
 std::string config_dir() { return std::string(RGNAV_SOURCE_DIR) + "/config"; }
-std::string config_path(const std::string& name) { return config_dir() + "/" + name; }
+using testing::config_path;
 config::RobotDescription robot() { return config::load_robot_description_file(config_path("robot.yaml")); }
 
 // The YAML tree of a config file without the listed "section.key" entries.

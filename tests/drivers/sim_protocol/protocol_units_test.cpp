@@ -13,6 +13,7 @@
 #include "config/config.h"
 #include "sim/protocol_drives.h"
 #include "sim/protocol_options.h"
+#include "source_paths.h"
 
 namespace rgnav::sim {
 namespace {
@@ -20,7 +21,7 @@ namespace {
 using namespace std::chrono_literals;
 using can::base::AxisOptions;
 
-std::string config_path(const std::string& name) { return std::string(RGNAV_SOURCE_DIR) + "/config/" + name; }
+using testing::config_path;
 
 can::base::BaseDriverOptions shipped_sim_base_options()
 {

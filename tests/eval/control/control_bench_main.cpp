@@ -25,15 +25,13 @@
 
 #include "collision_avoidance/ca_options.h"
 #include "collision_avoidance/collision_avoidance.h"
-#include "config/config.h"
-#include "config/finish_except.h"
 #include "lld/follower.h"
 #include "lld/lld_options.h"
 #include "sim/simulator.h"
 #include "sim/world_yaml.h"
 #include "trajectory/construct.h"
 
-#include "contact_report.h"
+#include "course_drive.h"
 #include "doorway_encounters.h"
 #include "obstacle_course.h"
 #include "office_tour.h"
@@ -158,41 +156,6 @@ nlohmann::json tracking(const lld::LldOptions& lo, double v, int chains, uint64_
           {"time_pred_err_max_pct", terr_max}};
 }
 
-// One contact for control.json: what was hit, the robot's speed just before (the simulator
-// stops it at contact), and for a person who closed the gap over the last 1 and 3 seconds.
-nlohmann::json contact_json(int course, const sim::Simulator& sim, const sim::CollisionEvent& e,
-                            const bench::ContactHistory& history, double true_v, double cmd_v,
-                            const collision_avoidance::CollisionAvoidance& ca)
-{
-  nlohmann::json j = {{"course", course},
-                      {"t_s", sim.time_s()},
-                      {"with", e.with},
-                      {"robot_v_true_mps", true_v},
-                      {"robot_v_cmd_mps", cmd_v},
-                      {"mode", collision_avoidance::mode_name(ca.mode())},
-                      {"status", ca.status()}};
-  const auto& people = sim.world().people;
-  for (size_t p = 0; p < people.size(); ++p) {
-    if (e.with != "person " + people[p].name) continue;
-    const double radii = people[p].radius + sim.options().robot.radius;
-    for (double w : {1.0, 3.0}) {
-      if (auto s = history.split(p, w, radii)) {
-        const std::string key = w < 2.0 ? "1s" : "3s";
-        j["gap_before_" + key + "_m"] = s->gap_before_m;
-        j["robot_closing_" + key + "_m"] = s->robot_closing_m;
-        j["person_closing_" + key + "_m"] = s->person_closing_m;
-        if (w < 2.0) {
-          j["closed_by"] = s->closed_by;
-          j["person_speed_mps"] = s->person_speed_mps;
-        }
-      }
-    }
-    if (auto s = history.split(p, 0.3, radii))
-      j["robot_toward_person_mps"] = s->window_s > 0 ? s->robot_closing_m / s->window_s : 0.0;
-  }
-  return j;
-}
-
 nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaOptions& co, int n, uint64_t seed,
                        int only, double personal_space)
 {
@@ -217,107 +180,23 @@ nlohmann::json courses(const lld::LldOptions& lo, const collision_avoidance::CaO
       for (const auto& p : course.world.people)
         std::cerr << "person from " << p.path[0].x() << "," << p.path[0].y() << " speed " << p.speed << " delay " << p.start_delay << "\n";
     }
-    sim::Simulator sim(course.world, bench::control_sim_options(seed + 100 + k, true));
-    sim::TimedCommandSource cmd;
-    sim.set_command_source(&cmd);
-    lld::Follower f(lo.follower);
-    collision_avoidance::CollisionAvoidance ca(co);
-    collision_avoidance::Targets tg;
-    tg.poses = course.targets;
-    tg.max_speed = 0.6;
-    tg.final_is_goal = true;
-    ca.set_targets(tg);
-    Pose2 sent_correction;   // odom_from_world the targets were last expressed with
-    size_t base_index = 0;   // course target index of tg.poses[0]
-    lld::OdometryInput odi;
-    bool have = false, arrived = false;
-    int64_t last_id = 0;
-    double t_end = 0.0;
-    bench::ContactHistory history;
-    double true_v_before = 0.0, cmd_v_before = 0.0;  // the step before the newest (contact stops the robot)
-    for (int i = 0; i < static_cast<int>(120.0 / kPeriod); ++i) {
-      const auto out = sim.step(kPeriodUs);
-      {
-        std::vector<Eigen::Vector2d> people;
-        for (const auto& disc : sim.people()) people.push_back(disc.center);
-        history.add(sim.time_s(), to_pose(sim.truth()).translation(), people);
-      }
-      for (const auto& e : out.collisions) {
-        contacts.push_back(contact_json(k, sim, e, history, true_v_before, cmd_v_before, ca));
-        closed_by[contacts.back().value("closed_by", std::string("obstacle"))]++;
-        if (getenv("CB_DEBUG"))
-          std::cerr << "course " << k << " collision at t=" << sim.time_s() << " " << contacts.back().dump() << "\n";
-      }
-      if (!out.odometry.empty()) true_v_before = out.odometry.back().true_v;
-      if (bench::feed_collision_avoidance(out, ca, &odi)) have = true;
-      const auto now = time::from_utime(sim.now_utime());
-      // Targets are given in the world; the odometry drifts (turning on the spot most: 2 %
-      // rotation scale error). Without a localizer an odometry-frame goal ends up in a wall
-      // after a few back-offs (measured: 1.2 m off after 90 s). So, as the planner will
-      // with localization, the remaining targets are re-expressed in the odometry frame from
-      // the true pose (a perfect localizer) whenever that correction has moved.
-      if (have) {
-        const Pose2 odom_from_world = odi.pose * to_pose(sim.truth()).inverse();
-        const Pose2 change = sent_correction.inverse() * odom_from_world;
-        if (change.translation().norm() > 0.05 || std::fabs(change.theta()) > 0.01) {
-          const size_t from = std::min(ca.next_target(), tg.poses.size() - 1);
-          collision_avoidance::Targets moved = tg;
-          moved.poses.clear();
-          for (size_t q = base_index + from; q < course.targets.size(); ++q)
-            moved.poses.push_back(odom_from_world * course.targets[q]);
-          base_index += from;
-          tg = moved;
-          ca.set_targets(tg);
-          sent_correction = odom_from_world;
-        }
-      }
-      rgnav::bench::hand_over_trajectory(ca, f, lo.follower, now, &last_id);
-      const auto& st = f.step(now, kPeriod, have ? &odi : nullptr);
-      cmd.set(sim.now_utime(), {st.command.v, st.command.omega}, lo.loop.command_deadline_ms * 1000);
-      cmd_v_before = st.command.v;
-      if (getenv("CB_DEBUG") && i % 10 == 0)
-        std::cerr << "t=" << sim.time_s() << " truth=" << sim.truth().x << "," << sim.truth().y << " th=" << sim.truth().theta
-                  << " next=" << ca.next_target() << " mode=" << collision_avoidance::mode_name(ca.mode()) << " '" << ca.status()
-                  << "' v=" << st.command.v << " w=" << st.command.omega << " lld=" << static_cast<int>(st.state)
-                  << " id=" << st.trajectory_id << " len=" << (ca.active() ? ca.active()->chain.length() : -1)
-                  << " nseg=" << (ca.active() ? ca.active()->chain.size() : 0) << " map=" << ca.map().size()
-                  << " clr=" << ca.map().clearance(odi.pose.translation(), 3.0) << " odom=" << odi.pose.x() << ","
-                  << odi.pose.y() << "\n";
-      if (getenv("CB_DEBUG_NEAREST")) {
-        // Every tick: the nearest obstacle point in the base frame, the nearest possibly
-        // moving and predicted ones, and where the people are (phantom movers show here).
-        double best = std::numeric_limits<double>::infinity();
-        Eigen::Vector2d nearest(0.0, 0.0);
-        for (const auto& q : ca.map().points()) {
-          const double d = (q - odi.pose.translation()).norm();
-          if (d < best) {
-            best = d;
-            nearest = q;
-          }
-        }
-        const Eigen::Vector2d in_base = odi.pose.inverse() * nearest;
-        std::cerr << "  t=" << sim.time_s() << " nearest base " << in_base.x() << "," << in_base.y() << " d=" << best
-                  << " moving_d=" << ca.map().clearance_moving(odi.pose.translation(), 3.0)
-                  << " predicted_d=" << ca.map().clearance_predicted(odi.pose.translation(), 3.0) << " people";
-        for (const auto& disc : sim.people()) std::cerr << " " << disc.center.x() << "," << disc.center.y();
-        std::cerr << " stopped movers (odom)";
-        for (const auto& m : ca.map().tracker().last_seen_movers()) std::cerr << " " << m.position.x() << "," << m.position.y();
-        std::cerr << " '" << ca.status() << "'\n";
-      }
-      if (ca.mode() == collision_avoidance::Mode::kArrived) {
-        arrived = true;
-        t_end = sim.time_s();
-        break;
-      }
+    bench::CourseDriveOptions o;
+    o.sim = bench::control_sim_options(seed + 100 + k, true);
+    o.trace = getenv("CB_DEBUG") != nullptr;
+    o.trace_nearest = getenv("CB_DEBUG_NEAREST") != nullptr;
+    const bench::CourseDriveResult r = bench::drive_course(course, k, lo, co, o);
+    for (const auto& c : r.contacts) {
+      contacts.push_back(c);
+      closed_by[c.value("closed_by", std::string("obstacle"))]++;
     }
-    collisions += sim.collisions();
-    fallbacks += ca.fallbacks();
-    replans += ca.replans();
-    if (arrived) {
+    collisions += r.collisions;
+    fallbacks += r.fallbacks;
+    replans += r.replans;
+    if (r.arrived) {
       ++reached;
-      time_sum += t_end;
+      time_sum += r.time_s;
     } else {
-      failures.push_back({{"course", k}, {"x", sim.truth().x}, {"y", sim.truth().y}, {"mode", collision_avoidance::mode_name(ca.mode())}});
+      failures.push_back({{"course", k}, {"x", r.end.x}, {"y", r.end.y}, {"mode", r.mode}});
     }
   }
   return {{"courses", n},
@@ -411,13 +290,9 @@ int main(int argc, char** argv)
   app.add_flag("--oblivious-too", oblivious_too, "also run the courses with people who wait only rather than touch the robot");
   CLI11_PARSE(app, argc, argv);
 
-  const auto robot = config::load_robot_description_file(config_dir + "/robot.yaml");
-  const auto lcfg = config::Config::load(config_dir + "/lld.yaml");
-  const lld::LldOptions lo = lld::load_lld_options(lcfg, robot);
-  config::finish_except(lcfg, {"node"});
-  const auto ccfg = config::Config::load(config_dir + "/collision_avoidance.yaml");
-  const auto co = collision_avoidance::load_ca_options(ccfg, robot);
-  config::finish_except(ccfg, {"node"});
+  const bench::DriveConfig drive = bench::load_drive_config(config_dir);
+  const lld::LldOptions& lo = drive.lld;
+  const auto& co = drive.ca;
 
   nlohmann::json j;
   j["plant"] = "sim";

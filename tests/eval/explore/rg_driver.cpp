@@ -21,15 +21,7 @@ namespace {
 
 using geometry::Pose2;
 
-const char* kind_name(explorer::ExploreGoal::Kind k)
-{
-  switch (k) {
-    case explorer::ExploreGoal::Kind::kFrontier: return "frontier";
-    case explorer::ExploreGoal::Kind::kGateway: return "gateway";
-    case explorer::ExploreGoal::Kind::kRegion: return "region";
-  }
-  return "?";
-}
+const char* kind_name(explorer::ExploreGoal::Kind k) { return explorer::to_string(k); }
 
 class RgDriver final : public ExploreDriver
 {

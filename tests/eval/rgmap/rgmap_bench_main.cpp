@@ -1,15 +1,18 @@
 // rgnav_rgmap_bench: evaluation of RG maps (./rgnav bench rgmap; key meanings in
-// deploy/bench/rgmap.sh). Simulated tours with exact ground truth (--sim) and recorded logs
-// with corrected poses (--real, counts only: no ground truth).
+// deploy/bench/rgmap.sh). Simulated tours with exact ground truth (--sim, and --sim-random for the
+// generated buildings of tests/eval/buildings) and recorded logs with corrected poses (--real,
+// counts only: no ground truth).
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 
 #include "bench_summary.h"
 #include "name_path_spec.h"
+#include "building_files.h"
 #include "config/finish_except.h"
 #include "importers/lcm_log_io.h"
 #include "offline_mapping.h"
@@ -63,7 +66,7 @@ int main(int argc, char** argv)
   rp::PipelineConfigPaths paths{cfg_dir + "/scan_mapper.yaml", cfg_dir + "/gateway_detector_aligned.yaml", cfg_dir + "/rg_kernel.yaml",
                                 cfg_dir + "/robot.yaml"};
   std::string sim_config = cfg_dir + "/sim.yaml", json_path, out_dir;
-  std::vector<std::string> sims, reals;
+  std::vector<std::string> sims, random_sims, reals;
   rp::SimTourOptions tour;
   double match_m = 1.0;
   app.add_option("--config", paths.scan_mapper, "scan mapper config")->check(CLI::ExistingFile);
@@ -72,6 +75,8 @@ int main(int argc, char** argv)
   app.add_option("--robot", paths.robot, "robot description")->check(CLI::ExistingFile);
   app.add_option("--sim-config", sim_config, "simulator config (robot, odometry error, laser)")->check(CLI::ExistingFile);
   app.add_option("--sim", sims, "NAME=WORLD (world file or IPA map image), repeatable");
+  app.add_option("--sim-random", random_sims,
+                 "NAME=MAP.png: a generated building (rgnav_building_gen), as --sim, summarized apart, repeatable");
   app.add_option("--real", reals, "NAME=LOG.lcmlog with corrected poses as odometry (taken as given), repeatable");
   app.add_option("--laps", tour.laps, "tour laps per world")->check(CLI::Range(1, 10));
   app.add_option("--max-sim-s", tour.max_sim_s, "cap on simulated seconds per world")->check(CLI::Range(10.0, 36000.0));
@@ -100,11 +105,20 @@ int main(int argc, char** argv)
     j["worlds"] = nlohmann::json::object();
     if (true_poses) j["worlds_true_poses"] = nlohmann::json::object();
     j["logs"] = nlohmann::json::object();
-    if (!sims.empty()) {
+    // Every simulated world with whether it is a generated building.
+    std::vector<std::pair<std::string, bool>> worlds;
+    for (const auto& spec : sims) worlds.emplace_back(spec, false);
+    for (const auto& spec : random_sims) worlds.emplace_back(spec, true);
+    {
+      std::vector<std::string> maps;
+      for (const auto& spec : random_sims) maps.push_back(rp::split_spec(spec).second);
+      j["random_buildings"] = rgnav::buildings::count_buildings(maps);
+    }
+    if (!worlds.empty()) {
       const auto sim_cfg = rgnav::config::Config::load(sim_config);
       const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg, loaded.robot);
       rgnav::config::finish_except(sim_cfg, {"node", "channels", "sim", "protocol"});  // the process's own run settings
-      for (const auto& spec : sims) {
+      for (const auto& [spec, random_building] : worlds) {
         const auto [name, path] = rp::split_spec(spec);
         // The headline on the scan mapper's poses; on request again on the true poses.
         for (const bool on_truth : {false, true}) {
@@ -121,6 +135,7 @@ int main(int argc, char** argv)
             auto w = rp::to_json(run, score);
             w["world"] = path;
             w["poses"] = on_truth ? "true" : "scan_mapper";
+            if (random_building) w["random_building"] = true;
             const std::string dir = out_dir + "/" + name + (on_truth ? "/true_poses" : "");
             rp::write_run_outputs(run.run, loaded.options, dir);
             rgnav::scan_mapper::write_truth_pairs(dir + "/truth_pairs.txt", run.run.nodes, run.truth_at_node);
@@ -136,6 +151,7 @@ int main(int argc, char** argv)
           } catch (const std::exception& e) {
             // One world that cannot be run (no tour through it, unreadable) does not sink the rest.
             j[section][name] = {{"world", path}, {"error", e.what()}};
+            if (random_building) j[section][name]["random_building"] = true;
             std::cerr << label << ": " << e.what() << "\n";
           }
         }
@@ -144,6 +160,10 @@ int main(int argc, char** argv)
     j["summary"] = nlohmann::json::object();
     for (const char* section : {"worlds", "worlds_true_poses"})
       if (j.contains(section)) j["summary"][section] = rp::summarize_ipa_worlds(j[section]);
+    // Maps the scan mapper broke (rigid-fit RMSE of the accepted scans above the threshold), named
+    // worlds and generated buildings alike; the true-pose runs have no SLAM to break.
+    j["broken_map_list"] = rp::broken_maps(j["worlds"]);
+    j["broken_maps"] = j["broken_map_list"].size();
     for (const auto& spec : reals) {
       const auto [name, path] = rp::split_spec(spec);
       auto given = loaded;

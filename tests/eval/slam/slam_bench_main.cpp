@@ -1,7 +1,7 @@
 // rgnav_slam_bench: the SLAM benchmark (see deploy/bench/slam.sh).
 //   rgnav_slam_bench --json OUT.json --maps DIR [--config FILE]
 //     [--real NAME=LOG[@X,Y,THETA][#SECONDS]] ... [--sim NAME=WORLD ... --sim-config sim.yaml]
-//     [--sim-people NAME=WORLD ...] [--sim-seeds 1,2,3]
+//     [--sim-people NAME=WORLD ...] [--sim-seeds 1,2,3] [--sim-random NAME=MAP.png ...]
 // Per real log: agreement with the log's REFERENCE_POSE poses (relations metric, when
 // present), map consistency, realtime factor (log duration / CPU time of the mapping on one
 // core; #SECONDS gives the true duration of a log whose timestamps are synthetic).
@@ -10,7 +10,11 @@
 // (sim_seeds.<world>: per seed, their mean and worst): one seed's odometry noise can happen
 // to hide or provoke an error, so robustness is judged over several. --sim-people drives the
 // same tour with the world's people walking (the robot's body passes through them): moving
-// legs in the scans.
+// legs in the scans. --sim-random drives generated buildings (tests/eval/buildings) with the
+// config's seed only (many buildings stand in for many seeds); a building without a tour is
+// reported with its error rather than ending the bench. Top level: random_buildings, and
+// broken_maps / broken_map_list: simulated runs (sim.*, named and generated) whose estimate fits
+// the true poses, after the best rigid fit, with an RMSE (ate_rmse_m) above 0.3 m.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -27,6 +31,7 @@
 #include "scan_mapper/relations_metric.h"
 #include "scan_mapper/scan_mapper_options.h"
 #ifdef RGNAV_SLAM_BENCH_SIM
+#include "building_files.h"
 #include "sim/sim_options.h"
 #include "sim/world_yaml.h"
 #include "sim_mapping.h"
@@ -35,6 +40,10 @@
 namespace sm = rgnav::scan_mapper;
 
 namespace {
+
+// A map whose accepted scans fit their true poses, after the best rigid fit, worse than this is
+// broken (issue 33; as the RG map bench's kBrokenMapRmseM).
+constexpr double kBrokenMapRmseM = 0.3;
 
 // The scan mapper's counters that the real logs and the simulated worlds both report (a JSON
 // object's keys are sorted, so where they are added does not change the output).
@@ -267,6 +276,9 @@ int main(int argc, char** argv)
   app.add_option("--sim-max-s", sim_mapping.max_sim_s, "cap on simulated seconds per world")->check(CLI::PositiveNumber);
   std::string seed_list;
   app.add_option("--sim-seeds", seed_list, "comma-separated simulator seeds: every world is also run with each");
+  std::vector<std::string> random_sims;
+  app.add_option("--sim-random", random_sims,
+                 "NAME=MAP.png: a generated building (rgnav_building_gen), driven as --sim with the config's seed only");
 #endif
   CLI11_PARSE(app, argc, argv);
   try {
@@ -282,7 +294,7 @@ int main(int argc, char** argv)
       std::cerr << out["real"][r.name].dump(2) << "\n";
     }
 #ifdef RGNAV_SLAM_BENCH_SIM
-    if (!sims.empty() || !sims_with_people.empty()) {
+    if (!sims.empty() || !sims_with_people.empty() || !random_sims.empty()) {
       const auto sim_cfg = rgnav::config::Config::load(sim_config);
       const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg, robot);
       rgnav::config::finish_except(sim_cfg, {"node", "channels", "sim", "protocol"});  // the process's own run settings
@@ -323,7 +335,31 @@ int main(int argc, char** argv)
         }
         out["sim"][name] = std::move(j);
       }
+      for (const auto& spec : random_sims) {
+        std::string name = spec.substr(0, spec.find('='));
+        std::cerr << "generated building " << spec << " (seed " << sim_options.seed << ")\n";
+        nlohmann::json j;
+        try {
+          j = evaluate_sim(spec, sim_options, options, sim_mapping, maps_dir, "", &name);
+        } catch (const std::exception& e) {
+          // One building the tour planner cannot drive does not sink the rest.
+          j = {{"world", spec.substr(spec.find('=') + 1)}, {"error", e.what()}};
+        }
+        j["random_building"] = true;
+        std::cerr << name << ": ate_rmse_m " << j.value("ate_rmse_m", -1.0) << "\n";
+        out["sim"][name] = std::move(j);
+      }
     }
+    {
+      std::vector<std::string> maps;
+      for (const auto& spec : random_sims) maps.push_back(spec.substr(spec.find('=') + 1));
+      out["random_buildings"] = rgnav::buildings::count_buildings(maps);
+    }
+    out["broken_map_list"] = nlohmann::json::object();
+    if (out.contains("sim"))
+      for (const auto& [name, w] : out["sim"].items())
+        if (w.value("ate_rmse_m", 0.0) > kBrokenMapRmseM) out["broken_map_list"][name] = w["ate_rmse_m"];
+    out["broken_maps"] = out["broken_map_list"].size();
 #else
     if (!sims.empty()) throw std::runtime_error("built without drivers/sim: no simulated part");
 #endif

@@ -45,15 +45,23 @@ ExplorerNodeConfig shipped_config()
   return c;
 }
 
+// The node's message flow with goals of exploring from the first (no look behind first).
+ExplorerNodeConfig no_look(ExplorerNodeConfig c)
+{
+  c.options.explorer.recovery.look_at_start = false;
+  return c;
+}
+
 struct Fixture
 {
-  ExplorerNodeConfig config = shipped_config();
+  ExplorerNodeConfig config = no_look(shipped_config());
   testing::FakeBusNode fake{"explorer"};
   std::unique_ptr<ExplorerNode> node;
   int64_t t = kT0;
   Pose2 robot{1.0, 1.5, 0.0};
 
   explicit Fixture(ExplorerFiles files = {}) { node = std::make_unique<ExplorerNode>(*fake.node, config, files); }
+  explicit Fixture(ExplorerNodeConfig c) : config(std::move(c)) { node = std::make_unique<ExplorerNode>(*fake.node, config); }
 
   void map(const rgmap::RgMap& m) { ASSERT_TRUE(bus::publish(*fake.bus, "RG_MAP", rgmap::to_msg(m))); }
 
@@ -166,6 +174,30 @@ TEST(ExplorerNode, AGoalForThePlannerOnceMapAndPoseAreThere)
   f.path(g.goal_id, global_path_t::STATUS_OK);
   f.node->step();
   EXPECT_EQ(f.goals().size(), 1u);
+}
+
+// With the shipped config the robot first looks behind (what it saw lies ahead of it): a goal
+// where it stands that asks for the heading behind it; the planner's REACHED ends it and the
+// frontier comes next.
+TEST(ExplorerNode, TheFirstGoalIsALookBehind)
+{
+  Fixture f(shipped_config());
+  f.map(test_maps::one_room(false));
+  f.slam_pose(Pose2(1.0, 1.5, 0.3));
+  f.node->step();
+  auto goals = f.goals();
+  ASSERT_EQ(goals.size(), 1u);
+  EXPECT_NEAR(goals[0].region_from_goal.x, 1.0, 1e-6);
+  EXPECT_NEAR(goals[0].region_from_goal.y, 1.5, 1e-6);
+  EXPECT_NEAR(std::abs(geometry::normalize_angle(goals[0].region_from_goal.theta - 0.3)), M_PI, 1e-6);
+  EXPECT_LT(goals[0].heading_tolerance, 0.5);
+  f.advance(3.0);
+  f.path(goals[0].goal_id, global_path_t::STATUS_GOAL_REACHED);
+  f.node->step();
+  goals = f.goals();
+  ASSERT_EQ(goals.size(), 2u);
+  EXPECT_DOUBLE_EQ(goals[1].heading_tolerance, M_PI);
+  EXPECT_NEAR(goals[1].region_from_goal.x, 4.0, 0.3) << "the frontier";
 }
 
 TEST(ExplorerNode, NoPathLeadsToTheNextGoalAndAnUnreachableDoorIsSetAside)

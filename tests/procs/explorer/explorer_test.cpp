@@ -168,11 +168,19 @@ TEST(GatewayStack, BreadthFirstThenNearestAndDoneWhenPassed)
   EXPECT_THROW(copy.from_json(bad), std::invalid_argument);
 }
 
+// Options of the tests that follow the goals of exploring: no look behind first.
+ExplorerOptions no_look()
+{
+  ExplorerOptions o;
+  o.recovery.look_at_start = false;
+  return o;
+}
+
 // The explorer's goals in the open hallway: its frontier, then (the frontier still there once
 // the robot stood at it: the region's map ends there) through it as a gateway, then the end.
 TEST(Explorer, FrontierThenThroughItThenDone)
 {
-  ExplorerOptions o;
+  ExplorerOptions o = no_look();
   Explorer ex(o);
   int64_t t = kUtime;
   EXPECT_FALSE(ex.step(t).goal);
@@ -210,7 +218,7 @@ TEST(Explorer, FrontierThenThroughItThenDone)
 
 TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
 {
-  ExplorerOptions o;
+  ExplorerOptions o = no_look();
   o.max_attempts = 2;
   o.retry_after_s = 30;
   Explorer ex(o);
@@ -243,9 +251,109 @@ TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
   EXPECT_EQ(ex.status().goals_failed, 5);
 }
 
-TEST(Explorer, ARestartedExplorerGoesOnWhereItWas)
+// What the robot saw lies ahead of it: before it chooses, it turns to look behind (a goal where
+// it stands, heading away from where it looked, with a heading tolerance); then it explores.
+TEST(Explorer, LooksBehindFirst)
 {
   Explorer ex;
+  int64_t t = kUtime;
+  ex.set_map(hallway(false));
+  ex.set_pose({t, Pose2(1, 0.9, 0.4)});
+  Command c = ex.step(t);
+  ASSERT_TRUE(c.goal);
+  EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kLook);
+  EXPECT_LT((c.goal->region_point - V(1, 0.9)).norm(), 1e-9);
+  EXPECT_NEAR(std::abs(geometry::normalize_angle(c.goal->heading - 0.4)), M_PI, 1e-9);
+  EXPECT_LT(c.goal->heading_tolerance, M_PI);
+  // Standing at its goal's place from the start does not end a look: the planner's REACHED does.
+  c = ex.step(t += 2 * kSecond);
+  EXPECT_FALSE(c.goal);
+  ex.goal_report(ex.goal()->goal_id, GoalOutcome::kReached, "", t += kSecond);
+  c = ex.step(t);
+  ASSERT_TRUE(c.goal);
+  EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kFrontier);
+}
+
+// The planner finds the robot's own place cut off (NO_PATH "start cut off: ..."): not the goal's
+// fault, and standing there nothing changes. The robot looks behind; still cut off there, it
+// steps back along its track; cut off at the same place after both, the goal fails as any other.
+// Elsewhere it may look again.
+TEST(Explorer, ACutOffPlaceIsLookedRoundAndSteppedAwayFrom)
+{
+  ExplorerOptions o = no_look();
+  Explorer ex(o);
+  int64_t t = kUtime;
+  ex.set_map(hallway(false));
+  for (double x = 1.0; x <= 3.0; x += 0.1) ex.set_pose({t += kSecond / 10, Pose2(x, 0.9, 0)});
+  const std::string cut_off = "start cut off: no route from region 1 to region 1: the robot stands apart";
+  auto fail_next = [&](const std::string& reason) {
+    const Command c = ex.step(t += kSecond);
+    EXPECT_TRUE(c.goal) << ex.status().activity;
+    if (!c.goal) return ExploreGoal{};
+    ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, reason, t);
+    return *c.goal;
+  };
+  EXPECT_EQ(fail_next(cut_off).kind, ExploreGoal::Kind::kFrontier);
+  Command c = ex.step(t += kSecond);
+  ASSERT_TRUE(c.goal);
+  EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kLook);
+  ex.goal_report(c.goal->goal_id, GoalOutcome::kReached, "", t);
+  EXPECT_EQ(fail_next(cut_off).kind, ExploreGoal::Kind::kFrontier) << "the frontier is no failed place";
+  c = ex.step(t += kSecond);
+  ASSERT_TRUE(c.goal);
+  EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kStep);
+  // The newest place on the track at least step_m away (the track keeps one every 0.2 m).
+  EXPECT_GE((c.goal->map_point - V(3.0, 0.9)).norm(), o.recovery.step_m - 0.11) << "back along the track";
+  EXPECT_LT((c.goal->map_point - V(3.0, 0.9)).norm(), o.recovery.step_m + 0.3) << "back along the track";
+  EXPECT_LT(c.goal->map_point.x(), 3.0);
+  // The step not taken (the planner finds no way either): the frontier once more, then as any failure.
+  ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, cut_off, t);
+  EXPECT_EQ(fail_next(cut_off).kind, ExploreGoal::Kind::kFrontier);
+  c = ex.step(t += kSecond);
+  EXPECT_FALSE(c.goal) << "waiting to try again: " << ex.status().activity;
+  EXPECT_EQ(ex.phase(), Phase::kExploring);
+  // Somewhere else, cut off again: a look first.
+  ex.set_pose({t, Pose2(2.0, 0.9, 0)});
+  c = ex.step(t += static_cast<int64_t>(o.retry_after_s * 1e6) + kSecond);
+  ASSERT_TRUE(c.goal);
+  ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, cut_off, t);
+  c = ex.step(t += kSecond);
+  ASSERT_TRUE(c.goal);
+  EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kLook);
+}
+
+// Only a gateway the planner took for closed for a while is in the way: the goal is due again
+// later, and such failures never set it aside for good.
+TEST(Explorer, AGoalBehindAClosedGatewayIsNoFailedAttempt)
+{
+  ExplorerOptions o = no_look();
+  o.max_attempts = 1;
+  o.retry_after_s = 10;
+  Explorer ex(o);
+  int64_t t = kUtime;
+  auto map = hallway(false);
+  ex.set_map(map);
+  for (int k = 0; k < 4; ++k) {
+    ex.set_pose({t, Pose2(1 + 0.6 * k, 0.9, 0)});   // from elsewhere each time: each would count
+    ++map->version;
+    const Command c = ex.step(t += 11 * kSecond);
+    ASSERT_TRUE(c.goal) << k << ": " << ex.status().activity;
+    ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "behind a closed gateway: no route (closed gateways: 4)", t);
+  }
+  EXPECT_EQ(ex.phase(), Phase::kExploring);
+  // The same from yet another place with another cause sets it aside (max_attempts 1): the end.
+  ex.set_pose({t, Pose2(4, 0.9, 0)});
+  ++map->version;
+  const Command c = ex.step(t += 11 * kSecond);
+  ASSERT_TRUE(c.goal);
+  ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "goal unreachable: the goal is blocked in region 1", t);
+  ex.step(t += 100 * kSecond);
+  EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
+}
+
+TEST(Explorer, ARestartedExplorerGoesOnWhereItWas)
+{
+  Explorer ex(no_look());
   int64_t t = kUtime;
   auto map = hallway(false);
   ex.set_map(map);
@@ -258,7 +366,7 @@ TEST(Explorer, ARestartedExplorerGoesOnWhereItWas)
   ASSERT_TRUE(c.goal);
   const nlohmann::json saved = ex.save();
 
-  Explorer again;
+  Explorer again(no_look());
   again.restore(saved);
   again.set_map(map);
   again.set_pose({t, Pose2(5.5, 0.9, 0)});

@@ -111,6 +111,93 @@ TEST(LldNode, OneInputStampedFarAheadIsDroppedUntilAnotherConfirmsIt)
   EXPECT_GE(time::to_utime(lld.message_now()), t0 + 600'020'000);
 }
 
+// The process stopped while driving (SIGSTOP) and continued (the supervisor's SIGCONT before its
+// SIGTERM): the base driver's deadman stopped the robot meanwhile. On waking, the node's thread
+// may take in odometry queued during the gap before the control loop's first cycle, so the
+// odometry looks fresh while the reference ran on by the whole gap: tracking it would command
+// the robot off again. The first cycle after the gap must command zero, and a trajectory queued
+// during the gap must not be taken up; one planned after it is.
+TEST(LldNode, TheFirstCycleAfterTheLoopWasHeldUpCommandsZero)
+{
+  rgnav::testing::FakeBusNode n("lld");
+  bus::FakeBus* fake = n.bus;
+  LldOptions options;
+  LldNode lld(*n.node, options, /*start_thread=*/false);
+  const int64_t t0 = 1'700'000'000'000'000;
+  const int64_t period = 50'000;
+  double x = 0.0, v = 0.0;  // the robot: follows the command
+  odometry_t odo{};
+  odo.status = odometry_t::STATUS_OK;
+  auto send_odometry = [&](int64_t utime) {
+    odo.utime = utime;
+    ++odo.seq;
+    odo.odom_from_base.x = x;
+    odo.v = v;
+    ASSERT_TRUE(bus::publish(*fake, "ODOMETRY", odo));
+  };
+  auto send_trajectory = [&](int64_t id, int64_t stamp) {
+    trajectory::Trajectory t;
+    t.id = id;
+    t.stamp = time::from_utime(stamp);
+    t.chain.push_back(trajectory::Segment::line(geometry::Pose2(x, 0.0, 0.0), 6.0));
+    ASSERT_TRUE(bus::publish(*fake, "TRAJECTORY", trajectory::to_msg(t, nullptr, 0.5)));
+  };
+  auto last_command = [&] {
+    const auto cmds = fake->published_on("BASE_CMD");
+    velocity_cmd_t cmd{};
+    std::string why;
+    if (!cmds.empty()) EXPECT_TRUE(bus::decode(cmds.back().data.data(), cmds.back().data.size(), &cmd, &why)) << why;
+    return cmd;
+  };
+  send_odometry(t0);
+  send_trajectory(7, t0);
+  int64_t now = t0;
+  for (int i = 0; i < 40; ++i) {  // 2 s: up to cruise speed, the trajectory re-sent at 2 Hz
+    now += period;
+    if (i % 10 == 9) send_trajectory(7, now - period);
+    lld.control_step(time::from_utime(now), 0.05, 0.0);
+    v = last_command().v;
+    x += v * 0.05;
+    send_odometry(now);
+  }
+  ASSERT_GT(last_command().v, 0.2);
+  ASSERT_EQ(lld.follower().status().state, FollowerState::kTracking);
+
+  // Stopped for 0.6 s; the deadman stopped the robot ~0.1 m on. The queued odometry and a
+  // trajectory planned during the gap are taken in before the loop's first cycle.
+  const int64_t gap = 600'000;
+  x += 0.1;
+  v = 0.0;
+  for (int64_t t = now + 20'000; t <= now + gap; t += 20'000) send_odometry(t);
+  send_trajectory(8, now + gap / 2);
+  fake->clear();
+  now += gap;
+  lld.control_step(time::from_utime(now + 5'000), 1e-6 * static_cast<double>(gap), 0.0);
+  ASSERT_EQ(fake->published_on("BASE_CMD").size(), 1u);
+  EXPECT_EQ(last_command().v, 0.0);
+  EXPECT_EQ(last_command().omega, 0.0);
+  EXPECT_EQ(lld.follower().status().state, FollowerState::kIdle);
+
+  // The loop runs on: the trajectory queued during the gap is not followed.
+  for (int i = 0; i < 5; ++i) {
+    now += period;
+    send_odometry(now);
+    lld.control_step(time::from_utime(now), 0.05, 0.0);
+    EXPECT_EQ(last_command().v, 0.0);
+  }
+  EXPECT_EQ(lld.follower().status().state, FollowerState::kIdle);
+
+  // A trajectory planned after the gap is.
+  send_trajectory(9, now);
+  for (int i = 0; i < 5; ++i) {
+    now += period;
+    send_odometry(now);
+    lld.control_step(time::from_utime(now), 0.05, 0.0);
+  }
+  EXPECT_EQ(lld.follower().status().state, FollowerState::kTracking);
+  EXPECT_GT(last_command().v, 0.0);
+}
+
 TEST(PeriodicLoop, TicksAndStops)
 {
   PeriodicLoop loop(std::chrono::milliseconds(5));

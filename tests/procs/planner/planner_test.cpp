@@ -10,6 +10,7 @@
 #include "planner/edge_costs.h"
 #include "planner/framed_quadtree.h"
 #include "planner/global_planner.h"
+#include "planner/no_path_reason.h"
 #include "planner/planner.h"
 #include "planner/region_grid.h"
 #include "planner/region_planner.h"
@@ -385,6 +386,113 @@ TEST(GlobalPlanner, GoalBeyondTheKnownIsReachedThroughAnOpeningNotAWall)
   EXPECT_FALSE(gp.plan(behind_wall, &why));
 }
 
+// A room [0, 6] x [0, 4] whose freespace leaves the robot's place at (1.5, 2) a scrap apart: a
+// ring of unseen cells round it from 0.3 to 0.4 m (ragged freespace; unknown space round a robot
+// whose laser sees only ahead). `walled`: the ring is a wall of the map instead, four lines.
+rgmap::RgMap room_with_a_scrap(bool walled, double ring_outer = 0.4)
+{
+  rgmap::RgMap map;
+  const V at(1.5, 2.0);
+  std::vector<Wall> walls = {{V(0, 0), V(6, 0)}, {V(6, 0), V(6, 4)}, {V(6, 4), V(0, 4)}, {V(0, 4), V(0, 0)}};
+  if (walled)
+    for (const auto& [a, b] : std::vector<Wall>{{V(-0.35, -0.35), V(0.35, -0.35)}, {V(0.35, -0.35), V(0.35, 0.35)},
+                                                {V(0.35, 0.35), V(-0.35, 0.35)}, {V(-0.35, 0.35), V(-0.35, -0.35)}})
+      walls.push_back({at + a, at + b});
+  add_region(&map, "room", V(0, 0), V(6, 4), walls, [&](const V& c) {
+    const double d = (c - at).norm();
+    return !walled && d > 0.3 && d < ring_outer;
+  });
+  map.version = 1;
+  return map;
+}
+
+// The robot stands on a scrap of free cells apart from the room's space: the nearest free cell
+// is the scrap's, and a path from it leads nowhere. Its body stands there, so it steps straight
+// into the room's space (through no line of the map) and the goal is reached. Walled in, it is
+// cut off, and the NO_PATH says so: standing there, nothing changes.
+TEST(GlobalPlanner, TheRobotStepsOffAScrapOfFreeSpaceButNotThroughAWall)
+{
+  const auto scrap = room_with_a_scrap(false);
+  const int64_t room = scrap.regions().begin()->first;
+  GlobalPlanner gp(options());
+  gp.set_map(scrap);
+  const RegionGrid& grid = gp.region_planner(room)->grid();
+  const auto own = grid.nearest_free(grid.cell_of(V(1.5, 2.0)));
+  ASSERT_TRUE(own);
+  EXPECT_NE(grid.component(*own), grid.main_component()) << "the robot's place is a scrap apart";
+  std::string why;
+  const auto route = gp.plan({room, V(1.5, 2.0), room, V(4.5, 2.0)}, &why);
+  ASSERT_TRUE(route) << why;
+  EXPECT_LT((route->legs.front().points.front() - V(1.5, 2.0)).norm(), 1e-9);
+  EXPECT_LT(route->length, 3.8);
+
+  const auto walled = room_with_a_scrap(true);
+  GlobalPlanner gw(options());
+  gw.set_map(walled);
+  EXPECT_FALSE(gw.plan({room, V(1.5, 2.0), room, V(4.5, 2.0)}, &why));
+  EXPECT_EQ(no_path_cause(why), NoPathCause::kStartCutOff) << why;
+  EXPECT_TRUE(gw.region_planner(room)->cut_off(V(1.5, 2.0)));
+  EXPECT_FALSE(gw.region_planner(room)->cut_off(V(4.5, 2.0)));
+  EXPECT_FALSE(gw.plan({room, V(1.5, 2.0), room, V(2.5, 2.0)}, &why)) << "a step through the wall";
+
+  // Unseen space too wide round it to step off within adapt_distance: cut off for a goal across
+  // the room, but a goal a step away (robot_step) with no line between is gone to straight.
+  const auto wide = room_with_a_scrap(false, 0.8);
+  GlobalPlanner gs(options());
+  gs.set_map(wide);
+  EXPECT_FALSE(gs.plan({room, V(1.5, 2.0), room, V(4.5, 2.0)}, &why));
+  EXPECT_EQ(no_path_cause(why), NoPathCause::kStartCutOff) << why;
+  const auto step = gs.plan({room, V(1.5, 2.0), room, V(2.5, 2.0)}, &why);
+  ASSERT_TRUE(step) << why;
+  EXPECT_NEAR(step->length, 1.0, 1e-6);
+}
+
+// NO_PATH's reason begins with its cause: the goal out of reach, or only gateways taken for
+// closed in the way (the same goal once they reopen).
+TEST(GlobalPlanner, NoPathSaysWhetherTheGoalIsOutOfReachOrBehindAClosedGateway)
+{
+  Ring r = ring();
+  GlobalPlanner gp(options());
+  gp.set_map(r.map);
+  std::string why;
+  EXPECT_FALSE(gp.plan({r.a, V(2, 1.5), r.b, V(40, 40)}, &why));
+  EXPECT_EQ(no_path_cause(why), NoPathCause::kGoalUnreachable) << why;
+  EXPECT_FALSE(gp.plan({r.a, V(2, 1.5), 99, V(0, 0)}, &why));
+  EXPECT_EQ(no_path_cause(why), NoPathCause::kGoalUnreachable) << why;
+  gp.costs().gateway_failed(*r.map.gateway(r.door), 0.0);
+  gp.costs().gateway_failed(*r.map.gateway(r.ha), 0.0);
+  EXPECT_FALSE(gp.plan({r.a, V(2, 1.5), r.b, V(2.5, 1.5)}, &why));
+  EXPECT_EQ(no_path_cause(why), NoPathCause::kClosedGateway) << why;
+  EXPECT_NE(why.find("closed gateways"), std::string::npos) << why;
+}
+
+// Collision avoidance cannot pass away from any gateway (what the line map holds too thinly):
+// the place ahead on the route becomes an obstacle for a while and the route goes round it.
+TEST(GlobalPlanner, ABlockedPlaceIsGoneRoundUntilItsTime)
+{
+  const auto map = one_room_with_wall();
+  const int64_t room = map.regions().begin()->first;
+  PlannerOptions o = options();
+  o.grid.blocked_radius = 0.25;
+  GlobalPlanner gp(o);
+  gp.set_map(map);
+  std::string why;
+  const PlanRequest req{room, V(2, 4.2), room, V(6, 4.2)};
+  auto route = gp.plan(req, &why);
+  ASSERT_TRUE(route) << why;
+  const double straight = route->length;
+  EXPECT_LT(straight, 4.5) << "over the top of the inner wall";
+  gp.block_place(room, V(4, 4.3), 30.0);
+  route = gp.plan(req, &why);
+  EXPECT_FALSE(route) << "the only way, between the wall's end and the room's: blocked";
+  PlanRequest later = req;
+  later.now_s = 31.0;
+  route = gp.plan(later, &why);
+  ASSERT_TRUE(route) << why;
+  EXPECT_NEAR(route->length, straight, 1e-6);
+  EXPECT_EQ(gp.blocked_places(), 0u);
+}
+
 TEST(EdgeCosts, SavesAndRestoresWhatWasLearned)
 {
   Ring r = ring();
@@ -586,6 +694,55 @@ TEST(Planner, WaitsAtTheOnlyDoorBeforeCallingItClosed)
   EXPECT_GE(waited, options().execution.closed_after_s);
   EXPECT_LT(waited, options().execution.closed_after_s + 15.0);
   EXPECT_TRUE(planner.global().costs().closed(r.door, utime * 1e-6));
+}
+
+// A goal where the robot stands that asks only for another heading (the explorer's look
+// behind): a turn on the spot, even where the robot's place is cut off from the region's free
+// space; the target lies out along the heading (collision avoidance turns toward it on the
+// spot), and the goal is reached, the targets withdrawn, once the heading is.
+TEST(Planner, TurnsOnTheSpotWhereOnlyTheHeadingDiffers)
+{
+  const auto map = room_with_a_scrap(true);
+  const int64_t room = map.regions().begin()->first;
+  Planner planner(options());
+  planner.set_map(map);
+  int64_t utime = kUtime;
+  const Pose2 odom_from_region(1.0, -2.0, 0.3);
+  RobotPose pose{utime, room, Pose2(1.5, 2.0, 0.2), odom_from_region * Pose2(1.5, 2.0, 0.2)};
+  planner.on_pose(pose);
+  NavGoal look;
+  look.goal_id = 5;
+  look.region_id = room;
+  look.has_pose = true;
+  look.region_from_goal = Pose2(1.5, 2.0, 0.2 + M_PI);
+  look.position_tolerance = 0.5;
+  look.heading_tolerance = 0.35;
+  planner.set_goal(look, utime);
+  auto out = planner.update(utime);
+  ASSERT_TRUE(out.path);
+  EXPECT_EQ(out.path->status, GoalStatus::kActive) << out.path->reason;
+  ASSERT_TRUE(out.targets);
+  ASSERT_EQ(out.targets->odom_from_target.size(), 1u);
+  EXPECT_TRUE(out.targets->final_is_goal);
+  const Pose2 target = odom_from_region.inverse() * out.targets->odom_from_target[0];
+  EXPECT_GT((target.translation() - V(1.5, 2.0)).norm(), 0.3) << "out along the heading";
+  EXPECT_LT((target.translation() - (V(1.5, 2.0) + 0.5 * V(std::cos(0.2 + M_PI), std::sin(0.2 + M_PI)))).norm(), 0.05);
+  // Half way round: still turning. Round: reached, nothing more to pursue.
+  for (const double heading : {1.7, 0.2 + M_PI - 0.2}) {
+    utime += 1'000'000;
+    pose = {utime, room, Pose2(1.5, 2.0, heading), odom_from_region * Pose2(1.5, 2.0, heading)};
+    planner.on_pose(pose);
+    out = planner.update(utime);
+  }
+  EXPECT_EQ(planner.status(), GoalStatus::kReached);
+  ASSERT_TRUE(out.targets);
+  EXPECT_TRUE(out.targets->odom_from_target.empty());
+  // A goal elsewhere from the walled-in place: NO_PATH, the start cut off.
+  planner.set_goal(pose_goal(6, room, 4.5, 2.0), utime);
+  out = planner.update(utime += 100'000);
+  EXPECT_EQ(planner.status(), GoalStatus::kNoPath);
+  ASSERT_TRUE(out.path);
+  EXPECT_EQ(no_path_cause(out.path->reason), NoPathCause::kStartCutOff) << out.path->reason;
 }
 
 TEST(Planner, TargetsAreInTheOdometryFrameAndCancelStopsThem)

@@ -10,6 +10,7 @@ namespace {
 
 using Eigen::Vector2d;
 using testing::Drive;
+using testing::room_b_cells_of_region_1;
 
 // An LT-junction outline in room A whose east side x = 4 holds the door of two_rooms().
 std::vector<Vector2d> junction_around_door() { return {Vector2d(2, 0.5), Vector2d(2, 2.5), Vector2d(4, 2.5), Vector2d(4, 0.5)}; }
@@ -119,15 +120,6 @@ TEST(RgKernel, CrossingJoinsARegionPerBranch)
   EXPECT_EQ(m.current_region, 1);
   EXPECT_EQ(m.gateways().size(), 2u);
   EXPECT_TRUE(m.consistency_problems().empty());
-}
-
-int room_b_cells_of_region_1(const RgKernel& kernel)
-{
-  const auto r1 = kernel.describe_region(1);   // frame: the first pose (1, 1.5)
-  int n = 0;
-  for (double x = 4.35; x < 8.0; x += 0.1)
-    for (double y = 0.05; y < 3.0; y += 0.1) n += r1.freespace.is_free(Vector2d(x - 1.0, y - 1.5)) ? 1 : 0;
-  return n;
 }
 
 TEST(RgKernel, ScansBeyondTheRegionsOwnDoorCarveNoFreespace)

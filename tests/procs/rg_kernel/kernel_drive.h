@@ -49,4 +49,15 @@ struct Drive
   }
 };
 
+// Free cells (0.1 m) of region 1's freespace inside room B of two_rooms(), region 1's frame
+// being the first pose (1, 1.5): what beams through the doorway carved into room A's region.
+inline int room_b_cells_of_region_1(const RgKernel& kernel)
+{
+  const auto r1 = kernel.describe_region(1);
+  int n = 0;
+  for (double x = 4.35; x < 8.0; x += 0.1)
+    for (double y = 0.05; y < 3.0; y += 0.1) n += r1.freespace.is_free(Eigen::Vector2d(x - 1.0, y - 1.5)) ? 1 : 0;
+  return n;
+}
+
 }  // namespace rgnav::rg_kernel::testing

@@ -12,6 +12,7 @@ namespace {
 
 using Eigen::Vector2d;
 using testing::Drive;
+using testing::room_b_cells_of_region_1;
 
 TEST(RgKernel, DoorSplitsTwoRoomsAndFiltersBeamsThroughIt)
 {
@@ -202,15 +203,6 @@ TEST(KnownPlaces, NeedsTheRegionsOwnRobotToHaveSeenThePlaceInRegion)
 }
 
 // Free cells of region 1 (frame: the first pose (1, 1.5)) in room B, x > 4.3.
-int room_b_cells_of_region_1(const RgKernel& kernel)
-{
-  const auto r1 = kernel.describe_region(1);
-  int n = 0;
-  for (double x = 4.35; x < 8.0; x += 0.1)
-    for (double y = 0.05; y < 3.0; y += 0.1) n += r1.freespace.is_free(Vector2d(x - 1.0, y - 1.5)) ? 1 : 0;
-  return n;
-}
-
 TEST(RgKernel, BeamsGrazingPastTheDoorPointsEndAtTheDoor)
 {
   // The detector's door points lie on the jambs' visible edges, a little inside the opening

@@ -164,6 +164,37 @@ TEST(ObstacleMap, TableTopIsAnObstacleAndTheFloorStaysFree)
   EXPECT_LT(cell_value(low.project(robot, 1), 1.75, 0.0), 50);
 }
 
+// A blob seen once beside the robot (someone standing there), then out of view while the camera
+// looks elsewhere: with forget_after it is no obstacle once that long passed without a point on it,
+// while a table the camera keeps seeing stays; without forget_after the blob stays for good.
+TEST(ObstacleMap, StereoCellsNoPointHitsAnyMoreAreForgotten)
+{
+  constexpr int64_t kS = 1'000'000;
+  const Pose2 robot(0, 0, 0);
+  std::vector<Eigen::Vector3f> person;
+  for (double z = 0.2; z <= 1.4; z += 0.02)
+    for (double x = -0.1; x <= 0.1; x += 0.02) person.emplace_back(x, 1.2, z);   // 1.2 m to the left
+  for (const double forget_after : {30.0, 0.0}) {
+    ObstacleMapOptions o;
+    o.forget_after = forget_after;
+    ObstacleMap map(o);
+    const int64_t t0 = 100 * kS;
+    for (int i = 0; i < 3; ++i) map.insert_stereo(person, {0, 0, 1.25}, robot, 0.0, t0 + i * kS / 10);
+    ASSERT_GE(cell_value(map.project(robot, 1), 0.0, 1.2), 50);
+    // 40 s of frames looking ahead at a table: the person's cells get no point.
+    for (int i = 1; i <= 40; ++i) map.insert_stereo(table_scene(1.5, 2.0), {0, 0, 1.25}, robot, 0.0, t0 + i * kS);
+    const ObstacleGrid g = map.project(robot, 2);
+    EXPECT_GE(cell_value(g, 1.75, 0.0), 50) << forget_after;   // seen all along
+    if (forget_after > 0) {
+      EXPECT_LT(cell_value(g, 0.0, 1.2), 50);
+      EXPECT_GT(map.forgotten(), 0);
+    } else {
+      EXPECT_GE(cell_value(g, 0.0, 1.2), 50);
+      EXPECT_EQ(map.forgotten(), 0);
+    }
+  }
+}
+
 TEST(ObstacleMap, FloorPointsAreNotObstacles)
 {
   // Noisy floor (within the tolerance): still free.
