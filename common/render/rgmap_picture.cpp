@@ -8,7 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <tuple>
+
+#include "geometry/farthest_pair.h"
 
 namespace rgnav::render {
 
@@ -138,11 +139,7 @@ void draw_rgmap(const rgmap::RgMap& map, const rgmap::RgGraph& graph, Canvas* c)
       if (std::fabs(o.normal.z()) > 0.7) {
         c->polygon(outline, col, 0.5);
       } else {
-        // The two corners farthest apart in the plane span the footprint.
-        Vector2d a = outline[0], b = outline[1];
-        for (int i = 0; i < 4; ++i)
-          for (int j = i + 1; j < 4; ++j)
-            if ((outline[i] - outline[j]).norm() > (a - b).norm()) std::tie(a, b) = std::make_pair(outline[i], outline[j]);
+        const auto [a, b] = geometry::farthest_pair(outline);
         c->line(a, b, col, 3.0, false);
       }
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/farthest_pair.h"
 #include "msg/conversions.h"
 #include "trajectory/trajectory_conversions.h"
 
@@ -88,18 +89,9 @@ ObstaclesView to_obstacles_view(const objects3d_t& m)
   v.odom_from_base = msg::to_pose2(m.odom_from_base);
   for (const auto& r : m.rectangles) {
     // A vertical rectangle's footprint: the two corners farthest apart seen from above.
-    double best = -1;
-    std::pair<Eigen::Vector2d, Eigen::Vector2d> edge;
-    for (int i = 0; i < 4; ++i) {
-      for (int j = i + 1; j < 4; ++j) {
-        const Eigen::Vector2d a(r.corners[i][0], r.corners[i][1]), b(r.corners[j][0], r.corners[j][1]);
-        if ((a - b).squaredNorm() > best) {
-          best = (a - b).squaredNorm();
-          edge = {a, b};
-        }
-      }
-    }
-    v.base_edges.push_back(edge);
+    std::vector<Eigen::Vector2d> corners;
+    for (int i = 0; i < 4; ++i) corners.emplace_back(r.corners[i][0], r.corners[i][1]);
+    v.base_edges.push_back(geometry::farthest_pair(corners));
   }
   return v;
 }

@@ -250,8 +250,8 @@ class Harness
       const std::string flag = arg_after(c.argv, "--interface");
       if ((flag.empty() ? str("sim", "interface") : flag) == "protocol") {
         channels.truth = str("channels", "truth");
-        if (body["accel"]) sim_accel_ = body["accel"].as<double>();
-        if (body["brake_decel"]) sim_accel_ = body["brake_decel"].as<double>();
+        if (body["brake_decel"]) sim_brake_decel_ = body["brake_decel"].as<double>();
+        else if (body["accel"]) sim_brake_decel_ = body["accel"].as<double>();
         if (body["alpha"]) sim_alpha_ = body["alpha"].as<double>();
       }
     }
@@ -412,7 +412,7 @@ class Harness
   {
     double a = decel_v_;
     if (lld_decel_v_ > 0) a = std::min(a, lld_decel_v_);
-    if (sim_accel_ > 0) a = std::min(a, sim_accel_);
+    if (sim_brake_decel_ > 0) a = std::min(a, sim_brake_decel_);
     return a;
   }
   double stop_decel_w() const
@@ -1262,7 +1262,7 @@ class Harness
   bool drive_ok_ = true;
   std::string rg_map_proc_, mapper_proc_, base_proc_, planner_proc_, explorer_proc_, lld_proc_, ca_proc_;
   double decel_v_ = 1.0, decel_w_ = 1.0;          // the base driver's ramps (its deadman stop)
-  double sim_accel_ = 0.0, sim_alpha_ = 0.0;      // the simulated body's limits (0: unknown)
+  double sim_brake_decel_ = 0.0, sim_alpha_ = 0.0;  // the simulated body's braking limits (0: unknown)
   double lld_decel_v_ = 0.0, lld_decel_w_ = 0.0;  // the lld's controlled stop (0: no lld)
   double lld_trajectory_timeout_s_ = 0.0;
   int64_t mapper_base_ = 0;                  // scans the mapper's current instance resumed with
