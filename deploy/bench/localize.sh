@@ -18,7 +18,12 @@
 #     10 deg from some time <= 10 s on to the end of the drive; time and distance driven until then
 #     (p50 over the trials that got there). global_estimate_success_ratio: the same for its best
 #     estimate whether claimed or not (in a building that repeats itself the localizer rightly
-#     stays unsure); global_wrong_claims: trials in which it claimed a pose > 0.5 m wrong.
+#     stays unsure); global_wrong_claims: trials in which it claimed a pose > 0.5 m wrong;
+#     global_ambiguous_trials (per world global.ambiguous): failed trials that ended unsure where
+#     a place >= unique_distance_m from the true pose (or turned) explains the views of the
+#     robot's last view_path_length_m as well as the true pose does (Localizer::distinguishable
+#     asked of the truth: the map repeats itself there); global_success_ratio_unambiguous: the
+#     success ratio over the other trials.
 #   kidnap_*: 10 per world: 10 s tracking, then the robot is carried >= 5 m elsewhere (its odometry
 #     goes on) and driven 40 s: flag time (p50), recovered within 30 s and staying (ratio).
 #   cpu_core_share: localizer CPU over simulated time in the tracking drives (one core = 1);

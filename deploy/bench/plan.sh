@@ -51,7 +51,8 @@
 # simulator, collision avoidance and the lld in lock-step at 20 Hz with walking people (a world
 # without people gets three walkers that wait for the robot and step round it), the Planner fed
 # the true pose in a region (a perfect localizer that hands over between regions as the
-# localizer does) and collision avoidance's blocked/reactive mode; PLAN_GOALS goals (default 100)
+# localizer does and, where no neighbour holds the place, takes the region that does) and
+# collision avoidance's blocked/reactive mode (yielding to a person is neither); PLAN_GOALS goals (default 100)
 # one after another from where the last ended:
 #   goals are where the robot's body fits in the true world (goals_out_of_reach_skipped: under a
 #   table top the laser passes beneath); closed_loop_goals, closed_loop_success_ratio (REACHED

@@ -101,6 +101,7 @@ int8_t to_msg_mode(Mode m)
     case Mode::kBlocked: return ca_status_t::MODE_BLOCKED;
     case Mode::kStaleStop: return ca_status_t::MODE_STALE_STOP;
     case Mode::kArrived: return ca_status_t::MODE_ARRIVED;
+    case Mode::kYielding: return ca_status_t::MODE_YIELDING;
   }
   return ca_status_t::MODE_IDLE;
 }

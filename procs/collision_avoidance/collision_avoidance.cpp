@@ -16,6 +16,7 @@ const char* mode_name(Mode m)
     case Mode::kBlocked: return "blocked";
     case Mode::kStaleStop: return "stopped: scans stale";
     case Mode::kArrived: return "arrived";
+    case Mode::kYielding: return "yielding";
   }
   return "?";
 }
@@ -220,7 +221,8 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
     give_way_active_ = false;
   }
 
-  bool replan = targets_changed_ || !active_ || stopped_ || mode_ == Mode::kReactive || mode_ == Mode::kBlocked;
+  bool replan = targets_changed_ || !active_ || stopped_ || mode_ == Mode::kReactive || mode_ == Mode::kBlocked ||
+                mode_ == Mode::kYielding;
   targets_changed_ = false;
   if (advance_targets()) replan = true;
   const bool final_goal = targets_.final_is_goal;

@@ -93,6 +93,7 @@ enum class Mode
   kBlocked,     // stopped: nothing feasible, not even turning
   kStaleStop,   // stopped: scans stale
   kArrived,     // final goal reached
+  kYielding,    // out of a person's way by choice: leaving their path, waiting for them to pass, going back
 };
 
 const char* mode_name(Mode m);

@@ -203,7 +203,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::leave_path(time::Time 
   yield_.since = now;
   if (!standing) {
     yield_.phase = YieldPhase::kLeaving;
-    return stop(now, Mode::kReactive, "yielding: stopping to leave the person's path");
+    return stop(now, Mode::kYielding, "yielding: stopping to leave the person's path");
   }
   // Where they are now (they walk on while the robot turns and stops): their path from there.
   if (const auto person = person_in_the_way()) yield_.path = person->path;
@@ -223,7 +223,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::leave_path(time::Time 
     const double t = trajectory::turn_duration(dth, options_.omega_max, 1.0);
     yield_.phase_until = now + time::Duration(static_cast<int64_t>((t + 2.0) * 1e6));
     status_ = kLooking;
-    auto sent = send_new(Chain({Segment::turn(pose_, dth)}), now, t, Mode::kReactive);
+    auto sent = send_new(Chain({Segment::turn(pose_, dth)}), now, t, Mode::kYielding);
     if (sent) yield_.trajectory_id = sent->id;
     return sent;
   }
@@ -233,7 +233,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::leave_path(time::Time 
   const double facing = look.norm() > 1e-6 ? std::atan2(look.y(), look.x()) : pose_.theta();
   if (y->corners.empty()) {
     yield_.phase = YieldPhase::kWaiting;
-    return stop(now, Mode::kReactive, kWaitingThere);
+    return stop(now, Mode::kYielding, kWaitingThere);
   }
   Chain c = polyline(pose_, y->corners, facing, options_.yield_speed);
   if (auto hit = first_collision(c, map_, clearance, options_.planner.check_step)) {
@@ -244,7 +244,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::leave_path(time::Time 
   yield_.phase = YieldPhase::kLeaving;
   yield_.phase_until = now + time::Duration(static_cast<int64_t>((t + 3.0) * 1e6));
   status_ = kLeaving;
-  auto sent = send_new(std::move(c), now, t, Mode::kReactive);
+  auto sent = send_new(std::move(c), now, t, Mode::kYielding);
   if (sent) yield_.trajectory_id = sent->id;
   return sent;
 }
@@ -300,7 +300,7 @@ std::optional<std::optional<trajectory::Trajectory>> CollisionAvoidance::yield_u
         const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
         if (standing) return leave_path(now);
         yield_.trajectory_id = 0;  // stopping first, then choose again
-        return stop(now, Mode::kReactive, nearer ? "yielding: a place nearer out of the way, stopping"
+        return stop(now, Mode::kYielding, nearer ? "yielding: a place nearer out of the way, stopping"
                                                  : "yielding: the way out is blocked, stopping");
       }
       return keep_alive();
@@ -334,7 +334,7 @@ std::optional<std::optional<trajectory::Trajectory>> CollisionAvoidance::yield_u
         end_yield(now, true);
         return std::nullopt;
       }
-      return stop(now, Mode::kReactive, kWaitingThere);
+      return stop(now, Mode::kYielding, kWaitingThere);
     }
     case YieldPhase::kReturning:
       // There: the planner goes on from its way. Something in the way back (the scans on the
@@ -347,7 +347,7 @@ std::optional<std::optional<trajectory::Trajectory>> CollisionAvoidance::yield_u
       if ((active_ && active_->chain.empty()) || yield_way_blocked()) {  // stopped for it, or it is there
         if (yield_.returns < kMaxReturns) {
           const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
-          if (!standing) return stop(now, Mode::kReactive, "yielding: the way back is blocked, stopping");
+          if (!standing) return stop(now, Mode::kYielding, "yielding: the way back is blocked, stopping");
           ++yield_.returns;
           if (auto again = return_to_way(now)) return again;
         }
@@ -422,7 +422,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::return_to_way(time::Ti
   yield_.since = now;
   yield_.phase_until = now + time::Duration(static_cast<int64_t>((t + 3.0) * 1e6));
   status_ = kReturning;
-  auto sent = send_new(std::move(c), now, t, Mode::kReactive);
+  auto sent = send_new(std::move(c), now, t, Mode::kYielding);
   if (sent) yield_.trajectory_id = sent->id;
   return sent;
 }

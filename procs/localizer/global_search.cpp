@@ -5,6 +5,14 @@
 
 namespace rgnav::localizer {
 
+std::vector<Eigen::Vector2d> coarse_points(const std::vector<Eigen::Vector2d>& points, int beams)
+{
+  std::vector<Eigen::Vector2d> pts;
+  const double step = std::max(1.0, static_cast<double>(points.size()) / std::max(1, beams));
+  for (double k = 0; k < static_cast<double>(points.size()); k += step) pts.push_back(points[static_cast<size_t>(k)]);
+  return pts;
+}
+
 Hypothesis refine(const RegionModel& region, Hypothesis h, const std::vector<Eigen::Vector2d>& base_points,
                   const BeamScorer& scorer, double step_xy, double step_theta)
 {
@@ -30,15 +38,14 @@ Hypothesis refine(const RegionModel& region, Hypothesis h, const std::vector<Eig
 }
 
 std::vector<Hypothesis> global_search(const RegionMaps& maps, const std::vector<Eigen::Vector2d>& base_points,
-                                      const GlobalOptions& options, const ScanModel& scan)
+                                      const GlobalOptions& options, const ScanModel& scan,
+                                      const std::vector<Eigen::Vector2d>& path_points)
 {
   std::vector<Hypothesis> found;
   if (base_points.empty()) return found;
   // A coarse grid of candidates needs a broad hit noise to see the true place at all.
   const BeamScorer scorer(options.sigma, scan.z_hit, scan.z_rand, scan.max_distance);
-  std::vector<Eigen::Vector2d> pts;
-  const double step = std::max(1.0, static_cast<double>(base_points.size()) / options.beams);
-  for (double k = 0; k < static_cast<double>(base_points.size()); k += step) pts.push_back(base_points[static_cast<size_t>(k)]);
+  const auto pts = coarse_points(base_points, options.beams);
   // The points rotated once per heading.
   const int nh = std::max(1, options.headings);
   std::vector<std::vector<Eigen::Vector2d>> rotated(static_cast<size_t>(nh));
@@ -63,9 +70,25 @@ std::vector<Hypothesis> global_search(const RegionMaps& maps, const std::vector<
     }
   }
   const size_t keep = std::min(found.size(), static_cast<size_t>(std::max(1, options.hypotheses)));
-  std::partial_sort(found.begin(), found.begin() + static_cast<long>(keep), found.end(),
-                    [](const Hypothesis& a, const Hypothesis& b) { return a.score > b.score; });
+  const auto best_first = [](const Hypothesis& a, const Hypothesis& b) { return a.score > b.score; };
+  if (path_points.empty()) {
+    std::partial_sort(found.begin(), found.begin() + static_cast<long>(keep), found.end(), best_first);
+    found.resize(keep);
+    return found;
+  }
+  // Half the kept places are the scan's best, half the path's best (a candidate on the coarse
+  // grid may miss the true pose by half a cell and half a heading step, which the far end of a
+  // path of several metres feels far more than one scan does: the true place must not drop out
+  // of both rankings at once).
+  const size_t by_scan = keep / 2;
+  std::partial_sort(found.begin(), found.begin() + static_cast<long>(by_scan), found.end(), best_first);
+  // A few views' worth of the path's points: the ranking needs the path's shape, not every beam.
+  constexpr int kPathViews = 4;
+  const auto path = coarse_points(path_points, kPathViews * options.beams);
+  for (auto& h : found) h.score = scorer.score(maps.region(h.region)->field, h.region_from_base, path);
+  std::partial_sort(found.begin() + static_cast<long>(by_scan), found.begin() + static_cast<long>(keep), found.end(), best_first);
   found.resize(keep);
+  std::sort(found.begin(), found.end(), best_first);   // by the path
   return found;
 }
 

@@ -24,13 +24,22 @@ struct Hypothesis
   double score = 0;   // sum of log p over the beams used
 };
 
+// Up to `beams` of the points, evenly spread: the coarse search's share of a scan.
+std::vector<Eigen::Vector2d> coarse_points(const std::vector<Eigen::Vector2d>& points, int beams);
+
 // A candidate moved to the best pose of a small local grid around it (hill climbing in steps
 // of step_xy / step_theta, halved until below a tenth), rescored with `scorer`.
 Hypothesis refine(const RegionModel& region, Hypothesis h, const std::vector<Eigen::Vector2d>& base_points,
                   const BeamScorer& scorer, double step_xy, double step_theta);
 
-// The best `options.hypotheses` candidates, best first.
+// The best `options.hypotheses` candidates, best first. With `path_points` (the views of the
+// path in the current base frame, view_path.h) every place keeps the heading the scan fits best
+// there; half the kept places are the scan's best, half those that best explain the whole
+// path: a hallway view fits every hallway of a building, the path along it far fewer places,
+// and the true one must not fall out of the kept candidates among look-alikes. Scores are then
+// the path's, best first.
 std::vector<Hypothesis> global_search(const RegionMaps& maps, const std::vector<Eigen::Vector2d>& base_points,
-                                      const GlobalOptions& options, const ScanModel& scan);
+                                      const GlobalOptions& options, const ScanModel& scan,
+                                      const std::vector<Eigen::Vector2d>& path_points = {});
 
 }  // namespace rgnav::localizer

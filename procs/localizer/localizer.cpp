@@ -50,7 +50,8 @@ Localizer::Localizer(const LocalizerOptions& options)
     : options_(options),
       maps_(options.scan, options.global.cell),
       scorer_(options.scan.sigma, options.scan.z_hit, options.scan.z_rand, options.scan.max_distance),
-      rng_(options.seed)
+      rng_(options.seed),
+      views_(options.global.view_spacing, options.global.view_path_length, kTurnAsTravel)
 {
 }
 
@@ -119,6 +120,7 @@ bool Localizer::set_pose(int64_t region, const Pose2& region_from_base, double s
   low_inlier_since_ = 0;
   inlier_usual_ = -1;
   previous_.reset();
+  views_.clear();
   updates_since_pose_given_ = 0;
   resuming_ = false;
   return true;
@@ -144,6 +146,7 @@ void Localizer::start_global()
   low_inlier_since_ = 0;
   inlier_usual_ = -1;
   previous_.reset();
+  views_.clear();
 }
 
 bool Localizer::take_kidnap_flag()
@@ -184,6 +187,8 @@ bool Localizer::update(const sensors::LaserScan& scan, const Pose2& odom_from_ba
     mode_ = Mode::kGlobal;
     global_travel_ = 0;
     odom_at_update_ = odom_from_base;
+    views_.clear();
+    views_.add(odom_from_base, coarse_points(points, options_.global.beams));
     weigh_estimate_resample(points);
     return true;
   }
@@ -198,7 +203,10 @@ bool Localizer::update(const sensors::LaserScan& scan, const Pose2& odom_from_ba
     return false;
   move_particles(delta);
   odom_at_update_ = odom_from_base;
-  if (mode_ == Mode::kGlobal) global_travel_ += delta.translation().norm() + kTurnAsTravel * std::fabs(delta.theta());
+  if (mode_ == Mode::kGlobal) {
+    global_travel_ += delta.translation().norm() + kTurnAsTravel * std::fabs(delta.theta());
+    views_.add(odom_from_base, coarse_points(points, options_.global.beams));
+  }
   weigh_estimate_resample(points);
 
   if (resuming_) {
@@ -219,8 +227,11 @@ void Localizer::weigh_estimate_resample(const std::vector<Vector2d>& points)
   estimate_from(weights, points);
   // From an unknown pose, one place that fits is not yet the place: it must keep fitting while
   // the robot moves (the look-alike offices of a hallway fit one scan equally well).
-  if (mode_ == Mode::kGlobal && estimate_.converged && global_travel_ >= options_.global.min_travel && unique(points))
+  if (mode_ == Mode::kGlobal && estimate_.converged && global_travel_ >= options_.global.min_travel &&
+      distinguishable(estimate_.region, estimate_.region_from_base)) {
     mode_ = Mode::kTracking;
+    views_.clear();
+  }
   if (mode_ == Mode::kTracking && estimate_.inlier_ratio < options_.recovery.kidnap_inlier_ratio) reassociate(points);
   if (mode_ == Mode::kTracking) {
     flag_jump();
@@ -256,38 +267,63 @@ bool Localizer::kidnapped(const std::vector<Vector2d>& points, const Pose2& odom
   return static_cast<double>(utime_ - low_inlier_since_) * 1e-6 >= rec.kidnap_after_s;
 }
 
-bool Localizer::unique(const std::vector<Vector2d>& points) const
+bool Localizer::distinguishable(int64_t region, const Pose2& region_from_base) const
 {
-  // The estimate against the best place of the newest search elsewhere: a look-alike that
-  // fits the current view about as well means the robot has not yet seen what tells them apart.
-  const RegionModel* m = maps_.region(estimate_.region);
-  if (!m || last_search_.empty()) return true;
+  // The pose against the best places of the newest search elsewhere, all scored on the views
+  // of the path: a look-alike that explains them about as well means the robot has not yet
+  // seen what tells the places apart. (One scan is not enough: the offices along a hallway
+  // look alike from their doors; the path past them differs.)
+  const RegionModel* m = maps_.region(region);
+  if (!m || views_.empty() || !odom_at_update_) return false;
+  if (last_search_.empty()) return true;
   const auto& g = options_.global;
   const BeamScorer coarse(g.sigma, options_.scan.z_hit, options_.scan.z_rand, options_.scan.max_distance);
-  std::vector<Vector2d> pts;
-  const double step = std::max(1.0, static_cast<double>(points.size()) / g.beams);
-  for (double k = 0; k < static_cast<double>(points.size()); k += step) pts.push_back(points[static_cast<size_t>(k)]);
-  const double here = coarse.score(m->field, estimate_.region_from_base, pts);
-  // The best few candidates elsewhere, each refined as precisely as the estimate is: a twin
-  // place must not lose only because the search grid missed it by a few centimetres.
-  constexpr int kRivals = 5;
-  double elsewhere = -1e300;
-  int rivals = 0;
+  const auto cloud = views_.cloud(*odom_at_update_);
+  // Every candidate refined as precisely as the pose, which is refined too: a twin place must
+  // not lose only because the search grid missed it by a few centimetres, nor the pose because
+  // odometry drift bent the path a little.
+  const double step_xy = 0.5 * g.cell, step_theta = M_PI / g.headings;
+  const Hypothesis best_here = refine(*m, {region, region_from_base, 0}, cloud, coarse, step_xy, step_theta);
+  // The path fits best somewhere else than the pose (hill climbing can wander off a wrong
+  // pose towards a better place): the pose is not what the views say.
+  const auto& eo = options_.estimate;
+  if ((best_here.region_from_base.translation() - region_from_base.translation()).norm() > eo.converged_xy ||
+      std::fabs(normalize_angle(best_here.region_from_base.theta() - region_from_base.theta())) > eo.converged_theta_deg * kDeg)
+    return false;
+  const double here = best_here.score;
+  // Two places that fit equally well differ by a sum of per-view noise, whose spread grows with
+  // the square root of the number of views: so does the margin, for the same risk per claim.
+  const double margin = g.unique_margin * std::sqrt(static_cast<double>(views_.size()));
+  // Distinct places only: the search keeps one candidate per freespace cell, so the best few
+  // are often neighbouring cells of one look-alike place. A candidate nearby but turned by
+  // more than a few search steps is another place all the same (a room that looks like itself
+  // turned round).
+  const double same_heading = 3 * 2 * M_PI / g.headings;
+  const auto same_place = [&](const Pose2& a, const Pose2& b) {
+    return (a.translation() - b.translation()).norm() < g.unique_distance && std::fabs(normalize_angle(a.theta() - b.theta())) < same_heading;
+  };
+  std::vector<Pose2> taken{m->map_from_region * region_from_base};
   for (const auto& h : last_search_) {
     const RegionModel* r = maps_.region(h.region);
     if (!r) continue;
-    const Vector2d in_map = r->map_from_region * h.region_from_base.translation();
-    if ((in_map - estimate_.map_from_base.translation()).norm() < g.unique_distance) continue;
-    elsewhere = std::max(elsewhere, refine(*r, h, pts, coarse, 0.5 * g.cell, M_PI / g.headings).score);
-    if (++rivals == kRivals) break;
+    const Pose2 in_map = r->map_from_region * h.region_from_base;
+    if (std::any_of(taken.begin(), taken.end(), [&](const Pose2& t) { return same_place(t, in_map); })) continue;
+    taken.push_back(in_map);
+    const Hypothesis rival = refine(*r, h, cloud, coarse, step_xy, step_theta);
+    // A candidate that climbs back onto the pose is the pose itself, no rival.
+    if (same_place(taken.front(), r->map_from_region * rival.region_from_base)) continue;
+    if (rival.score > here - margin) return false;
+    if (static_cast<int>(taken.size()) > g.rivals) break;
   }
-  return here >= elsewhere + g.unique_margin;
+  return true;
 }
 
 void Localizer::seed_global(const std::vector<Vector2d>& points, size_t count, std::vector<Particle>* out)
 {
   ++stats_.global_searches;
-  const auto hyps = global_search(maps_, points, options_.global, options_.scan);
+  // While unsure, candidates are ranked by the views of the path (global_search.h).
+  const bool path = mode_ == Mode::kGlobal && views_.size() >= 2 && odom_at_update_;
+  const auto hyps = global_search(maps_, points, options_.global, options_.scan, path ? views_.cloud(*odom_at_update_) : std::vector<Vector2d>{});
   last_search_ = hyps;
   if (hyps.empty()) return;
   // Equal shares: the coarse search ranks places roughly; the filter tells them apart as the

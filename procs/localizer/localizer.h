@@ -26,6 +26,7 @@
 #include "localizer/localizer_options.h"
 #include "localizer/region_maps.h"
 #include "localizer/scan_model.h"
+#include "localizer/view_path.h"
 #include "rgmap/rg_map.h"
 #include "sensors/laser_scan.h"
 
@@ -115,6 +116,12 @@ class Localizer
   const std::vector<Particle>& particles() const { return particles_; }
   const LocalizerStats& stats() const { return stats_; }
   const RegionMaps& maps() const { return maps_; }
+  // No place of the newest global search farther than unique_distance from this pose explains
+  // the views since the pose became unknown (view_path.h) nearly as well as the pose does:
+  // what a claim from global localization needs. False outside global localization (no views).
+  // The benchmark asks it of the true pose: if false, what the robot saw is ambiguous by the
+  // map's own repetition, and staying unsure is the right answer.
+  bool distinguishable(int64_t region, const geometry::Pose2& region_from_base) const;
   // Set when a kidnap was flagged since the last call.
   bool take_kidnap_flag();
   std::vector<GatewayPassed> take_gateway_events();
@@ -128,8 +135,6 @@ class Localizer
   void estimate_from(const std::vector<double>& weights, const std::vector<Eigen::Vector2d>& points);
   void resample(const std::vector<double>& weights, const std::vector<Eigen::Vector2d>& points, double w_avg);
   void weigh_estimate_resample(const std::vector<Eigen::Vector2d>& points);
-  // No other place of the newest global search fits the current scan nearly as well.
-  bool unique(const std::vector<Eigen::Vector2d>& points) const;
   // The lightest `share` of the particles replaced by search candidates (no resampling).
   void replace_lightest(const std::vector<Eigen::Vector2d>& points, double share);
   const RegionLink* link_between(int64_t here, int64_t there) const;
@@ -154,10 +159,11 @@ class Localizer
   int64_t last_region_ = 0;
   int updates_since_pose_given_ = 0;
   bool resuming_ = false;
-  double global_travel_ = 0;
+  double global_travel_ = 0;              // [m] driven since global localization started
   double inlier_usual_ = -1;        // slow average of the estimate's inlier share, -1 = none yet
   std::vector<Hypothesis> last_search_;   // candidates of the newest global search
-  std::optional<Estimate> previous_;      // the estimate of the update before, for the jump check        // [m] driven since global localization started
+  ViewPath views_;                        // views since global localization started
+  std::optional<Estimate> previous_;      // the estimate of the update before, for the jump check
   bool kidnap_flag_ = false;
   // Gateway traversal evidence: the estimate entered `to` from `from` through `gateway`.
   struct PendingPass { int64_t gateway = 0, from = 0, to = 0; };

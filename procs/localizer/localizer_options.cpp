@@ -82,6 +82,9 @@ LocalizerNodeOptions load_localizer_options(const config::Config& root, const co
   g.min_travel = gl.number("min_travel_m", g.min_travel, 0.0, 100.0);
   g.unique_distance = gl.number("unique_distance_m", g.unique_distance, 0.1, 100.0);
   g.unique_margin = gl.number("unique_margin", g.unique_margin, 0.0, 1000.0);
+  g.rivals = static_cast<int>(gl.integer("rivals", g.rivals, 1, 1000));
+  g.view_spacing = gl.number("view_spacing_m", g.view_spacing, 0.0, 10.0);
+  g.view_path_length = gl.number("view_path_length_m", g.view_path_length, 0.0, 100.0);
 
   const auto re = root.section("recovery");
   auto& r = l.recovery;

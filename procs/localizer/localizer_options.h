@@ -64,8 +64,11 @@ struct GlobalOptions
   double reseed_share = 0.1;       // share of particles re-seeded from a new search per update while unsure
   double beam_weight = 0.2;        // ScanModel::beam_weight while unsure (softer: no early decision)
   double min_travel = 1.0;         // [m] driven (a turn of 1 rad counts 0.5 m) before the pose counts as found ...
-  double unique_distance = 2.0;    // [m] ... and no candidate farther than this from it ...
-  double unique_margin = 3.0;      // ... scores within this (log-likelihood, coarse model) of the estimate
+  double unique_distance = 2.0;    // [m] ... and no place farther than this from it ...
+  double unique_margin = 3.0;      // ... explains the views of the path (view_path.h) within this times sqrt(views) (log-likelihood, coarse model)
+  int rivals = 16;                 // distinct places (unique_distance apart) of the newest search checked against the estimate
+  double view_spacing = 0.5;       // [m] travel between the views kept for that test
+  double view_path_length = 4.0;   // [m] travel back the views reach (odometry drift grows with it)
 };
 
 struct RecoveryOptions

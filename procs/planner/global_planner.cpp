@@ -8,6 +8,7 @@
 #include <queue>
 #include <set>
 
+#include "geometry/segment2.h"
 #include "planner/no_path_reason.h"
 #include "rgmap/rg_graph.h"
 
@@ -234,6 +235,48 @@ const std::optional<RegionPath>& GlobalPlanner::region_path(const Arc& arc, int 
   return it->second;
 }
 
+std::optional<std::pair<int64_t, Eigen::Vector2d>> GlobalPlanner::start_beside(int64_t region, const Eigen::Vector2d& p)
+{
+  // The localizer keeps the robot in a region while it stands on the region's freespace; at a
+  // gateway that place may be where the region's grid no longer lets the robot's body stand (the
+  // freespace narrows at the opening) while the region beyond has it in its main free space.
+  // First the nearest such neighbour within reach of the robot, through the gateway's measured
+  // transform.
+  const double reach = options_.grid.adapt_distance + options_.grid.robot_radius;
+  std::optional<std::pair<int64_t, Eigen::Vector2d>> best;
+  double best_d = reach;
+  for (const auto& [id, g] : map_.gateways()) {
+    if (g.neutralized || g.region_b == 0) continue;
+    const int64_t a = map_.resolve(g.region_a), b = map_.resolve(g.region_b);
+    if (a == b || (region != a && region != b)) continue;
+    const int64_t other = region == a ? b : a;
+    if (!is_live(other)) continue;
+    const Eigen::Vector2d in_a = region == a ? p : g.region_a_from_region_b * p;
+    double d = std::numeric_limits<double>::infinity();
+    for (const auto& [u, v] : rgmap::gateway_edges(g.gateway_points))
+      d = std::min(d, geometry::point_segment_distance(in_a, u, v));
+    if (d > best_d) continue;
+    const Eigen::Vector2d there = other == a ? in_a : g.region_a_from_region_b.inverse() * in_a;
+    const RegionPlanner* rp = region_planner(other);
+    if (!rp || rp->cut_off(there)) continue;
+    best_d = d;
+    best = std::make_pair(other, there);
+  }
+  if (best) return best;
+  // No gateway near: the robot may have left the region's grid altogether (stepping aside for a
+  // person into a doorway, a localizer that hands over late). Any region whose own free space
+  // holds the robot's place in the map frame (neighbours are placed consistently there).
+  const Eigen::Vector2d in_map = map_.region(region)->map_from_region * p;
+  for (const auto& [id, r] : map_.regions()) {
+    if (id == region || !is_live(id)) continue;
+    const Eigen::Vector2d there = r.map_from_region.inverse() * in_map;
+    if (!r.freespace.is_free(there)) continue;
+    const RegionPlanner* rp = region_planner(id);
+    if (rp && !rp->cut_off(there)) return std::make_pair(id, there);
+  }
+  return std::nullopt;
+}
+
 std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string* why, PlanStats* stats)
 {
   PlanStats local_stats;
@@ -251,12 +294,20 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
     forget_planner(map_.resolve(it->region));
     it = places_.erase(it);
   }
-  const int64_t sr = map_.resolve(request.start_region), gr = map_.resolve(request.goal_region);
+  int64_t sr = map_.resolve(request.start_region);
+  const int64_t gr = map_.resolve(request.goal_region);
   if (!is_live(sr)) return fail("start region " + std::to_string(request.start_region) + " is not in the map");
   if (!is_live(gr))
     return fail(no_path_reason(NoPathCause::kGoalUnreachable, "goal region " + std::to_string(request.goal_region) + " is not in the map"));
+  Eigen::Vector2d start_point = request.start;
+  if (region_planner(sr)->cut_off(start_point)) {
+    if (const auto beside = start_beside(sr, start_point)) {
+      sr = beside->first;
+      start_point = beside->second;
+    }
+  }
   // (A start on no free cell may still step straight to a goal near it: RegionPlanner::plan.)
-  const bool a_step = sr == gr && (request.goal - request.start).norm() <= options_.grid.robot_step;
+  const bool a_step = sr == gr && (request.goal - start_point).norm() <= options_.grid.robot_step;
   if (!a_step && !region_planner(gr)->standable(request.goal, request.goal_reach))
     return fail(no_path_reason(NoPathCause::kGoalUnreachable, "the goal is blocked in region " + std::to_string(gr)));
 
@@ -264,7 +315,7 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
   // their regions (and to each other in one region).
   std::vector<SearchNode> nodes = nodes_;
   const int start = static_cast<int>(nodes.size()), goal = start + 1;
-  nodes.push_back({sr, 0, request.start, map_.region(sr)->map_from_region * request.start, -1, false, true});
+  nodes.push_back({sr, 0, start_point, map_.region(sr)->map_from_region * start_point, -1, false, true});
   nodes.push_back({gr, 0, request.goal, map_.region(gr)->map_from_region * request.goal, request.goal_reach,
                    request.goal_reach > 0});
   std::vector<Arc> arcs = arcs_;
@@ -356,7 +407,7 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
       // Why, for the goal's sender: the robot's own place joins nothing (standing there, nothing
       // changes: the view must), or only gateways taken for closed for a while are in the way
       // (the same goal once they reopen), or the goal is out of reach from here.
-      if (region_planner(sr)->cut_off(request.start))
+      if (region_planner(sr)->cut_off(start_point))
         return fail(no_path_reason(NoPathCause::kStartCutOff, route + ": the robot stands apart from the region's free space"));
       if (!closed.empty() && !request.ignore_closed) {
         PlanRequest open = request;

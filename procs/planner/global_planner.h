@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "planner/edge_costs.h"
@@ -68,6 +69,9 @@ class GlobalPlanner
 
   // The region planner of a live region (built on first use); nullptr for an unknown region.
   const RegionPlanner* region_planner(int64_t region);
+  // The robot at p in `region` cut off from its free space there, but standing in the main free
+  // space of a neighbour across a gateway within reach: that region and p in its frame.
+  std::optional<std::pair<int64_t, Eigen::Vector2d>> start_beside(int64_t region, const Eigen::Vector2d& p);
   // A place to send the robot in a region given by name only: the free cell of its grid with
   // the largest clearance nearest to its freespace centroid. nullopt for a region with no free cell.
   std::optional<Eigen::Vector2d> region_goal_point(int64_t region);

@@ -148,27 +148,21 @@ bool Planner::track_progress()
   // The leg of the pose's region: the current one, or one further on (a gateway was crossed).
   size_t k = leg_;
   while (k < route_.legs.size() && route_.legs[k].region_id != pose_->region_id) ++k;
-  if (k == route_.legs.size()) return false;
-  const int64_t now = pose_->utime;
-  if (k > leg_) {
-    // Gateways crossed: learn how long the crossing and the region before it took.
-    for (size_t j = leg_; j < k; ++j) {
-      const auto& leg = route_.legs[j];
-      const auto* gw = global_.map().gateway(leg.exit_gateway);
-      const int64_t reached = j == leg_ && gateway_reached_utime_ ? gateway_reached_utime_ : now;
-      if (gw) global_.costs().gateway_passed(*gw, (now - reached) * kUs);
-      if (j == leg_ && leg.entry_gateway && leg_entered_utime_)
-        global_.costs().region_traversed(leg.region_id, leg.entry_gateway, leg.exit_gateway,
-                                         (reached - leg_entered_utime_) * kUs);
-    }
-    leg_ = k;
-    along_ = 0;
-    leg_entered_utime_ = now;
-    gateway_reached_utime_ = 0;
+  Pose2 here = pose_->region_from_base;
+  if (k == route_.legs.size()) {
+    // The pose's region is not on the route: a route planned from the region beside a gateway
+    // the robot stands in, before the localizer hands the pose over (GlobalPlanner::start_beside),
+    // or a robot off the route. The pose in the current leg's region through the map frame.
+    const auto there = pose_in_region(route_.legs[leg_].region_id);
+    if (!there) return false;
+    k = leg_;
+    here = *there;
   }
-  const RouteLeg& leg = route_.legs[leg_];
+  const int64_t now = pose_->utime;
+  if (k > leg_) enter_leg(k, now);
   double distance = 0;
-  along_ = project_onto_leg(leg, pose_->region_from_base.translation(), along_, &distance);
+  along_ = project_onto_leg(route_.legs[leg_], here.translation(), along_, &distance);
+  const RouteLeg& leg = route_.legs[leg_];
   // Progress: the robot got this much further along the route.
   constexpr double kProgressStep = 0.3;   // [m]
   const double arc = route_.leg_start(leg_) + along_;
@@ -177,9 +171,27 @@ bool Planner::track_progress()
     progress_utime_ = now;
   }
   if (leg.exit_gateway && !gateway_reached_utime_ &&
-      (leg.points.back() - pose_->region_from_base.translation()).norm() <= options_.execution.gateway_reach_m)
+      (leg.points.back() - here.translation()).norm() <= options_.execution.gateway_reach_m)
     gateway_reached_utime_ = now;
   return distance <= options_.execution.off_route_m;
+}
+
+void Planner::enter_leg(size_t k, int64_t now)
+{
+  // Gateways crossed: learn how long the crossing and the region before it took.
+  for (size_t j = leg_; j < k; ++j) {
+    const auto& leg = route_.legs[j];
+    const auto* gw = global_.map().gateway(leg.exit_gateway);
+    const int64_t reached = j == leg_ && gateway_reached_utime_ ? gateway_reached_utime_ : now;
+    if (gw) global_.costs().gateway_passed(*gw, (now - reached) * kUs);
+    if (j == leg_ && leg.entry_gateway && leg_entered_utime_)
+      global_.costs().region_traversed(leg.region_id, leg.entry_gateway, leg.exit_gateway,
+                                       (reached - leg_entered_utime_) * kUs);
+  }
+  leg_ = k;
+  along_ = 0;
+  leg_entered_utime_ = now;
+  gateway_reached_utime_ = 0;
 }
 
 bool Planner::route_valid() const
@@ -198,15 +210,28 @@ bool Planner::goal_reached() const
 {
   if (!pose_ || route_.empty()) return false;
   // The goal in the frame of the leg the robot is on.
-  size_t k = leg_;
-  if (route_.legs[k].region_id != pose_->region_id) return false;
+  const size_t k = leg_;
+  const auto here = pose_in_region(route_.legs[k].region_id);
+  if (!here) return false;
   Pose2 here_from_goal_frame;
   for (size_t j = k; j + 1 < route_.legs.size(); ++j) here_from_goal_frame = here_from_goal_frame * route_.legs[j].this_from_next;
   const Eigen::Vector2d goal = here_from_goal_frame * goal_point_;
-  if ((pose_->region_from_base.translation() - goal).norm() > goal_->position_tolerance) return false;
+  if ((here->translation() - goal).norm() > goal_->position_tolerance) return false;
   if (goal_->heading_tolerance >= M_PI || !goal_->has_pose) return true;
   const double heading = goal_->region_from_goal.theta() + here_from_goal_frame.theta();
-  return std::abs(geometry::normalize_angle(pose_->region_from_base.theta() - heading)) <= goal_->heading_tolerance;
+  return std::abs(geometry::normalize_angle(here->theta() - heading)) <= goal_->heading_tolerance;
+}
+
+std::optional<Pose2> Planner::pose_in_region(int64_t region) const
+{
+  if (!pose_) return std::nullopt;
+  if (pose_->region_id == region) return pose_->region_from_base;
+  // Neighbouring regions are placed consistently in the map frame (loop closures move far ones).
+  const auto& map = global_.map();
+  const auto* here = map.region(map.resolve(pose_->region_id));
+  const auto* there = map.region(map.resolve(region));
+  if (!here || !there) return std::nullopt;
+  return there->map_from_region.inverse() * here->map_from_region * pose_->region_from_base;
 }
 
 PlanRequest Planner::request_from_pose(int64_t utime) const

@@ -102,6 +102,8 @@ class Planner
   Output update(int64_t utime);
 
   GoalStatus status() const { return status_; }
+  // Why the goal ended (NO_PATH, CANCELLED) or how its route was chosen.
+  const std::string& reason() const { return reason_; }
   const std::optional<NavGoal>& goal() const { return goal_; }
   const Route& route() const { return route_; }
   int64_t replans() const { return replans_; }
@@ -117,8 +119,12 @@ class Planner
   void finish(GoalStatus status, const std::string& reason, int64_t utime);
   // Progress: which leg the robot is on (by its region) and how far along; false if off route.
   bool track_progress();
+  // On leg k from now on (k > the current leg): the gateways between learn how long they took.
+  void enter_leg(size_t k, int64_t now);
   std::optional<TargetList> make_targets(int64_t utime) const;
   bool goal_reached() const;
+  // The robot's pose in a region's frame: its own, or through the map frame for another region.
+  std::optional<geometry::Pose2> pose_in_region(int64_t region) const;
   PlanRequest request_from_pose(int64_t utime) const;
   // Collision avoidance cannot pass and the robot makes no progress: replan, go round the next
   // gateway, or (no way round, for long enough) take it for closed.

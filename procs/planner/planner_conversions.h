@@ -19,7 +19,8 @@ nav_goal_t to_msg(const NavGoal& goal, int64_t utime);
 
 RobotPose to_robot_pose(const region_pose_t& m);
 
-// Collision avoidance stands without a way to its targets (reactive fallbacks or blocked).
+// Collision avoidance stands without a way to its targets (reactive fallbacks or blocked; not
+// while it yields to a person, who passes).
 bool cannot_pass(const ca_status_t& m);
 
 // GLOBAL_PATH: every point of the route as a waypoint in its leg's region frame, headed to the

@@ -225,6 +225,14 @@ std::vector<int64_t> RgKernel::scans_past_gateway(int64_t region_id, const Gatew
   return late;
 }
 
+NarrowingProfile RgKernel::narrowing_of(const GatewayEventInput& e, int64_t current) const
+{
+  const geometry::Pose2 region_from_map = map_.region(current)->map_from_region.inverse();
+  const Vector2d heading = region_from_map.rotation() * Vector2d(std::cos(e.direction), std::sin(e.direction));
+  return narrowing_profile(region_from_map * e.gateway_points[0], region_from_map * e.gateway_points[1], heading,
+                           builders_.at(current).segments(), options_.narrowing);
+}
+
 bool RgKernel::add_gateway_event(const GatewayEventInput& e)
 {
   map_.utime = std::max(map_.utime, e.utime);
@@ -271,6 +279,17 @@ bool RgKernel::traverse(const GatewayEventInput& e, const std::vector<int64_t>& 
       spdlog::info("junction traversal at ({:.2f}, {:.2f}) is gateway {} crossed again (a door in its side), ignored",
                    c_map.x(), c_map.y(), door);
       return false;
+    }
+    if (e.gateway_points.size() == 2) {
+      const NarrowingProfile n = narrowing_of(e, from);
+      if (!n.narrowing) {
+        // Quietly for the kernel's own lines (track_id < 0): its step into a known place
+        // (entry_min_scans) is tried again at every scan.
+        spdlog::log(e.track_id < 0 ? spdlog::level::debug : spdlog::level::info,
+                    "{} traversal at ({:.2f}, {:.2f}) is no narrowing ({:.2f} m wide, {:.2f} m before, {:.2f} m after), "
+                    "ignored", rgmap::to_string(e.cls), c_map.x(), c_map.y(), n.width, n.before, n.after);
+        return false;
+      }
     }
     if (walled_crossing(e, from)) {
       spdlog::info("{} traversal at ({:.2f}, {:.2f}) between walls (no branch-wide opening in its sides), ignored",

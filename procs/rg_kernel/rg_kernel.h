@@ -20,6 +20,9 @@
 // T-junction ends at that side (the junction is the hallway's). Scans taken beyond one of the
 // region's own doors, or inside such a junction, carve no freespace into it (region_builder.h,
 // ForeignSide).
+// A new line gateway, whoever reports it, splits the region only where it narrows the free space
+// (narrowing.h): a cut across a hallway as narrow as a door is ignored. The rules, what each fixes
+// and what switching it off changes: procs/rg_kernel/README.md.
 // Inputs are applied in the order given; with the same inputs the map is the same.
 #pragma once
 
@@ -29,6 +32,7 @@
 #include <vector>
 
 #include "procs/rg_kernel/known_place.h"
+#include "procs/rg_kernel/narrowing.h"
 #include "procs/rg_kernel/objects3d.h"
 #include "procs/rg_kernel/region_builder.h"
 #include "rgmap/rg_map.h"
@@ -95,6 +99,9 @@ struct KernelOptions
   // into the room behind carved it into the region in front (issue 8: seen-through losses).
   double gateway_line_extension = 0.5;
   Objects3dOptions objects3d;            // the vision's 3D rectangles (objects3d.h)
+  // A new line gateway (the detector's door or narrow passage, a doorway of the line map, the
+  // entry_min_scans step) splits the region only where it narrows the free space (narrowing.h).
+  NarrowingOptions narrowing;
 };
 
 struct ScanInput
@@ -219,6 +226,9 @@ class RgKernel
   // Whether the crossing traversal `e` went straight between walls: every side of its outline
   // along the heading is walled in the current region's line map (no branch-wide opening).
   bool walled_crossing(const GatewayEventInput& e, int64_t current) const;
+  // The free widths about the line traversal `e` (two points) crossed, in the current region's
+  // line map (narrowing.h).
+  NarrowingProfile narrowing_of(const GatewayEventInput& e, int64_t current) const;
   Eigen::Vector2d crossing_in_map(const rgmap::Gateway& g) const;
   std::vector<int64_t> scans_past_gateway(int64_t region_id, const GatewayEventInput& e) const;
   StoredScan to_stored(const ScanInput& s, int64_t region_id) const;

@@ -60,6 +60,8 @@ KernelOptions load_kernel_options(const config::Config& cfg, const config::Robot
   c.door_exits = k.boolean("door_exits", c.door_exits);
   c.stem_exits = k.boolean("stem_exits", c.stem_exits);
   c.x_branches_end = k.boolean("x_branches_end", c.x_branches_end);
+  c.narrowing.max_width_ratio = k.number("gateway_narrowing_ratio", c.narrowing.max_width_ratio, 0.0, 1.0);
+  c.narrowing.probe_depth = k.number("gateway_narrowing_probe_m", c.narrowing.probe_depth, 0.4, 5.0);
   const auto lines = cfg.section("line_map");
   c.build.merge.alpha_max = lines.number("merge_alpha_max_deg", 3.0, 0.1, 45.0) * M_PI / 180.0;
   c.build.merge.dl_max = lines.number("merge_dl_max_m", 0.020, 0.001, 1.0);

@@ -117,6 +117,13 @@ int main(int argc, char** argv)
     // and the trials in which it claimed a pose that was > 0.5 m wrong.
     j["global_estimate_success_ratio"] = totals.global_n ? static_cast<double>(totals.global_estimate_ok) / static_cast<double>(totals.global_n) : 0.0;
     j["global_wrong_claims"] = totals.global_wrong;
+    // Trials that ended unsure where another place explains the robot's last views as well as
+    // the true pose (the map repeats itself there), and the success ratio without them.
+    j["global_ambiguous_trials"] = totals.global_ambiguous;
+    j["global_success_ratio_unambiguous"] =
+        totals.global_n > totals.global_ambiguous
+            ? static_cast<double>(totals.global_ok) / static_cast<double>(totals.global_n - totals.global_ambiguous)
+            : 0.0;
     j["global_travel_m_p50"] = number_or_null(percentile(totals.global_travel, 0.5));
     j["kidnap_trials"] = totals.kidnap_n;
     j["kidnap_flag_s_p50"] = number_or_null(percentile(totals.flag_time, 0.5));

@@ -113,7 +113,7 @@ nlohmann::json run_tracking(const BenchWorld& w, localizer::Localizer& loc, Tria
 nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialContext& ctx, int trials, int mrpt_trials,
                           Totals& totals)
 {
-  int ok = 0, estimate_ok = 0, wrong_claims = 0;
+  int ok = 0, estimate_ok = 0, wrong_claims = 0, ambiguous_n = 0;
   std::vector<double> times, travels;
   for (int trial = 0; trial < trials; ++trial) {
     const auto [k, s] = random_tour_point(w.tour, ctx.rng);
@@ -125,6 +125,7 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
     Settling settle, settle_estimate;
     Error last_error;
     bool started = false, wrong_claim = false;
+    Pose2 truth_at_update;
     const auto res = run_drive(
         w.world, ctx.sim, d,
         [&](const DriveStep& st) {
@@ -142,6 +143,7 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
           settle_estimate.add(st.time_s, st.true_distance, loc.estimate().valid && e.good());
           wrong_claim = wrong_claim || (claimed && e.xy > kDivergedXy);
           last_error = e;
+          truth_at_update = st.world_from_base;
         },
         [&](const OdometryStep& o) {
           if (mrpt) mrpt->odometry(o.utime, o.odom_from_base, o.v, o.omega);
@@ -151,8 +153,17 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
     ok += success;
     estimate_ok += settle_estimate.good_now && settle_estimate.first_good_after <= 10.0;
     wrong_claims += wrong_claim;
+    // Still unsure at the end, and rightly so: some place >= unique_distance from the true pose
+    // explains the views of the robot's last metres as well as the true pose does.
+    bool ambiguous = false;
+    if (!success && loc.mode() == localizer::Mode::kGlobal) {
+      const int64_t rt = w.frames.region_at(truth_at_update, loc.estimate().region);
+      ambiguous = rt != 0 && !loc.distinguishable(rt, w.frames.in_region(rt, truth_at_update));
+    }
+    ambiguous_n += ambiguous;
     if (std::getenv("LOCALIZE_TRACE"))
-      std::cerr << w.name << " global " << trial << (success ? " ok" : " FAIL") << " settled " << settle.first_good_after
+      std::cerr << w.name << " global " << trial << (success ? " ok" : ambiguous ? " AMBIGUOUS" : " FAIL") << " settled " << settle.first_good_after
+                << " estimate_settled " << settle_estimate.first_good_after << " wrong_claim " << wrong_claim
                 << " error " << last_error.xy << " m " << last_error.theta / kDeg << " deg mode " << localizer::to_string(loc.mode())
                 << " share " << loc.estimate().cluster_share << " inliers " << loc.estimate().inlier_ratio << " region "
                 << loc.estimate().region << " fit " << (w.frames.fit_rmse.count(loc.estimate().region) ? w.frames.fit_rmse.at(loc.estimate().region) : NAN) << " start " << route[0].x()
@@ -167,11 +178,13 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
   g["success_ratio"] = trials ? static_cast<double>(ok) / trials : 0.0;
   g["estimate_success_ratio"] = trials ? static_cast<double>(estimate_ok) / trials : 0.0;
   g["wrong_claims"] = wrong_claims;
+  g["ambiguous"] = ambiguous_n;
   g["time_s_p50"] = number_or_null(percentile(times, 0.5));
   g["travel_m_p50"] = number_or_null(percentile(travels, 0.5));
   totals.global_ok += ok;
   totals.global_estimate_ok += estimate_ok;
   totals.global_wrong += wrong_claims;
+  totals.global_ambiguous += ambiguous_n;
   totals.global_n += trials;
   totals.global_time.insert(totals.global_time.end(), times.begin(), times.end());
   totals.global_travel.insert(totals.global_travel.end(), travels.begin(), travels.end());
@@ -224,6 +237,10 @@ nlohmann::json run_kidnaps(const BenchWorld& w, localizer::Localizer& loc, Trial
     }
     const bool recovered = settle.good_now && settle.first_good_after <= 30.0;
     ok += recovered;
+    if (std::getenv("LOCALIZE_TRACE"))
+      std::cerr << w.name << " kidnap " << trial << (recovered ? " ok" : " FAIL") << " flagged " << flag_s << " settled "
+                << settle.first_good_after << " mode " << localizer::to_string(loc.mode()) << " share "
+                << loc.estimate().cluster_share << " carried " << (route_b[0] - route.back()).norm() << " m\n";
     if (settle.good_now) recovers.push_back(settle.first_good_after);
   }
   nlohmann::json kj;

@@ -43,6 +43,7 @@ void trace_line(const std::string& what, const PlannedDrive& d, const Vector2d& 
             << d.nearest_person() << " wall " << d.sim().clearance({d.truth().x(), d.truth().y()}, 3.0) << " planner "
             << planner::to_string(d.planner().status()) << " route";
   for (const auto& leg : d.planner().route().legs) std::cerr << " r" << leg.region_id;
+  std::cerr << " (" << d.planner().reason() << ")";
   std::cerr << "\n";
 }
 

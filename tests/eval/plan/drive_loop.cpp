@@ -71,6 +71,7 @@ void DriveLoop::command(double v, double omega)
 
 bool DriveLoop::cannot_pass() const
 {
+  // As planner::cannot_pass reads CA_STATUS: yielding to a person is not blocked.
   const auto mode = ca_.mode();
   return mode == collision_avoidance::Mode::kBlocked || mode == collision_avoidance::Mode::kReactive;
 }

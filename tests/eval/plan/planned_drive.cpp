@@ -70,7 +70,7 @@ int64_t PlannedDrive::region_of(const Pose2& truth) const
   // As the localizer hands a particle over (Localizer::hand_over): it stays in its region while
   // on the region's freespace and within its measurement rectangle (+ kBboxMargin); leaving, it
   // goes to the neighbour beyond a gateway within kHandoverReach that holds the place the same
-  // way (the nearest such gateway here); else it stays.
+  // way (the nearest such gateway here); else to any region whose freespace holds it; else it stays.
   const auto& map = w_.map;
   const auto holds = [&](int64_t id) {
     const auto* r = map.region(id);
@@ -99,7 +99,12 @@ int64_t PlannedDrive::region_of(const Pose2& truth) const
       best = other;
     }
   }
-  return best ? best : region_;
+  if (best) return best;
+  // No neighbour holds the place either (the robot is between the region's freespace and the
+  // neighbour's, or went on past a small crossing into the region beyond): a perfect localizer
+  // knows the region that holds it (the real one relocalizes when its particles lose the map).
+  const int64_t at = w_.frames.region_at(truth, region_);
+  return at ? at : region_;
 }
 
 std::string PlannedDrive::targets_text(size_t n) const

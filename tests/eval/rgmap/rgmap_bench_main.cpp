@@ -17,6 +17,7 @@
 #include "importers/lcm_log_io.h"
 #include "offline_mapping.h"
 #include "offline_run.h"
+#include "rgmap_metrics.h"
 #include "runtime/process_main.h"
 #include "sim/sim_options.h"
 #include "sim/world_yaml.h"
@@ -28,8 +29,18 @@ namespace {
 
 // --diagnose: the ground-truth gateways missed and the false ones, and the room centres, all in
 // the world frame, to find them on the pictures.
-void print_gateway_diagnosis(const rp::WorldScore& score, const rp::GroundTruth& truth)
+void print_gateway_diagnosis(const rp::WorldScore& score, const rp::GroundTruth& truth, const rgnav::rgmap::RgMap& map)
 {
+  // The map's gateways in gateway_positions' order, to name the false ones by id and class.
+  std::vector<const rgnav::rgmap::Gateway*> counted;
+  {
+    const std::set<int64_t> repeats = rp::repeated_crossings(map);
+    for (const auto& [id, g] : map.gateways()) {
+      const auto& pts = g.gateway_points.empty() ? g.crossing_points : g.gateway_points;
+      if (g.neutralized || repeats.count(id) || pts.empty() || !map.region(map.resolve(g.region_a))) continue;
+      counted.push_back(&g);
+    }
+  }
   // Which ground-truth gateways were missed and where the false ones are (world frame).
   std::vector<char> t_hit(score.gateway_truth_positions.size(), 0), f_hit(score.gateway_found_positions.size(), 0);
   for (const auto& [t, f] : score.gateways.pairs) t_hit[static_cast<size_t>(t)] = f_hit[static_cast<size_t>(f)] = 1;
@@ -51,10 +62,16 @@ void print_gateway_diagnosis(const rp::WorldScore& score, const rp::GroundTruth&
       const Eigen::Vector2d c = truth.rooms.origin + truth.rooms.resolution * (sum[l] / static_cast<double>(cnt[l]) + Eigen::Vector2d(0.5, 0.5));
       std::cerr << "  room " << truth.room_names[l - 1] << " centre (" << c.x() << ", " << c.y() << ")\n";
     }
-  for (size_t k = 0; k < f_hit.size(); ++k)
-    if (!f_hit[k])
-      std::cerr << "  false gateway at (" << score.gateway_found_positions[k].x() << ", "
-                << score.gateway_found_positions[k].y() << ")\n";
+  for (size_t k = 0; k < f_hit.size(); ++k) {
+    if (f_hit[k]) continue;
+    std::cerr << "  false gateway at (" << score.gateway_found_positions[k].x() << ", "
+              << score.gateway_found_positions[k].y() << ")";
+    if (k < counted.size())
+      std::cerr << ": gateway " << counted[k]->id << " (" << rgnav::rgmap::to_string(counted[k]->cls) << ", "
+                << counted[k]->gateway_points.size() << " points, regions " << counted[k]->region_a << ", "
+                << counted[k]->region_b << ")";
+    std::cerr << "\n";
+  }
 }
 
 }  // namespace
@@ -87,7 +104,9 @@ int main(int argc, char** argv)
   bool verbose = false, diagnose = false, true_poses = false;
   app.add_flag("--true-poses", true_poses,
                "also map every world on the simulator's true poses (worlds_true_poses: segmentation without SLAM errors)");
-  app.add_flag("--diagnose", diagnose, "print per region where its freespace falls outside its best room (and why)");
+  app.add_flag("--diagnose", diagnose,
+               "print per region where its freespace falls outside its best room (and why), the missed gateways and the false "
+               "ones (id, class, regions)");
   app.add_flag("--verbose", verbose, "log the libraries' progress messages (regions opened, merged, ...)");
   bool debug = false;
   app.add_flag("--debug", debug, "log the libraries' debug messages too (every gateway event the RG kernel gets, ...)");
@@ -143,7 +162,7 @@ int main(int argc, char** argv)
             j[section][name] = w;
             if (diagnose) {
               std::cerr << label << ":\n" << rp::to_text(score.segmentation_diagnosis, truth.room_names);
-              print_gateway_diagnosis(score, truth);
+              print_gateway_diagnosis(score, truth, run.run.map);
             }
             std::cerr << label << ": precision " << w["seg_precision"] << " recall " << w["seg_recall"] << " gateways "
                       << w["gateways_matched"] << "/" << w["gateways_truth"] << " false " << w["gateways_false"]

@@ -1,6 +1,7 @@
 // The localizer's algorithm library (procs/localizer, no LCM) on the hand-made two-room map:
 // distance field, resampling, tracking across the door with the hand-over and its
-// gateway-passed event, global localization, kidnap detection and recovery, a map merge.
+// gateway-passed event, global localization, kidnap detection and recovery, a map merge; and
+// on two rooms that look alike (twin_rooms.h): a claim only from what the path has shown.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include "localizer/likelihood_field.h"
 #include "localizer/localizer.h"
 #include "localizer/resampling.h"
+#include "twin_rooms.h"
 #include "two_room_map.h"
 
 namespace rgnav::localizer {
@@ -33,7 +35,7 @@ LocalizerOptions options()
 // with perfect odometry (odom frame = map frame shifted, so nothing relies on them being equal).
 struct Drive
 {
-  const testing::TwoRoomWorld& world;
+  const testing::Walls& walls;
   Localizer& loc;
   Pose2 odom_from_map{1.0, -2.0, 0.3};
   int64_t utime = 1'000'000;
@@ -50,7 +52,7 @@ struct Drive
     for (int k = 1; k <= steps; ++k) {
       truth = geometry::interpolate(start, goal, static_cast<double>(k) / steps);
       utime += 40'000;
-      updated = loc.update(testing::cast_scan(world.walls, truth, kLaser, utime, scan_id++), odom_from_map * truth);
+      updated = loc.update(testing::cast_scan(walls, truth, kLaser, utime, scan_id++), odom_from_map * truth);
       if (after_scan) after_scan();
     }
   }
@@ -103,7 +105,7 @@ TEST(Localizer, TracksThroughTheDoorAndReportsTheGatewayPassed)
   const auto w = testing::two_room_world();
   Localizer loc(options());
   loc.set_map(w.map);
-  Drive drive{w, loc};
+  Drive drive{w.walls, loc};
   drive.truth = Pose2(2.0, 1.5, 0.0);
   ASSERT_TRUE(loc.set_pose(w.room_a, in_region(w, w.room_a, drive.truth), 0.05, 0.03));
   double worst = 0;
@@ -134,7 +136,7 @@ TEST(Localizer, FindsItselfFromAnUnknownPoseWhileDriving)
   Localizer loc(options());
   loc.set_map(w.map);
   EXPECT_EQ(loc.mode(), Mode::kUnknown);
-  Drive drive{w, loc};
+  Drive drive{w.walls, loc};
   drive.truth = Pose2(7.0, 0.0, 2.0);
   drive.to(Pose2(7.0, 0.0, 2.0));   // one scan: candidates everywhere, not yet sure
   EXPECT_EQ(loc.mode(), Mode::kGlobal);
@@ -145,12 +147,67 @@ TEST(Localizer, FindsItselfFromAnUnknownPoseWhileDriving)
   EXPECT_LT(error_m(w, loc.estimate(), drive.truth), 0.05);
 }
 
+// The robot first looks at the one corner that tells the twin rooms apart, then turns away and
+// drives on: its current view fits both rooms equally, the views of its path only room_a. The
+// claim must come from the path (a test of the current scan alone never claims here).
+TEST(Localizer, ClaimsThePlaceTheViewsOfItsPathTellApart)
+{
+  const auto w = testing::twin_room_world(true);
+  // No claim before the telling corner is out of view (it leaves the view about 1 m into the
+  // drive, turns counted): then the current view alone cannot tell the rooms apart.
+  auto o = options();
+  o.global.min_travel = 1.2;
+  const auto drive_past_the_corner = [&w](Localizer& loc) {
+    loc.set_map(w.map);
+    Drive drive{w.walls, loc};
+    drive.truth = Pose2(2.4, 1.4, -0.6);   // facing the bottom-right corner: square in room_a, cut off in room_b
+    drive.to(drive.truth);
+    drive.to(Pose2(2.6, 1.2, -0.6));
+    EXPECT_EQ(loc.mode(), Mode::kGlobal);  // not yet driven far enough to claim
+    drive.to(Pose2(2.6, 1.2, 2.5));        // turn to the other cut corner: the telling one is behind now
+    drive.to(Pose2(1.8, 1.8, 2.5));
+    drive.to(Pose2(1.6, 1.95, 2.5));
+    return drive.truth;
+  };
+  Localizer loc(o);
+  const Pose2 truth = drive_past_the_corner(loc);
+  EXPECT_EQ(loc.mode(), Mode::kTracking);
+  EXPECT_EQ(loc.estimate().region, w.room_a);
+  EXPECT_LT((loc.estimate().region_from_base.translation() - truth.translation()).norm(), 0.05);
+  // The rule switched off (the path holds the current view only): the view fits both rooms,
+  // and the localizer never claims.
+  auto one_view = o;
+  one_view.global.view_path_length = 0;
+  Localizer forgetful(one_view);
+  drive_past_the_corner(forgetful);
+  EXPECT_EQ(forgetful.mode(), Mode::kGlobal);
+}
+
+// The same drive in rooms with nothing to tell them apart: the localizer stays unsure, and the
+// true pose is not distinguishable from its twin (what the benchmark counts as ambiguous).
+TEST(Localizer, StaysUnsureWhereTheMapRepeatsItself)
+{
+  const auto w = testing::twin_room_world(false);
+  Localizer loc(options());
+  loc.set_map(w.map);
+  Drive drive{w.walls, loc};
+  drive.truth = Pose2(2.4, 1.4, -0.6);
+  drive.to(drive.truth);
+  drive.to(Pose2(2.6, 1.2, -0.6));
+  drive.to(Pose2(2.6, 1.2, 2.5));
+  drive.to(Pose2(1.8, 1.8, 2.5));
+  drive.to(Pose2(1.6, 1.95, 2.5));
+  EXPECT_EQ(loc.mode(), Mode::kGlobal);
+  EXPECT_FALSE(loc.distinguishable(w.room_a, drive.truth));
+  EXPECT_FALSE(loc.distinguishable(w.room_b, drive.truth));   // region frames: the same spot in either room
+}
+
 TEST(Localizer, FlagsAKidnapAndRelocalizes)
 {
   const auto w = testing::two_room_world();
   Localizer loc(options());
   loc.set_map(w.map);
-  Drive drive{w, loc};
+  Drive drive{w.walls, loc};
   drive.truth = Pose2(1.5, 1.0, 0.5);
   ASSERT_TRUE(loc.set_pose(w.room_a, in_region(w, w.room_a, drive.truth), 0.05, 0.03));
   drive.to(Pose2(2.5, 1.5, 0.5));
@@ -180,7 +237,7 @@ TEST(Localizer, ANewMapVersionDoesNotMoveThePose)
   auto w = testing::two_room_world();
   Localizer loc(options());
   loc.set_map(w.map);
-  Drive drive{w, loc};
+  Drive drive{w.walls, loc};
   drive.truth = Pose2(6.0, 1.0, 1.0);
   ASSERT_TRUE(loc.set_pose(w.room_b, in_region(w, w.room_b, drive.truth), 0.05, 0.03));
   drive.to(Pose2(6.5, 1.0, 1.0));

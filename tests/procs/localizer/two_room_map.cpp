@@ -10,10 +10,6 @@ namespace rgnav::testing {
 using Eigen::Vector2d;
 using geometry::Pose2;
 
-namespace {
-
-constexpr int64_t kUtime = 1'700'000'000'000'000;
-
 void add_lines(rgmap::Region* r, const Walls& walls)
 {
   for (const auto& w : walls) {
@@ -25,6 +21,10 @@ void add_lines(rgmap::Region* r, const Walls& walls)
     r->segments.push_back(s);
   }
 }
+
+namespace {
+
+constexpr int64_t kUtime = 1'700'000'000'000'000;
 
 // Freespace at 0.1 m over [x0, x1] x [y0, y1] (region frame), less what `blocked` says.
 template <class Blocked>

@@ -26,6 +26,9 @@ struct TwoRoomWorld
 
 TwoRoomWorld two_room_world();
 
+// The walls (region frame) as the region's line map, well supported.
+void add_lines(rgmap::Region* r, const Walls& walls);
+
 // An LMS 2xx-like scan (181 beams over 180 deg, 8 m) from map_from_base, the laser at
 // base_from_laser; no return is range_max.
 sensors::LaserScan cast_scan(const Walls& walls, const geometry::Pose2& map_from_base, const geometry::Pose2& base_from_laser,

@@ -100,6 +100,22 @@ RobotPose fix(int64_t utime, int64_t region, const Pose2& region_from_base, cons
   return p;
 }
 
+TEST(PlannerConversions, YieldingToAPersonIsNotBlocked)
+{
+  // Standing aside for a person is a wait the person ends; taking it for a blocked passage sent
+  // the robot round the building.
+  ca_status_t m{};
+  for (const int8_t mode : {ca_status_t::MODE_REACTIVE, ca_status_t::MODE_BLOCKED}) {
+    m.mode = mode;
+    EXPECT_TRUE(cannot_pass(m)) << int(mode);
+  }
+  for (const int8_t mode : {ca_status_t::MODE_IDLE, ca_status_t::MODE_PLANNED, ca_status_t::MODE_YIELDING,
+                            ca_status_t::MODE_ARRIVED}) {
+    m.mode = mode;
+    EXPECT_FALSE(cannot_pass(m)) << int(mode);
+  }
+}
+
 TEST(PoseSource, PrefersTheLocalizerWhileFreshAndCarriesFixesByOdometry)
 {
   PoseSource s(PoseSourceOptions{1.0, 2.0});

@@ -802,5 +802,47 @@ TEST(Planner, TargetsStayPutWhileThePoseIsInAnotherRegionThanTheRoute)
   EXPECT_LT((last_map - V(3.5, 1.5)).norm(), 1e-6);
 }
 
+// The localizer still has the robot in room A, which it left: it stands well inside room B,
+// beyond room A's grid. The route starts in the region whose free space holds the robot, and the
+// planner follows it with the pose in room A's frame (through the map frame) to the goal.
+TEST(Planner, StartsWhereTheRobotStandsWhenItsRegionHasNoRoomForIt)
+{
+  Ring r = ring(true);
+  const V robot_map(8.0, 1.5), goal_map(6.0, 1.5);
+  const Pose2 map_from_b = r.map.region(r.b)->map_from_region;
+  {
+    GlobalPlanner gp(options());
+    gp.set_map(r.map);
+    ASSERT_TRUE(gp.region_planner(r.a)->cut_off(robot_map)) << "room A's frame is the map frame";
+    std::string why;
+    const auto route = gp.plan(PlanRequest{r.a, robot_map, r.b, map_from_b.inverse() * goal_map}, &why);
+    ASSERT_TRUE(route) << why;
+    ASSERT_EQ(route->legs.size(), 1u);
+    EXPECT_EQ(route->legs[0].region_id, r.b);
+    EXPECT_LT((route->legs[0].points.front() - map_from_b.inverse() * robot_map).norm(), 1e-9);
+  }
+  Planner planner(options());
+  planner.set_map(r.map);
+  FollowingRobot robot;
+  robot.map_from_base = Pose2(robot_map, M_PI);
+  int64_t utime = kUtime;
+  const V goal_b = map_from_b.inverse() * goal_map;
+  planner.set_goal(pose_goal(4, r.b, goal_b.x(), goal_b.y()), utime);
+  TargetList last;
+  for (int i = 0; i < 100 && planner.status() == GoalStatus::kActive; ++i) {
+    utime += 100'000;
+    RobotPose pose = pose_of(r, robot, utime);
+    pose.region_id = r.a;   // never handed over
+    pose.region_from_base = robot.map_from_base;
+    planner.on_pose(pose);
+    const auto out = planner.update(utime);
+    if (out.targets) last = *out.targets;
+    robot.drive(last, 0.1);
+  }
+  EXPECT_EQ(planner.status(), GoalStatus::kReached) << planner.reason();
+  EXPECT_EQ(planner.replans(), 1) << "planned once, never off the route";
+  EXPECT_LT((robot.map_from_base.translation() - goal_map).norm(), 0.3);
+}
+
 }  // namespace
 }  // namespace rgnav::planner

@@ -198,8 +198,11 @@ TEST(RgKernel, KnownPlaceWalkedIntoUnseenIsCrossedInto)
   // The bay left unreported as above, with the stem rule off: the bay's region runs on into the
   // west hallway, region 1's place. Once its robot is 3 m in, the kernel crosses a gateway at the
   // step in and hands the positions from there on to region 1; the bay stays a region of its own.
+  // The step in is a cut across the 2 m hallway, no narrowing of it: the narrowing test (off here)
+  // refuses it (EntryAcrossAHallwayIsNoNarrowing).
   KernelOptions o;
   o.stem_exits = false;
+  o.narrowing.max_width_ratio = 0;
   Drive d(o);
   d.walls = testing::hallway_with_bay();
   drive_into_the_bay_and_back_west(d);
@@ -216,6 +219,19 @@ TEST(RgKernel, KnownPlaceWalkedIntoUnseenIsCrossedInto)
   const rgmap::Region bay = d.kernel.describe_region(2);
   EXPECT_TRUE(bay.freespace.is_free(bay.map_from_region.inverse() * Vector2d(6.5, -2.0)));
   EXPECT_FALSE(bay.freespace.is_free(bay.map_from_region.inverse() * Vector2d(2.0, 1.0)));   // the west hallway
+}
+
+TEST(RgKernel, EntryAcrossAHallwayIsNoNarrowing)
+{
+  // The same drive with the narrowing test on: the line across the step into the hallway is as
+  // wide as the hallway on both sides of it, so no gateway is crossed there.
+  KernelOptions o;
+  o.stem_exits = false;
+  Drive d(o);
+  d.walls = testing::hallway_with_bay();
+  drive_into_the_bay_and_back_west(d);
+  EXPECT_EQ(d.kernel.map().current_region, 2);
+  EXPECT_EQ(d.kernel.map().gateways().size(), 1u);
 }
 
 TEST(RgKernel, StemSideEndsBeamsPastTheOutlinesEnds)
