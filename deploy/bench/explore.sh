@@ -13,9 +13,13 @@
 # pose (the scan mapper's estimate of its newest accepted scan composed with odometry since, map
 # frame), each accepted scan's gateway hypotheses (through GATEWAY_HYPOTHESES' conversion) and the
 # planner's goal status; its NAV_GOALs go to the planner (posed in the map's current region), the
-# planner's TARGETS to collision avoidance. frontier: Yamauchi 1997 / explore_lite, nearest frontier
-# first on a 0.1 m log-odds grid of the accepted scans at the SLAM poses, clusters >= the robot's
-# width, goal = the frontier cell nearest by breadth-first search over cells the robot fits in,
+# planner's TARGETS to collision avoidance. Collision avoidance also hears what the vision would
+# give it (OBSTACLES_3D) of solids the laser misses — table tops — from ground truth: what falls in
+# the fixed stereo head's field of view within its range, remembered as its OctoMap keeps it
+# (tests/eval/explore/vision_stand_in.h; the real vision in the loop would make each run several
+# times slower, ./rgnav bench vision measures it); EXPLORE_ARGS=--laser-only runs without it.
+# frontier: Yamauchi 1997 / explore_lite, nearest frontier first on a 0.1 m log-odds grid of the
+# accepted scans at the SLAM poses, clusters >= the robot's width, goal = the frontier cell nearest by breadth-first search over cells the robot fits in,
 # grid A* with a wall cost (unknown as free) cut into targets for the same collision avoidance
 # (tests/eval/explore/frontier_explorer.h).
 #

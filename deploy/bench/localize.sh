@@ -39,7 +39,8 @@
 # Env: LOCALIZE_ONLY (space-separated world names) runs only those; LOCALIZE_ARGS adds bench
 #   flags (e.g. "--global-trials 10 --kidnaps 3"); LOCALIZE_MRPT=0 skips MRPT; LOCALIZE_TRACE=1
 #   writes every tracking update (estimate, truth, error, cluster share, inliers) to
-#   <world>/tracking_trace.txt and a line per global trial and gateway link to stderr.
+#   <world>/tracking_trace.txt and a line per global trial, kidnap and gateway link to stderr (a
+#   trial's line counts its updates by the reason the localizer stayed unsure: Localizer::unsure).
 # The benchmark itself: tests/eval/localize (rgnav_localize_bench).
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"

@@ -8,14 +8,20 @@
 #     PNG holds the disparity in pixels (0 = unknown; aloe_scale_check = median estimate / truth
 #     confirms the scale); also at 2 px, among estimated pixels only, and the density.
 #   frame_ms_p50/p90: per frame of the simulated head (640x480, JPEG): decode + rectify + SGBM +
-#     points + OctoMap insertion + column projection, one core; stages in frame_stage_ms_p50.
+#     points + OctoMap insertion + column projection (+ the 3D rectangles every third frame), one
+#     core, wall clock; stages in frame_stage_ms_p50 (rectangles: over the frames that ran them).
+#   frame_cpu_ms_p50/p90: the same frames in the thread's CPU time: what a frame costs one core
+#     whatever else the machine runs (the wall-clock figures grow with the machine's load).
 #   octomap_points_per_s: points given to OctoMap's insertPointCloud per second spent in it.
 #   grid_* and table_top_occupied_ratio: the grid against the rendered ground truth (see
 #     tests/eval/vision/vision_bench_main.cpp).
 #   rect_poses, rect_within_10cm_ratio: rgnav_rect_bench (tests/eval/vision/rect_bench_main.cpp): the
 #     dissertation's 1000-pose experiment (3.3.4.1) with the refined fit; under rectangles/ also
 #     the vanishing-line method alone, random views of doors, whiteboards and monitors with
-#     stereo noise, and the whole detector on rendered views of the office world's doors.
+#     stereo noise, and the whole detector on rendered views of the office world's doors
+#     (rectangles.rendered_doors) and of its whiteboards and posters with the kind the vision
+#     gives the ones found (rectangles.rendered_wall_objects: whiteboards.found_ratio,
+#     whiteboards.called_whiteboard_ratio_of_found, posters.called_whiteboard, ...).
 #   door_precision_laser, door_precision_vision, door_recall_vision: the gateway bench's door
 #     evaluation alone (gateway_bench --only none): one drive of the office world's tour, a
 #     detector on the laser and one that also gets the simulated head's rectangles (2 Hz).
@@ -24,7 +30,10 @@
 #     laser misses, pedestal chairs, wall shelves), each driven by collision avoidance + lld around
 #     the simulator twice in the same run, without and with the vision's grid (the head rendered in
 #     lock-step at stereo_capture's rate); a collision is the robot body meeting any solid up to its
-#     height. The rest of its output under obstacle_courses.
+#     height. The rest of its output under obstacle_courses; per course in
+#     logs/bench/vision/courses.json, with what the grid showed of each solid hit with vision on
+#     (vision_on_contacts_in_grid: grids_marking 0 = never in the grid, cells_now 0 = not in the
+#     grid collision avoidance had at the contact).
 #   calib_reprojection_px: rgnav_stereo_calibrate on the shared chessboard pairs (9x6 inner corners,
 #     25 mm squares assumed): cv::stereoCalibrate's RMS reprojection error; the file it writes is
 #     the one checked in as config/stereo/chessboard_demo.yml.
@@ -65,7 +74,7 @@ merged.update(json.load(open(os.path.join(out, "stereo.json"))))
 rect = json.load(open(os.path.join(out, "rectangles.json")))
 merged["rect_poses"] = rect["rect_poses"]
 merged["rect_within_10cm_ratio"] = rect["rect_within_10cm_ratio"]
-merged["rectangles"] = {k: rect[k] for k in ("dissertation", "random_views", "rendered_doors") if k in rect}
+merged["rectangles"] = {k: rect[k] for k in ("dissertation", "random_views", "rendered_doors", "rendered_wall_objects") if k in rect}
 doors_file = os.path.join(out, "doors.json")
 if os.path.exists(doors_file):
     doors = json.load(open(doors_file))["doors"]

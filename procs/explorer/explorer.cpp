@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "explorer/view_point.h"
 #include "planner/no_path_reason.h"
 
 namespace rgnav::explorer {
@@ -15,12 +16,20 @@ using Eigen::Vector2d;
 
 namespace {
 
-constexpr double kSamePlace = 0.5;   // [m] a newly chosen goal this near the running one is the same goal
+constexpr double kSamePlace = 0.5;   // [m] a newly chosen goal whose frontier is this near the running one's is the same goal
 constexpr double kMovedSinceFailure = 0.5;   // [m] the robot this far from the last failure's place is elsewhere
 constexpr double kTrackStep = 0.2;           // [m] the robot's track keeps a place every this far ...
 constexpr size_t kTrackPlaces = 100;         // ... the newest this many (20 m)
+constexpr double kNoViewAfter = 1e4;         // [m] a frontier without a view point counts as this much farther
 
 nlohmann::json point_json(const Vector2d& p) { return {p.x(), p.y()}; }
+
+planner::PlannerOptions grid_only(const planner::GridOptions& grid)
+{
+  planner::PlannerOptions o;
+  o.grid = grid;
+  return o;
+}
 
 Vector2d point_from(const nlohmann::json& j)
 {
@@ -54,9 +63,16 @@ const char* to_string(Phase p)
   return "waiting";
 }
 
-Explorer::Explorer(ExplorerOptions options) : options_(options), stack_(options.stack) {}
+Explorer::Explorer(ExplorerOptions options)
+    : options_(options), grids_(grid_only(options.grid)), stack_(options.stack)
+{
+}
 
-void Explorer::set_map(std::shared_ptr<const rgmap::RgMap> map) { map_ = std::move(map); }
+void Explorer::set_map(std::shared_ptr<const rgmap::RgMap> map)
+{
+  map_ = std::move(map);
+  if (map_) grids_.set_map(*map_);
+}
 
 void Explorer::set_pose(const RobotPose& pose)
 {
@@ -120,17 +136,34 @@ std::vector<Frontier> Explorer::open_frontiers(int64_t region_id) const
   return open;
 }
 
+std::vector<int32_t> Explorer::reachable_pieces(int64_t region_id, const planner::RegionGrid& grid) const
+{
+  std::vector<int32_t> pieces{grid.main_component()};
+  if (map_->resolve(map_->current_region) == region_id) {
+    const rgmap::Region* r = map_->region(region_id);
+    const Vector2d here = r->map_from_region.inverse() * pose_->map_from_base.translation();
+    if (const auto c = grid.nearest_free(grid.cell_of(here))) pieces.push_back(grid.component(*c));
+  }
+  return pieces;
+}
+
 std::optional<ExploreGoal> Explorer::frontier_goal(int64_t region_id, int64_t utime)
 {
   const rgmap::Region* r = map_->region(region_id);
-  if (!r) return std::nullopt;
+  const planner::RegionPlanner* rp = r ? grids_.region_planner(region_id) : nullptr;
+  if (!rp) return std::nullopt;
+  const planner::RegionGrid& grid = rp->grid();
+  const std::vector<int32_t> pieces = reachable_pieces(region_id, grid);
+  std::vector<std::pair<Vector2d, Vector2d>> walls;
+  for (const auto& seg : r->segments) walls.emplace_back(seg.a, seg.b);
+  const double wanted = options_.grid.robot_radius + options_.grid.clearance_margin;
   const Vector2d robot = pose_->map_from_base.translation();
   std::optional<ExploreGoal> best;
   double best_d = std::numeric_limits<double>::infinity();
   for (const Frontier& f : open_frontiers(region_id)) {
     const Vector2d at = r->map_from_region * f.goal;
     if (visited(at)) {
-      // The robot stood there and the region's freespace still ends in the unknown: the
+      // The robot looked at it and the region's freespace still ends in the unknown there: the
       // region's map does not take in what lies beyond (the RG kernel ends a region's freespace
       // at a narrow passage), so it is a way out of the region — the stack's, to be gone through.
       GatewaySighting s;
@@ -142,16 +175,24 @@ std::optional<ExploreGoal> Explorer::frontier_goal(int64_t region_id, int64_t ut
       continue;
     }
     if (failed_here(at, utime)) continue;
-    const double d = (at - robot).norm();
+    // No view point: nowhere the planner's grid has room for the robot sees it. The frontier
+    // itself is still a goal, after every one with a view point (the planner tries the region's
+    // other pieces and beyond; its NO_PATH counts as an attempt): skipping it would end
+    // exploring while a region may be unexplored behind it.
+    const auto view = view_point(grid, pieces, f.goal, f.outward, walls, wanted, options_.view);
+    const Vector2d view_at = r->map_from_region * (view ? view->point : f.goal);
+    const double d = (view_at - robot).norm() + (view ? 0.0 : kNoViewAfter);
     if (d >= best_d) continue;
     best_d = d;
     ExploreGoal g;
     g.kind = ExploreGoal::Kind::kFrontier;
     g.region_id = region_id;
-    g.region_point = f.goal;
-    g.heading = std::atan2(f.outward.y(), f.outward.x());
+    g.region_point = view ? view->point : f.goal;
+    g.heading = view ? view->heading : std::atan2(f.outward.y(), f.outward.x());
+    g.heading_tolerance = view ? options_.view.heading_tolerance : ExploreGoal{}.heading_tolerance;
     g.tolerance = options_.goal_tolerance;
-    g.map_point = at;
+    g.map_point = view_at;
+    g.frontier_point = at;
     best = g;
   }
   return best;
@@ -173,6 +214,7 @@ std::optional<ExploreGoal> Explorer::gateway_goal(int64_t utime)
     g.tolerance = options_.gateway_goal_tolerance;
     g.beyond_known = true;
     g.entry_id = e->id;
+    g.frontier_point = g.map_point;
     return g;
   }
   return std::nullopt;
@@ -207,7 +249,7 @@ bool Explorer::goal_still_open() const
   const rgmap::Region* r = map_->region(map_->resolve(goal_->region_id));
   if (!r) return false;
   for (const Frontier& f : open_frontiers(r->id))
-    if ((r->map_from_region * f.goal - goal_->map_point).norm() < options_.visited_radius) return true;
+    if ((r->map_from_region * f.goal - goal_->frontier_point).norm() < options_.visited_radius) return true;
   return false;
 }
 
@@ -226,9 +268,7 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
     // Not the goal's fault: the robot's place joins nothing, and standing there nothing changes.
     // It looks behind; still cut off there, it steps back along its track; cut off after both,
     // the goal fails as any other (tried again when the robot moved or the map changed).
-    const Vector2d here = pose_->map_from_base.translation();
-    const auto new_place = [&](const std::optional<Vector2d>& p) { return !p || (here - *p).norm() >= kMovedSinceFailure; };
-    recovery_due_ = new_place(looked_at_) ? Recovery::kLook : new_place(stepped_from_) ? Recovery::kStep : Recovery::kNone;
+    recovery_due_ = recovery_from(pose_->map_from_base.translation());
     if (recovery_due_ != Recovery::kNone) {
       goal_.reset();
       decide_now_ = true;
@@ -257,17 +297,23 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
                     options_.max_attempts, static_cast<int64_t>(map_ ? map_->regions().size() : 0), counts);
     }
   } else if (reached) {
-    visited_.push_back(goal_->map_point);
+    visited_.push_back(goal_->frontier_point);
   } else {
     auto it = std::find_if(failed_.begin(), failed_.end(), [&](const FailedPlace& f) {
-      return (f.map_point - goal_->map_point).norm() < options_.visited_radius;
+      return (f.map_point - goal_->frontier_point).norm() < options_.visited_radius;
     });
-    if (it == failed_.end()) it = failed_.insert(failed_.end(), FailedPlace{goal_->map_point, 0, 0});
+    if (it == failed_.end()) it = failed_.insert(failed_.end(), FailedPlace{goal_->frontier_point, 0, 0});
     if (counts) ++it->attempts;
     it->retry_utime = utime + static_cast<int64_t>(options_.retry_after_s * 1e6);
   }
   goal_.reset();
   decide_now_ = true;
+}
+
+Explorer::Recovery Explorer::recovery_from(const Vector2d& here) const
+{
+  const auto new_place = [&](const std::optional<Vector2d>& p) { return !p || (here - *p).norm() >= kMovedSinceFailure; };
+  return new_place(looked_at_) ? Recovery::kLook : new_place(stepped_from_) ? Recovery::kStep : Recovery::kNone;
 }
 
 std::optional<ExploreGoal> Explorer::recovery_goal() const
@@ -287,6 +333,7 @@ std::optional<ExploreGoal> Explorer::recovery_goal() const
     g.heading = geometry::normalize_angle(region_from_base.theta() + M_PI);
     g.heading_tolerance = options_.recovery.heading_tolerance;
     g.tolerance = options_.goal_tolerance;
+    g.frontier_point = g.map_point;
     return g;
   }
   // Back along the way it came: its body was there, so the place is free and joins where it came from.
@@ -298,6 +345,7 @@ std::optional<ExploreGoal> Explorer::recovery_goal() const
     const Vector2d d = g.region_point - region_from_base.translation();
     g.heading = std::atan2(d.y(), d.x());
     g.tolerance = 0.5 * options_.recovery.step_m;
+    g.frontier_point = g.map_point;
     return g;
   }
   return std::nullopt;
@@ -345,9 +393,16 @@ Command Explorer::step(int64_t utime)
     else if (utime - goal_sent_utime_ > static_cast<int64_t>(options_.recovery.timeout_s * 1e6))
       end_goal(false, "timed out", utime);
   } else if (goal_) {
+    const double d = (robot - goal_->map_point).norm();
+    if (d < goal_best_distance_ - options_.progress_m) {
+      goal_best_distance_ = d;
+      goal_progress_utime_ = utime;
+    }
     if (!goal_still_open()) end_goal(true, goal_->kind == ExploreGoal::Kind::kGateway ? "gone through" : "explored", utime);
-    else if ((robot - goal_->map_point).norm() <= goal_->tolerance) end_goal(true, "reached", utime);
+    else if (d <= goal_->tolerance) end_goal(true, "reached", utime);
     else if (utime - goal_sent_utime_ > static_cast<int64_t>(options_.goal_timeout_s * 1e6)) end_goal(false, "timed out", utime);
+    else if (utime - goal_progress_utime_ > static_cast<int64_t>(options_.progress_timeout_s * 1e6))
+      end_goal(false, "no progress", utime);
   }
   if (!decide_now_ && utime - last_decision_utime_ < static_cast<int64_t>(options_.decide_period_s * 1e6)) return cmd;
   last_decision_utime_ = utime;
@@ -359,10 +414,7 @@ Command Explorer::step(int64_t utime)
     (recovery_due_ == Recovery::kLook ? looked_at_ : stepped_from_) = robot;
     recovery_due_ = Recovery::kNone;
     if (g) {
-      g->goal_id = next_goal_id_++;
-      goal_ = g;
-      goal_sent_utime_ = utime;
-      ++goals_sent_;
+      start_goal(&*g, utime);
       activity_ = fmt::format("goal {}: {} to change the view", g->goal_id,
                               g->kind == ExploreGoal::Kind::kLook ? "looking behind" : "a step back along the track");
       cmd.goal = g;
@@ -375,7 +427,7 @@ Command Explorer::step(int64_t utime)
     // A gateway goal runs until it ends; a frontier goal gives way to a better choice: a region
     // that became current, or a frontier much nearer than the one driven to.
     if (goal_->kind == ExploreGoal::Kind::kGateway || is_recovery(*goal_) || !next) return cmd;
-    if ((next->map_point - goal_->map_point).norm() < kSamePlace) return cmd;
+    if ((next->frontier_point - goal_->frontier_point).norm() < kSamePlace) return cmd;
     if (next->region_id == goal_->region_id && next->kind == goal_->kind) {
       const double dn = (next->map_point - robot).norm(), dc = (goal_->map_point - robot).norm();
       if (dn > (1.0 - options_.switch_gain) * dc) return cmd;
@@ -383,6 +435,18 @@ Command Explorer::step(int64_t utime)
   }
   if (!next) {
     if (waiting_to_retry(utime)) {
+      // Everything left failed from here: the place may be what is wrong (a scrap of free space
+      // that joins no way on, as for "start cut off"), and standing there nothing changes. The
+      // robot looks behind, then steps back along its track, before it waits.
+      const bool failed_here = last_failure_ && (robot - last_failure_->first).norm() < kMovedSinceFailure;
+      if (failed_here) {
+        recovery_due_ = recovery_from(robot);
+        if (recovery_due_ != Recovery::kNone) {
+          decide_now_ = true;
+          activity_ = "nothing reachable from here: changing the view";
+          return cmd;
+        }
+      }
       activity_ = "waiting to try again what could not be reached";
       return cmd;
     }
@@ -393,10 +457,7 @@ Command Explorer::step(int64_t utime)
       if (r.state != rgmap::Region::State::kMerged) finished_regions_.insert(id);
     return cmd;
   }
-  next->goal_id = next_goal_id_++;
-  goal_ = next;
-  goal_sent_utime_ = utime;
-  ++goals_sent_;
+  start_goal(&*next, utime);
   const char* kind = next->kind == ExploreGoal::Kind::kGateway  ? "through a gateway"
                      : next->kind == ExploreGoal::Kind::kRegion ? "back to a frontier of"
                                                                 : "to a frontier of";
@@ -404,6 +465,16 @@ Command Explorer::step(int64_t utime)
                           next->map_point.x(), next->map_point.y());
   cmd.goal = next;
   return cmd;
+}
+
+void Explorer::start_goal(ExploreGoal* g, int64_t utime)
+{
+  g->goal_id = next_goal_id_++;
+  goal_ = *g;
+  goal_sent_utime_ = utime;
+  goal_best_distance_ = (pose_->map_from_base.translation() - g->map_point).norm();
+  goal_progress_utime_ = utime;
+  ++goals_sent_;
 }
 
 ExplorerStatus Explorer::status() const

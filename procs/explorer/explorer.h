@@ -1,6 +1,7 @@
 // The explorer (diss. 5.0's high-level planning, ch. 7): explores an unknown building region by
 // region. Inside the current region it goes to the frontiers of the region's freespace
-// (frontiers.h), nearest first, until none is left (the region is complete); then it takes the
+// (frontiers.h), nearest first, each looked at from a view point the planner can reach
+// (view_point.h; a frontier with none is no goal for now), until none is left (the region is complete); then it takes the
 // next untraversed gateway from the stack (gateway_stack.h), breadth-first, and drives through
 // it; a region left incomplete is gone back to once the current one is complete and no gateway
 // is waiting. It ends when no frontier of any region and no stacked gateway is left that it can
@@ -8,9 +9,10 @@
 // and is sent with beyond_known (the planner drives from the nearest known free place straight
 // on). Regions the robot has finished are offered for naming. The robot first looks behind (its
 // laser sees the half ahead); when the planner answers that the robot's own place joins nothing
-// ("start cut off", planner/no_path_reason.h) it looks behind again, then steps back along its
-// own track (RecoveryOptions), instead of standing where nothing changes; a goal only a gateway
-// taken for closed is in the way of counts no failed attempt.
+// ("start cut off", planner/no_path_reason.h), or when everything left failed from where it
+// stands, it looks behind again, then steps back along its own track (RecoveryOptions), instead
+// of standing where nothing changes; a goal only a gateway taken for closed is in the way of
+// counts no failed attempt. A goal the robot gets no nearer to in progress_timeout_s fails.
 //
 // Pure algorithm, message time only: the node feeds it the RG map, the robot's pose, the
 // detector's gateway sightings and the planner's goal status, and calls step() at its own pace.
@@ -30,6 +32,7 @@
 #include "explorer/frontiers.h"
 #include "explorer/gateway_stack.h"
 #include "geometry/pose2.h"
+#include "planner/global_planner.h"
 #include "rgmap/rg_map.h"
 
 namespace rgnav::explorer {
@@ -56,6 +59,7 @@ struct ExploreGoal
   bool beyond_known = false;       // the point may lie in unknown space past the region's freespace
   int64_t entry_id = 0;            // kGateway: the stack entry
   Eigen::Vector2d map_point{0, 0}; // the same point in the map frame
+  Eigen::Vector2d frontier_point{0, 0};   // map frame: kFrontier / kRegion: the frontier looked at (else map_point)
 };
 
 const char* to_string(ExploreGoal::Kind k);
@@ -124,6 +128,8 @@ class Explorer
   // The region's frontiers that are goals of its own: those at a stacked gateway's opening are not.
   std::vector<Frontier> open_frontiers(int64_t region_id) const;
   bool goal_still_open() const;
+  // Numbers `g` and makes it the running goal (its progress counted from now).
+  void start_goal(ExploreGoal* g, int64_t utime);
   // kStartCutOff: the robot's own place joins nothing (not the goal's fault); kClosedGateway: only
   // a gateway taken for closed for a while is in the way (no attempt of the goal's either).
   void end_goal(bool reached, const std::string& reason, int64_t utime, bool start_cut_off = false,
@@ -131,10 +137,17 @@ class Explorer
   // The robot's place is cut off: a look behind, else a step back along its track, else nothing
   // (looked and stepped from here already).
   std::optional<ExploreGoal> recovery_goal() const;
+  enum class Recovery : int8_t { kNone, kLook, kStep };
+  // What is due at `here`: a look unless one began near here, else a step back unless one began
+  // near here, else nothing.
+  Recovery recovery_from(const Eigen::Vector2d& here) const;
   bool is_recovery(const ExploreGoal& g) const
   {
     return g.kind == ExploreGoal::Kind::kLook || g.kind == ExploreGoal::Kind::kStep;
   }
+  // The pieces of region `region_id`'s planner grid the robot can drive to: the main one, and the
+  // one it stands in when it is in that region.
+  std::vector<int32_t> reachable_pieces(int64_t region_id, const planner::RegionGrid& grid) const;
   bool visited(const Eigen::Vector2d& map_point) const;
   bool failed_here(const Eigen::Vector2d& map_point, int64_t utime) const;
   // Something set aside will be due again: not done yet.
@@ -142,6 +155,9 @@ class Explorer
 
   ExplorerOptions options_;
   std::shared_ptr<const rgmap::RgMap> map_;
+  // The planner's grids of the map's regions (only its region planners are used: where the
+  // robot fits and which free space joins which).
+  planner::GlobalPlanner grids_;
   std::optional<RobotPose> pose_;
   GatewayStack stack_;
   Phase phase_ = Phase::kWaiting;
@@ -149,6 +165,8 @@ class Explorer
   int64_t next_goal_id_ = 1;
   std::optional<ExploreGoal> goal_;
   int64_t goal_sent_utime_ = 0;
+  double goal_best_distance_ = 0;               // [m] the robot's nearest to the running goal so far ...
+  int64_t goal_progress_utime_ = 0;             // ... and when it last got progress_m nearer
   int64_t last_decision_utime_ = 0;
   bool decide_now_ = true;
   std::vector<Eigen::Vector2d> visited_;        // map frame: frontier goals reached
@@ -156,7 +174,6 @@ class Explorer
   std::vector<FailedPlace> failed_;             // frontier goals the planner could not reach
   std::optional<std::pair<Eigen::Vector2d, int64_t>> last_failure_;   // robot position and map version then
   std::vector<Eigen::Vector2d> track_;          // map frame: where the robot was, newest last
-  enum class Recovery : int8_t { kNone, kLook, kStep };
   Recovery recovery_due_ = Recovery::kNone;
   std::optional<Eigen::Vector2d> looked_at_, stepped_from_;   // where the last look / step began
   std::set<int64_t> finished_regions_, offered_regions_;

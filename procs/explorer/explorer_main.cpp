@@ -14,7 +14,7 @@ int main(int argc, char** argv)
   return rgnav::runtime::process_main(
       argc, argv, "explorer",
       [&](rgnav::runtime::ProcessContext& ctx) {
-        const auto config = ex::load_explorer_node_config(ctx.config, ctx.robot);
+        const auto config = ex::load_explorer_node_config(ctx.config, ctx.robot, ctx.config_path);
         // --check-config neither reads nor writes the saved state.
         if (ctx.checking_only) files = {};
         return std::make_shared<ex::ExplorerNode>(ctx.node, config, files);

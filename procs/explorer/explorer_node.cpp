@@ -11,6 +11,7 @@
 #include "config/robot_description.h"
 #include "explorer/explorer_conversions.h"
 #include "explorer/explorer_state.h"
+#include "planner/planner_options.h"
 #include "rgmap/rgmap_conversions.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "time/units.h"
@@ -36,10 +37,17 @@ bool point_plausible(const point2d_t& p) { return std::fabs(p.x) <= kMaxCoordina
 
 }  // namespace
 
-ExplorerNodeConfig load_explorer_node_config(const config::Config& cfg, const config::RobotDescription& robot)
+ExplorerNodeConfig load_explorer_node_config(const config::Config& cfg, const config::RobotDescription& robot,
+                                             const std::string& config_path)
 {
   ExplorerNodeConfig c;
   c.options = load_explorer_node_options(cfg, robot);
+  if (!config_path.empty()) {
+    // View points are cells of the planner's grid: the planner's own options, not a copy.
+    std::filesystem::path planner = c.options.planner_config;
+    if (planner.is_relative()) planner = std::filesystem::path(config_path).parent_path() / planner;
+    c.options.explorer.grid = planner::load_planner_options(config::Config::load(planner.string()), robot).grid;
+  }
   c.pose_fresh_s = cfg.section("pose").number("fresh_s", c.pose_fresh_s, 0.05, 60.0);
   c.step_period_s = cfg.section("step").number("period_s", c.step_period_s, 0.01, 10.0);
   return c;

@@ -39,7 +39,10 @@ struct ExplorerNodeConfig
 };
 
 // Reads config/explorer.yaml; throws config::ConfigError naming file and key.
-ExplorerNodeConfig load_explorer_node_config(const config::Config& cfg, const config::RobotDescription& robot);
+// config_path: the explorer's config file; the planner's (view.planner_config) is read beside it
+// for its grid. "" keeps the grid's defaults (tests).
+ExplorerNodeConfig load_explorer_node_config(const config::Config& cfg, const config::RobotDescription& robot,
+                                             const std::string& config_path = "");
 
 // What the explorer reads and writes besides the bus (its command-line flags).
 struct ExplorerFiles

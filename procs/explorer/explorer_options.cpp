@@ -42,6 +42,15 @@ RecoveryOptions load_recovery(const config::Config& c)
   return r;
 }
 
+ViewOptions load_view(const config::Config& c)
+{
+  ViewOptions v;
+  v.range_m = c.number("range_m", v.range_m, 0.1, 8.0);
+  v.clearance_weight = c.number("clearance_weight", v.clearance_weight, 0.0, 100.0);
+  v.heading_tolerance = c.number("heading_tolerance_rad", v.heading_tolerance, 0.05, M_PI);
+  return v;
+}
+
 }  // namespace
 
 ExplorerOptions load_explorer_options(const config::Config& cfg, const config::RobotDescription& robot)
@@ -49,9 +58,11 @@ ExplorerOptions load_explorer_options(const config::Config& cfg, const config::R
   ExplorerOptions o;
   // The robot is a circle: the robot description's, not a copy here.
   o.robot_radius = robot.radius;
+  o.grid.robot_radius = robot.radius;
   o.frontier = load_frontier(cfg.section("frontier"));
   o.stack = load_stack(cfg.section("stack"));
   o.recovery = load_recovery(cfg.section("recovery"));
+  o.view = load_view(cfg.section("view"));
   const auto g = cfg.section("goals");
   o.goal_tolerance = g.number("tolerance_m", o.goal_tolerance, 0.05, 5.0);
   o.gateway_goal_tolerance = g.number("gateway_tolerance_m", o.gateway_goal_tolerance, 0.05, 5.0);
@@ -59,6 +70,8 @@ ExplorerOptions load_explorer_options(const config::Config& cfg, const config::R
   o.retry_after_s = g.number("retry_after_s", o.retry_after_s, 0.0, 86400.0);
   o.max_attempts = static_cast<int>(g.integer("max_attempts", o.max_attempts, 1, 100));
   o.goal_timeout_s = g.number("timeout_s", o.goal_timeout_s, 1.0, 86400.0);
+  o.progress_timeout_s = g.number("progress_timeout_s", o.progress_timeout_s, 1.0, 86400.0);
+  o.progress_m = g.number("progress_m", o.progress_m, 0.0, 10.0);
   o.decide_period_s = g.number("decide_period_s", o.decide_period_s, 0.05, 60.0);
   o.switch_gain = g.number("switch_gain", o.switch_gain, 0.0, 1.0);
   return o;
@@ -69,6 +82,8 @@ ExplorerNodeOptions load_explorer_node_options(const config::Config& cfg, const 
   ExplorerNodeOptions o;
   o.name = cfg.section("node").string("name", o.name);
   o.explorer = load_explorer_options(cfg, robot);
+  o.planner_config = cfg.section("view").string("planner_config", "planner.yaml");
+  if (o.planner_config.empty()) cfg.section("view").fail("planner_config", "must name the planner's config (its grid)");
   const auto ch = cfg.section("channels");
   auto& c = o.channels;
   config::read_strings(ch, {{"rg_map", &c.rg_map},

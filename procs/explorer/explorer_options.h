@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "planner/planner_options.h"
+
 namespace rgnav::config { class Config; struct RobotDescription; }
 
 namespace rgnav::explorer {
@@ -29,6 +31,16 @@ struct StackOptions
   bool breadth_first = true;       // order: fewest RG-graph hops from the start region first (else nearest first)
 };
 
+// Where the robot looks at a frontier from (view_point.h): a place the planner's grid has room for
+// and a way to, within range of the frontier and in sight of it.
+struct ViewOptions
+{
+  double range_m = 1.5;            // [m] the view point lies at most this far from the frontier (the laser sees 8 m: near
+                                   // enough to look past the frontier's edge into what lies beyond it)
+  double clearance_weight = 2.0;   // a metre of clearance short of radius + margin counts as this many metres farther
+  double heading_tolerance = 1.2;  // [rad] the robot faces the frontier this nearly (the laser's field is +-90 deg)
+};
+
 // When the planner says the robot's own place joins nothing (its region grid has the robot in a
 // scrap of free space: clutter, ragged freespace, unknown space behind it, the laser seeing only
 // ahead), standing there changes nothing: the robot changes its view. It turns on the spot to
@@ -47,6 +59,9 @@ struct ExplorerOptions
   FrontierOptions frontier;
   StackOptions stack;
   RecoveryOptions recovery;
+  ViewOptions view;
+  // The planner's grid (its config's grid section): view points are cells the planner can reach.
+  planner::GridOptions grid;
   double robot_radius = 0.26;      // [m] from the robot description
   double goal_tolerance = 0.5;     // [m] NAV_GOAL position tolerance of a frontier goal
   double gateway_goal_tolerance = 0.4;  // [m] ... of a goal beyond a gateway
@@ -56,12 +71,15 @@ struct ExplorerOptions
   int max_attempts = 3;            // ... at most this many times (a failure counts only if the robot moved or the map
                                    // changed since the last one); then it is set aside for good (with its reason)
   double goal_timeout_s = 180.0;   // [s] a goal not reached in this long counts as failed
+  double progress_timeout_s = 60.0;// [s] a goal the robot got no nearer to (by progress_m) in this long counts as failed
+  double progress_m = 0.3;         // [m] (explore_lite's progress rule: a robot held by something it cannot see)
   double decide_period_s = 1.0;    // [s] the choice of goal is looked at again this often
   double switch_gain = 0.3;        // a new frontier replaces the running goal only if this much nearer (share)
 };
 
 struct ExplorerNodeOptions
 {
+  std::string planner_config = "planner.yaml";   // the planner's config (its grid section); relative: beside the explorer's
   std::string name = "explorer";
   ExplorerOptions explorer;
   struct Channels

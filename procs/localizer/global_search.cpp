@@ -16,7 +16,12 @@ std::vector<Eigen::Vector2d> coarse_points(const std::vector<Eigen::Vector2d>& p
 Hypothesis refine(const RegionModel& region, Hypothesis h, const std::vector<Eigen::Vector2d>& base_points,
                   const BeamScorer& scorer, double step_xy, double step_theta)
 {
-  h.score = scorer.score(region.field, h.region_from_base, base_points);
+  return refine(h, [&](const geometry::Pose2& p) { return scorer.score(region.field, p, base_points); }, step_xy, step_theta);
+}
+
+Hypothesis refine(Hypothesis h, const std::function<double(const geometry::Pose2&)>& score, double step_xy, double step_theta)
+{
+  h.score = score(h.region_from_base);
   for (double sxy = step_xy, sth = step_theta; sxy > 0.1 * step_xy; sxy *= 0.5, sth *= 0.5) {
     bool moved = true;
     for (int guard = 0; moved && guard < 20; ++guard) {
@@ -25,7 +30,7 @@ Hypothesis refine(const RegionModel& region, Hypothesis h, const std::vector<Eig
       for (const auto& d : {Eigen::Vector3d(sxy, 0, 0), Eigen::Vector3d(-sxy, 0, 0), Eigen::Vector3d(0, sxy, 0),
                             Eigen::Vector3d(0, -sxy, 0), Eigen::Vector3d(0, 0, sth), Eigen::Vector3d(0, 0, -sth)}) {
         const geometry::Pose2 p(c.x() + d.x(), c.y() + d.y(), c.theta() + d.z());
-        const double sc = scorer.score(region.field, p, base_points);
+        const double sc = score(p);
         if (sc > h.score) {
           h.score = sc;
           h.region_from_base = p;
@@ -39,7 +44,7 @@ Hypothesis refine(const RegionModel& region, Hypothesis h, const std::vector<Eig
 
 std::vector<Hypothesis> global_search(const RegionMaps& maps, const std::vector<Eigen::Vector2d>& base_points,
                                       const GlobalOptions& options, const ScanModel& scan,
-                                      const std::vector<Eigen::Vector2d>& path_points)
+                                      const std::vector<PlacedView>& path, double bbox_margin)
 {
   std::vector<Hypothesis> found;
   if (base_points.empty()) return found;
@@ -71,7 +76,7 @@ std::vector<Hypothesis> global_search(const RegionMaps& maps, const std::vector<
   }
   const size_t keep = std::min(found.size(), static_cast<size_t>(std::max(1, options.hypotheses)));
   const auto best_first = [](const Hypothesis& a, const Hypothesis& b) { return a.score > b.score; };
-  if (path_points.empty()) {
+  if (path.size() < 2) {
     std::partial_sort(found.begin(), found.begin() + static_cast<long>(keep), found.end(), best_first);
     found.resize(keep);
     return found;
@@ -82,10 +87,15 @@ std::vector<Hypothesis> global_search(const RegionMaps& maps, const std::vector<
   // of both rankings at once).
   const size_t by_scan = keep / 2;
   std::partial_sort(found.begin(), found.begin() + static_cast<long>(by_scan), found.end(), best_first);
-  // A few views' worth of the path's points: the ranking needs the path's shape, not every beam.
-  constexpr int kPathViews = 4;
-  const auto path = coarse_points(path_points, kPathViews * options.beams);
-  for (auto& h : found) h.score = scorer.score(maps.region(h.region)->field, h.region_from_base, path);
+  // A few views spread over the path (its oldest and the current one among them): the ranking
+  // needs the path's shape, not every view.
+  constexpr size_t kPathViews = 4;
+  std::vector<PlacedView> few;
+  for (size_t k = 0; k < kPathViews; ++k) {
+    const size_t i = k * (path.size() - 1) / (kPathViews - 1);
+    if (few.empty() || few.back().points != path[i].points) few.push_back(path[i]);
+  }
+  for (auto& h : found) h.score = path_score(maps, scorer, h.region, h.region_from_base, few, bbox_margin);
   std::partial_sort(found.begin() + static_cast<long>(by_scan), found.begin() + static_cast<long>(keep), found.end(), best_first);
   found.resize(keep);
   std::sort(found.begin(), found.end(), best_first);   // by the path

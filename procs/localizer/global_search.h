@@ -8,10 +8,12 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "geometry/pose2.h"
 #include "localizer/localizer_options.h"
+#include "localizer/path_score.h"
 #include "localizer/region_maps.h"
 #include "localizer/scan_model.h"
 
@@ -31,15 +33,17 @@ std::vector<Eigen::Vector2d> coarse_points(const std::vector<Eigen::Vector2d>& p
 // of step_xy / step_theta, halved until below a tenth), rescored with `scorer`.
 Hypothesis refine(const RegionModel& region, Hypothesis h, const std::vector<Eigen::Vector2d>& base_points,
                   const BeamScorer& scorer, double step_xy, double step_theta);
+// The same with any score of a pose in h's region (e.g. path_score.h).
+Hypothesis refine(Hypothesis h, const std::function<double(const geometry::Pose2&)>& score, double step_xy, double step_theta);
 
 // The best `options.hypotheses` candidates, best first. With `path_points` (the views of the
-// path in the current base frame, view_path.h) every place keeps the heading the scan fits best
+// path, view_path.h, each scored in the region holding its place, path_score.h) every place keeps the heading the scan fits best
 // there; half the kept places are the scan's best, half those that best explain the whole
 // path: a hallway view fits every hallway of a building, the path along it far fewer places,
 // and the true one must not fall out of the kept candidates among look-alikes. Scores are then
 // the path's, best first.
 std::vector<Hypothesis> global_search(const RegionMaps& maps, const std::vector<Eigen::Vector2d>& base_points,
                                       const GlobalOptions& options, const ScanModel& scan,
-                                      const std::vector<Eigen::Vector2d>& path_points = {});
+                                      const std::vector<PlacedView>& path = {}, double bbox_margin = 0.3);
 
 }  // namespace rgnav::localizer

@@ -9,6 +9,7 @@
 
 #include "geometry/segment2.h"
 #include "localizer/motion_model.h"
+#include "localizer/path_score.h"
 #include "localizer/resampling.h"
 
 namespace rgnav::localizer {
@@ -42,6 +43,18 @@ const char* to_string(Mode m)
     case Mode::kUnknown: return "pose unknown";
     case Mode::kGlobal: return "global localization";
     case Mode::kTracking: return "tracking";
+  }
+  return "?";
+}
+
+const char* to_string(Unsure u)
+{
+  switch (u) {
+    case Unsure::kNone: return "none";
+    case Unsure::kNotConverged: return "not converged";
+    case Unsure::kShortTravel: return "short travel";
+    case Unsure::kPathElsewhere: return "path fits elsewhere";
+    case Unsure::kRival: return "rival";
   }
   return "?";
 }
@@ -109,6 +122,7 @@ bool Localizer::set_pose(int64_t region, const Pose2& region_from_base, double s
                    region_from_base.theta() + sigma_theta * n01(rng_));
   }
   mode_ = Mode::kTracking;
+  unsure_ = Unsure::kNone;
   estimate_ = Estimate{};
   estimate_.valid = true;
   estimate_.region = r;
@@ -137,6 +151,7 @@ void Localizer::start_global()
 {
   particles_.clear();
   mode_ = maps_.empty() ? Mode::kNoMap : Mode::kUnknown;
+  unsure_ = Unsure::kNotConverged;
   estimate_.valid = false;
   estimate_.converged = false;
   estimate_.confidence = 0;
@@ -222,23 +237,37 @@ bool Localizer::update(const sensors::LaserScan& scan, const Pose2& odom_from_ba
 
 void Localizer::weigh_estimate_resample(const std::vector<Vector2d>& points)
 {
+  const bool was_tracking = mode_ == Mode::kTracking;
+  std::optional<Hypothesis> elsewhere;   // a place the path singles out that the cloud's mode is not
   double w_avg = 0;
   const auto weights = weigh(points, &w_avg);
   estimate_from(weights, points);
   // From an unknown pose, one place that fits is not yet the place: it must keep fitting while
   // the robot moves (the look-alike offices of a hallway fit one scan equally well).
-  if (mode_ == Mode::kGlobal && estimate_.converged && global_travel_ >= options_.global.min_travel &&
-      distinguishable(estimate_.region, estimate_.region_from_base)) {
-    mode_ = Mode::kTracking;
-    views_.clear();
+  if (mode_ == Mode::kGlobal) {
+    unsure_ = !estimate_.converged                          ? Unsure::kNotConverged
+              : global_travel_ < options_.global.min_travel ? Unsure::kShortTravel
+                                                            : claim_check(&elsewhere);
+    if (unsure_ == Unsure::kNone) {
+      mode_ = Mode::kTracking;
+      views_.clear();
+    }
   }
   if (mode_ == Mode::kTracking && estimate_.inlier_ratio < options_.recovery.kidnap_inlier_ratio) reassociate(points);
-  if (mode_ == Mode::kTracking) {
-    flag_jump();
-    track_region_change();
+  // A jump while tracking: recovery particles from a search on one scan took over, at a place
+  // nothing has yet told apart from its look-alikes. Like any kidnap, it is localized globally
+  // anew (from the next scan), and claimed only once the views of the path single it out.
+  if (was_tracking && jumped()) {
+    ++stats_.kidnaps;
+    kidnap_flag_ = true;
+    start_global();
+    ++stats_.updates;
+    return;
   }
+  if (mode_ == Mode::kTracking) track_region_change();
   previous_ = estimate_;
   resample(weights, points, w_avg);
+  if (elsewhere) inject_at(*elsewhere);
   ++stats_.updates;
 }
 
@@ -267,55 +296,106 @@ bool Localizer::kidnapped(const std::vector<Vector2d>& points, const Pose2& odom
   return static_cast<double>(utime_ - low_inlier_since_) * 1e-6 >= rec.kidnap_after_s;
 }
 
-bool Localizer::distinguishable(int64_t region, const Pose2& region_from_base) const
+std::vector<Hypothesis> Localizer::path_places(int64_t region, const Pose2& region_from_base) const
 {
-  // The pose against the best places of the newest search elsewhere, all scored on the views
-  // of the path: a look-alike that explains them about as well means the robot has not yet
-  // seen what tells the places apart. (One scan is not enough: the offices along a hallway
+  // The pose and the best distinct places of the newest search elsewhere, all scored on the
+  // views of the path: a look-alike that explains them about as well means the robot has not
+  // yet seen what tells the places apart. (One scan is not enough: the offices along a hallway
   // look alike from their doors; the path past them differs.)
-  const RegionModel* m = maps_.region(region);
-  if (!m || views_.empty() || !odom_at_update_) return false;
-  if (last_search_.empty()) return true;
+  std::vector<Hypothesis> out;
+  if (!maps_.region(region) || views_.empty() || !odom_at_update_) return out;
   const auto& g = options_.global;
   const BeamScorer coarse(g.sigma, options_.scan.z_hit, options_.scan.z_rand, options_.scan.max_distance);
-  const auto cloud = views_.cloud(*odom_at_update_);
+  const auto views = views_.placed(*odom_at_update_);
+  // Every view scored in the region that holds the place it was taken from (path_score.h).
+  const auto score_in = [&](int64_t r) {
+    return [&, r](const Pose2& p) { return path_score(maps_, coarse, r, p, views, options_.handover_bbox_margin); };
+  };
   // Every candidate refined as precisely as the pose, which is refined too: a twin place must
   // not lose only because the search grid missed it by a few centimetres, nor the pose because
   // odometry drift bent the path a little.
   const double step_xy = 0.5 * g.cell, step_theta = M_PI / g.headings;
-  const Hypothesis best_here = refine(*m, {region, region_from_base, 0}, cloud, coarse, step_xy, step_theta);
+  out.push_back(refine({region, region_from_base, 0}, score_in(region), step_xy, step_theta));
+  // Distinct places only: the search keeps one candidate per freespace cell, so the best few
+  // are often neighbouring cells of one look-alike place.
+  std::vector<Hypothesis> taken{{region, region_from_base, 0}};
+  for (const auto& h : last_search_) {
+    if (!maps_.region(h.region)) continue;
+    if (std::any_of(taken.begin(), taken.end(), [&](const Hypothesis& t) { return same_place(t, h); })) continue;
+    taken.push_back(h);
+    const Hypothesis rival = refine(h, score_in(h.region), step_xy, step_theta);
+    // A candidate that climbs back onto the pose is the pose itself, no rival.
+    if (same_place(taken.front(), rival)) continue;
+    out.push_back(rival);
+    if (static_cast<int>(taken.size()) > g.rivals) break;
+  }
+  return out;
+}
+
+bool Localizer::same_place(const Hypothesis& a, const Hypothesis& b) const
+{
+  // A candidate nearby but turned by more than a few search steps is another place all the
+  // same (a room that looks like itself turned round).
+  const auto& g = options_.global;
+  const RegionModel* ra = maps_.region(a.region);
+  const RegionModel* rb = maps_.region(b.region);
+  if (!ra || !rb) return false;
+  const Pose2 pa = ra->map_from_region * a.region_from_base, pb = rb->map_from_region * b.region_from_base;
+  return (pa.translation() - pb.translation()).norm() < g.unique_distance &&
+         std::fabs(normalize_angle(pa.theta() - pb.theta())) < 3 * 2 * M_PI / g.headings;
+}
+
+double Localizer::path_margin() const
+{
+  // Two places that fit equally well differ by a sum of per-view noise, whose spread grows with
+  // the square root of the number of views: so does the margin, for the same risk per claim.
+  return options_.global.unique_margin * std::sqrt(static_cast<double>(views_.size()));
+}
+
+Unsure Localizer::why_not_distinguishable(int64_t region, const Pose2& region_from_base) const
+{
+  if (!maps_.region(region) || views_.empty() || !odom_at_update_) return Unsure::kShortTravel;
+  if (last_search_.empty()) return Unsure::kNone;
+  const auto places = path_places(region, region_from_base);
   // The path fits best somewhere else than the pose (hill climbing can wander off a wrong
   // pose towards a better place): the pose is not what the views say.
   const auto& eo = options_.estimate;
-  if ((best_here.region_from_base.translation() - region_from_base.translation()).norm() > eo.converged_xy ||
-      std::fabs(normalize_angle(best_here.region_from_base.theta() - region_from_base.theta())) > eo.converged_theta_deg * kDeg)
-    return false;
-  const double here = best_here.score;
-  // Two places that fit equally well differ by a sum of per-view noise, whose spread grows with
-  // the square root of the number of views: so does the margin, for the same risk per claim.
-  const double margin = g.unique_margin * std::sqrt(static_cast<double>(views_.size()));
-  // Distinct places only: the search keeps one candidate per freespace cell, so the best few
-  // are often neighbouring cells of one look-alike place. A candidate nearby but turned by
-  // more than a few search steps is another place all the same (a room that looks like itself
-  // turned round).
-  const double same_heading = 3 * 2 * M_PI / g.headings;
-  const auto same_place = [&](const Pose2& a, const Pose2& b) {
-    return (a.translation() - b.translation()).norm() < g.unique_distance && std::fabs(normalize_angle(a.theta() - b.theta())) < same_heading;
-  };
-  std::vector<Pose2> taken{m->map_from_region * region_from_base};
-  for (const auto& h : last_search_) {
-    const RegionModel* r = maps_.region(h.region);
-    if (!r) continue;
-    const Pose2 in_map = r->map_from_region * h.region_from_base;
-    if (std::any_of(taken.begin(), taken.end(), [&](const Pose2& t) { return same_place(t, in_map); })) continue;
-    taken.push_back(in_map);
-    const Hypothesis rival = refine(*r, h, cloud, coarse, step_xy, step_theta);
-    // A candidate that climbs back onto the pose is the pose itself, no rival.
-    if (same_place(taken.front(), r->map_from_region * rival.region_from_base)) continue;
-    if (rival.score > here - margin) return false;
-    if (static_cast<int>(taken.size()) > g.rivals) break;
-  }
-  return true;
+  const Pose2& refined = places.front().region_from_base;
+  if ((refined.translation() - region_from_base.translation()).norm() > eo.converged_xy ||
+      std::fabs(normalize_angle(refined.theta() - region_from_base.theta())) > eo.converged_theta_deg * kDeg)
+    return Unsure::kPathElsewhere;
+  const double margin = path_margin();
+  for (size_t k = 1; k < places.size(); ++k)
+    if (places[k].score > places.front().score - margin) return Unsure::kRival;
+  return Unsure::kNone;
+}
+
+Unsure Localizer::claim_check(std::optional<Hypothesis>* elsewhere) const
+{
+  // The estimate is claimed when it is distinguishable (above). When instead another place
+  // explains the views of the path better than every other by the margin, the filter's cloud
+  // has settled on a look-alike (a turned copy of the place, a neighbouring office) while the
+  // path says where the robot is: that place is returned for recovery particles (inject_at),
+  // and the filter, not the path alone, then decides.
+  elsewhere->reset();
+  if (!maps_.region(estimate_.region) || views_.empty() || !odom_at_update_) return Unsure::kShortTravel;
+  if (last_search_.empty()) return Unsure::kNone;
+  const auto places = path_places(estimate_.region, estimate_.region_from_base);
+  size_t best = 0;
+  for (size_t k = 1; k < places.size(); ++k)
+    if (places[k].score > places[best].score) best = k;
+  const double margin = path_margin();
+  bool clear = true;
+  for (size_t k = 0; k < places.size() && clear; ++k)
+    clear = k == best || same_place(places[k], places[best]) || places[k].score <= places[best].score - margin;
+  const auto& eo = options_.estimate;
+  const Pose2& e = estimate_.region_from_base;
+  const Pose2& b = places[best].region_from_base;
+  const bool at_estimate = places[best].region == estimate_.region && (b.translation() - e.translation()).norm() <= eo.converged_xy &&
+                           std::fabs(normalize_angle(b.theta() - e.theta())) <= eo.converged_theta_deg * kDeg;
+  if (clear && at_estimate) return Unsure::kNone;
+  if (clear) *elsewhere = places[best];
+  return best == 0 && at_estimate ? Unsure::kRival : Unsure::kPathElsewhere;
 }
 
 void Localizer::seed_global(const std::vector<Vector2d>& points, size_t count, std::vector<Particle>* out)
@@ -323,7 +403,8 @@ void Localizer::seed_global(const std::vector<Vector2d>& points, size_t count, s
   ++stats_.global_searches;
   // While unsure, candidates are ranked by the views of the path (global_search.h).
   const bool path = mode_ == Mode::kGlobal && views_.size() >= 2 && odom_at_update_;
-  const auto hyps = global_search(maps_, points, options_.global, options_.scan, path ? views_.cloud(*odom_at_update_) : std::vector<Vector2d>{});
+  const auto hyps = global_search(maps_, points, options_.global, options_.scan,
+                                  path ? views_.placed(*odom_at_update_) : std::vector<PlacedView>{}, options_.handover_bbox_margin);
   last_search_ = hyps;
   if (hyps.empty()) return;
   // Equal shares: the coarse search ranks places roughly; the filter tells them apart as the
@@ -527,20 +608,44 @@ void Localizer::reassociate(const std::vector<Vector2d>& points)
   estimate_.inlier_ratio = best_ratio;
 }
 
-void Localizer::flag_jump()
+void Localizer::inject_at(const Hypothesis& place)
+{
+  // Half the cloud (its lightest particles) around the place: enough that the next scans can
+  // confirm it against the cloud's mode, not so much that the path alone decides.
+  constexpr double kShare = 0.5;
+  const size_t n = static_cast<size_t>(std::lround(kShare * static_cast<double>(particles_.size())));
+  if (n == 0) return;
+  std::vector<size_t> order(particles_.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::nth_element(order.begin(), order.begin() + static_cast<long>(n), order.end(),
+                   [&](size_t a, size_t b) { return particles_[a].weight < particles_[b].weight; });
+  const auto& g = options_.global;
+  const double sxy = g.seed_xy, sth = g.seed_theta_deg * kDeg;
+  std::normal_distribution<double> n01(0.0, 1.0);
+  const double w = 1.0 / static_cast<double>(particles_.size());
+  for (size_t k = 0; k < n; ++k) {
+    Particle& p = particles_[order[k]];
+    p.region = place.region;
+    p.weight = w;
+    p.pose = Pose2(place.region_from_base.x() + sxy * n01(rng_), place.region_from_base.y() + sxy * n01(rng_),
+                   place.region_from_base.theta() + sth * n01(rng_));
+  }
+  double total = 0;
+  for (const auto& p : particles_) total += p.weight;
+  for (auto& p : particles_) p.weight /= total;
+  stats_.recovery_particles += static_cast<int64_t>(n);
+}
+
+bool Localizer::jumped() const
 {
   // Recovery particles that take over move the estimate farther than the robot drove: the robot
   // was somewhere else than the filter thought (a kidnap the inlier test did not catch).
-  if (!previous_ || !previous_->valid || !previous_->converged || !estimate_.valid) return;
+  if (!previous_ || !previous_->valid || !previous_->converged || !estimate_.valid) return false;
   const RegionModel* was = maps_.region(previous_->region);
   const RegionModel* now = maps_.region(estimate_.region);
-  if (!was || !now) return;
+  if (!was || !now) return false;
   const Pose2 expected = was->map_from_region * previous_->region_from_base * previous_->odom_from_base.between(estimate_.odom_from_base);
-  if ((estimate_.map_from_base.translation() - expected.translation()).norm() < options_.recovery.kidnap_jump) return;
-  ++stats_.kidnaps;
-  kidnap_flag_ = true;
-  pending_pass_.reset();
-  last_region_ = 0;
+  return (estimate_.map_from_base.translation() - expected.translation()).norm() >= options_.recovery.kidnap_jump;
 }
 
 void Localizer::track_region_change()

@@ -9,8 +9,12 @@
 // sampling; resampling is low-variance, when the weights have become uneven. When the
 // measurement likelihood falls (augmented MCL) particles are replaced by candidates of a global
 // scan-to-region search on the current scan (sensor resetting). The same search starts global
-// localization from an unknown pose; a kidnap is flagged when the estimate stops explaining the
-// scans or jumps.
+// localization from an unknown pose, which claims a pose only when the views of the robot's
+// last metres (view_path.h, each scored in the region holding its place, path_score.h) fit it
+// clearly better than every other candidate place; when they single out another place than the
+// cloud's mode, half the cloud is moved there and the filter decides. A kidnap is flagged when
+// the estimate stops explaining the scans or jumps (recovery particles taking over); either way
+// the robot is localized globally anew, and a pose is claimed only by the same test.
 #pragma once
 
 #include <Eigen/Core>
@@ -40,6 +44,18 @@ enum class Mode
   kTracking,     // converged
 };
 const char* to_string(Mode m);
+
+// Why global localization has not claimed a pose yet (the newest update's reason; kNone once
+// claimed): for diagnostics and the benchmark's trace.
+enum class Unsure
+{
+  kNone,
+  kNotConverged,     // no single cluster holds the weight tightly enough
+  kShortTravel,      // not yet driven min_travel since the pose became unknown
+  kPathElsewhere,    // the views of the path fit best somewhere else than the estimate
+  kRival,            // another place explains the views of the path nearly as well
+};
+const char* to_string(Unsure u);
 
 struct Particle
 {
@@ -117,11 +133,17 @@ class Localizer
   const LocalizerStats& stats() const { return stats_; }
   const RegionMaps& maps() const { return maps_; }
   // No place of the newest global search farther than unique_distance from this pose explains
-  // the views since the pose became unknown (view_path.h) nearly as well as the pose does:
+  // the views of the path (view_path.h, path_score.h) nearly as well as the pose does:
   // what a claim from global localization needs. False outside global localization (no views).
   // The benchmark asks it of the true pose: if false, what the robot saw is ambiguous by the
   // map's own repetition, and staying unsure is the right answer.
-  bool distinguishable(int64_t region, const geometry::Pose2& region_from_base) const;
+  bool distinguishable(int64_t region, const geometry::Pose2& region_from_base) const
+  {
+    return why_not_distinguishable(region, region_from_base) == Unsure::kNone;
+  }
+  // What keeps the pose from being distinguishable (kNone if it is).
+  Unsure why_not_distinguishable(int64_t region, const geometry::Pose2& region_from_base) const;
+  Unsure unsure() const { return unsure_; }
   // Set when a kidnap was flagged since the last call.
   bool take_kidnap_flag();
   std::vector<GatewayPassed> take_gateway_events();
@@ -139,7 +161,18 @@ class Localizer
   void replace_lightest(const std::vector<Eigen::Vector2d>& points, double share);
   const RegionLink* link_between(int64_t here, int64_t there) const;
   void reassociate(const std::vector<Eigen::Vector2d>& points);
-  void flag_jump();
+  // The pose refined on the views of the path, then the newest search's distinct places refined
+  // the same way (the pose first; scores on the views).
+  std::vector<Hypothesis> path_places(int64_t region, const geometry::Pose2& region_from_base) const;
+  bool same_place(const Hypothesis& a, const Hypothesis& b) const;
+  double path_margin() const;
+  // Why the estimate cannot be claimed yet (kNone: it can); `elsewhere` is set to the place the
+  // path singles out when that is not the estimate.
+  Unsure claim_check(std::optional<Hypothesis>* elsewhere) const;
+  // Half the cloud replaced by particles around `place` (the lightest go).
+  void inject_at(const Hypothesis& place);
+  // The estimate moved farther than odometry says the robot did since the update before.
+  bool jumped() const;
   void track_region_change();
   // True when the estimate has not explained the scans for kidnap_after_s.
   bool kidnapped(const std::vector<Eigen::Vector2d>& points, const geometry::Pose2& odom_from_base);
@@ -150,6 +183,7 @@ class Localizer
   BeamScorer scorer_;
   std::mt19937_64 rng_;
   Mode mode_ = Mode::kNoMap;
+  Unsure unsure_ = Unsure::kNone;
   std::vector<Particle> particles_;
   Estimate estimate_;
   LocalizerStats stats_;

@@ -23,13 +23,11 @@ void ViewPath::add(const geometry::Pose2& odom_from_base, std::vector<Eigen::Vec
   while (views_.size() > 1 && travel - views_.front().travel > length_) views_.pop_front();
 }
 
-std::vector<Eigen::Vector2d> ViewPath::cloud(const geometry::Pose2& odom_now) const
+std::vector<PlacedView> ViewPath::placed(const geometry::Pose2& odom_now) const
 {
-  std::vector<Eigen::Vector2d> out;
-  for (const auto& v : views_) {
-    const geometry::Pose2 now_from_then = odom_now.between(v.odom_from_base);
-    for (const auto& p : v.points) out.push_back(now_from_then * p);
-  }
+  std::vector<PlacedView> out;
+  out.reserve(views_.size());
+  for (const auto& v : views_) out.push_back({odom_now.between(v.odom_from_base), &v.points});
   return out;
 }
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "geometry/pose2.h"
+#include "localizer/path_score.h"
 
 namespace rgnav::localizer {
 
@@ -30,9 +31,10 @@ class ViewPath
   size_t size() const { return views_.size(); }
   // The current scan (base frame end points) at odometry pose odom_from_base.
   void add(const geometry::Pose2& odom_from_base, std::vector<Eigen::Vector2d> points);
-  // Every view's points in the frame of the robot at odom_now (its newest view's pose): one
-  // cloud to score a candidate "the robot stands here now" against the whole path.
-  std::vector<Eigen::Vector2d> cloud(const geometry::Pose2& odom_now) const;
+  // Every view with its pose in the frame of the robot at odom_now (its newest view's pose), to
+  // score a candidate "the robot stands here now" against the whole path (path_score.h). The
+  // points stay in their own view's frame; valid while the path is unchanged.
+  std::vector<PlacedView> placed(const geometry::Pose2& odom_now) const;
 
  private:
   struct View

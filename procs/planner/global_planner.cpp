@@ -277,6 +277,42 @@ std::optional<std::pair<int64_t, Eigen::Vector2d>> GlobalPlanner::start_beside(i
   return std::nullopt;
 }
 
+std::optional<GlobalPlanner::WayBack> GlobalPlanner::back_along_track(int64_t region, const Eigen::Vector2d& p,
+                                                                     const std::vector<Eigen::Vector2d>& track)
+{
+  // Where the robot stands the map may know nothing (collision avoidance took it aside for a
+  // person into space the map never saw as free): the places it came by are free, its body was
+  // there. The first of them, going back, from which it is not cut off ends the way back; a
+  // piece of the track across a line of the map (a localization jump) ends the search.
+  const RegionPlanner* rp = region_planner(region);
+  if (!rp) return std::nullopt;
+  WayBack back;
+  back.points.push_back(p);
+  for (const Eigen::Vector2d& q : track) {
+    const Eigen::Vector2d& prev = back.points.back();
+    if (rp->crosses_line(prev, q)) return std::nullopt;
+    back.length += (q - prev).norm();
+    back.points.push_back(q);
+    if (!rp->cut_off(q)) {
+      back.region = region;
+      back.at = q;
+      return back;
+    }
+    if (const auto beside = start_beside(region, q)) {
+      // Ends in the region beside: the way back in its frame, through the map frame (as
+      // neighbours are placed consistently there), ending at the place it gave.
+      const geometry::Pose2 there_from_here =
+          map_.region(beside->first)->map_from_region.inverse() * map_.region(region)->map_from_region;
+      for (auto& point : back.points) point = there_from_here * point;
+      back.points.back() = beside->second;
+      back.region = beside->first;
+      back.at = beside->second;
+      return back;
+    }
+  }
+  return std::nullopt;
+}
+
 std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string* why, PlanStats* stats)
 {
   PlanStats local_stats;
@@ -300,12 +336,79 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
   if (!is_live(gr))
     return fail(no_path_reason(NoPathCause::kGoalUnreachable, "goal region " + std::to_string(request.goal_region) + " is not in the map"));
   Eigen::Vector2d start_point = request.start;
+  std::optional<WayBack> way_back;   // the robot's own track back to where the map has room
   if (region_planner(sr)->cut_off(start_point)) {
     if (const auto beside = start_beside(sr, start_point)) {
       sr = beside->first;
       start_point = beside->second;
+    } else if ((way_back = back_along_track(sr, start_point, request.track))) {
+      sr = way_back->region;
+      start_point = way_back->at;
     }
   }
+  // The robot's place may lie in the grids of regions overlapping its own without a gateway
+  // between (a junction's or a hall's floor split among several regions). Planned only from its
+  // own region, the route may go out through that region's gateway and back in through the
+  // other's (to and fro), and the robot, still in its own region on the other's ground, never
+  // gets onto the route's next leg. Every region whose grid holds the place is a start of the
+  // same search (the cheapest wins; their region paths are planned only where the search goes).
+  std::vector<std::pair<int64_t, Eigen::Vector2d>> also;
+  if (!way_back) {
+    // (A region joined to the start's by a gateway is in the search already, a crossing away.)
+    std::set<int64_t> through_gateway{sr};
+    for (const auto& [gid, g] : map_.gateways()) {
+      if (g.neutralized || g.region_b == 0) continue;
+      const int64_t a = map_.resolve(g.region_a), b = map_.resolve(g.region_b);
+      if (a == sr) through_gateway.insert(b);
+      if (b == sr) through_gateway.insert(a);
+    }
+    const Eigen::Vector2d in_map = map_.region(sr)->map_from_region * start_point;
+    const double margin = options_.grid.neighbour_margin;
+    for (const auto& [id, r] : map_.regions()) {
+      if (through_gateway.count(id) || !is_live(id)) continue;
+      const Eigen::Vector2d there = r.map_from_region.inverse() * in_map;
+      if ((there.array() < r.bbox_min.array() - margin).any() || (there.array() > r.bbox_max.array() + margin).any()) continue;
+      // Held: a free cell of the region's grid joined to the main piece of its own free space
+      // (a grid sees its neighbours' free space too: a region may be mapped thinly where
+      // another, overlapping it, was mapped well), with room for the whole body in what the
+      // grid knows (not standing partly in its unknown_overlap: that grid knows the place worse).
+      const RegionPlanner* rp = region_planner(id);
+      if (!rp) continue;
+      const RegionGrid& grid = rp->grid();
+      const auto cell = grid.nearest_free(grid.cell_of(there), 0.0);
+      if (cell && grid.component(*cell) == grid.main_component() && grid.clearance(*cell) >= options_.grid.robot_radius)
+        also.emplace_back(id, there);
+    }
+  }
+  for (;;) {
+    int started = -1;
+    auto route = search(request, sr, start_point, also, way_back, why, stats, &started);
+    if (!route || started < 0) return route;
+    // Begun in another region: that region's grid may hold free cells where the robot's own
+    // region has a wall line it does not (each region's grid draws its own lines only). Its
+    // first leg must cross no line of the start region's map; else that start is dropped.
+    const auto& leg = route->legs.front();
+    const geometry::Pose2 here_from_leg =
+        map_.region(sr)->map_from_region.inverse() * map_.region(leg.region_id)->map_from_region;
+    const RegionPlanner* own = region_planner(sr);
+    bool crosses = false;
+    for (size_t i = 0; i + 1 < leg.points.size() && !crosses; ++i)
+      crosses = own->crosses_line(here_from_leg * leg.points[i], here_from_leg * leg.points[i + 1]);
+    if (!crosses) return route;
+    also.erase(also.begin() + started);
+  }
+}
+
+std::optional<Route> GlobalPlanner::search(const PlanRequest& request, int64_t sr, const Eigen::Vector2d& start_point,
+                                           const std::vector<std::pair<int64_t, Eigen::Vector2d>>& also,
+                                           const std::optional<WayBack>& way_back, std::string* why, PlanStats* stats,
+                                           int* started)
+{
+  auto fail = [&](const std::string& text) -> std::optional<Route> {
+    if (why) *why = text;
+    return std::nullopt;
+  };
+  const int64_t gr = map_.resolve(request.goal_region);
   // (A start on no free cell may still step straight to a goal near it: RegionPlanner::plan.)
   const bool a_step = sr == gr && (request.goal - start_point).norm() <= options_.grid.robot_step;
   if (!a_step && !region_planner(gr)->standable(request.goal, request.goal_reach))
@@ -327,6 +430,16 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
   join(start, sr);
   join(goal, gr);
   if (sr == gr) arcs.push_back({start, goal, false, sr, 0});
+  // The same place as a start in the regions overlapping the start's (after the goal: all of
+  // them from `start` on are this request's nodes).
+  std::vector<int> starts{start};
+  for (const auto& [region, point] : also) {
+    const int n = static_cast<int>(nodes.size());
+    nodes.push_back({region, 0, point, map_.region(region)->map_from_region * point, -1, false, true});
+    starts.push_back(n);
+    join(n, region);
+    if (region == gr) arcs.push_back({goal, n, false, gr, 0});
+  }
   std::vector<std::vector<int>> adjacent(nodes.size());
   for (size_t i = 0; i < arcs.size(); ++i) {
     adjacent[static_cast<size_t>(arcs[i].from)].push_back(static_cast<int>(i));
@@ -363,6 +476,7 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
 
   std::vector<int> route_arcs;
   double route_cost = 0;
+  int first = start;   // the start the route begins at
   for (int iteration = 0;; ++iteration) {
     const auto t0 = std::chrono::steady_clock::now();
     ++stats->searches;
@@ -375,8 +489,10 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
     std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
     const Eigen::Vector2d goal_map = nodes[static_cast<size_t>(goal)].map_point;
     auto h = [&](int n) { return (nodes[static_cast<size_t>(n)].map_point - goal_map).norm() / h_speed; };
-    g[static_cast<size_t>(start)] = 0;
-    open.push({h(start), start});
+    for (int n : starts) {
+      g[static_cast<size_t>(n)] = 0;
+      open.push({h(n), n});
+    }
     while (!open.empty()) {
       const int u = open.top().second;
       open.pop();
@@ -417,11 +533,12 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
       return fail(no_path_reason(NoPathCause::kGoalUnreachable, route + (closed.empty() ? "" : " (closed gateways: " + closed + ")")));
     }
     route_arcs.clear();
-    for (int n = goal; n != start;) {
+    for (int n = goal; via[static_cast<size_t>(n)] >= 0;) {
       const int ai = via[static_cast<size_t>(n)];
       route_arcs.push_back(ai);
       const Arc& a = arcs[static_cast<size_t>(ai)];
       n = a.from == n ? a.to : a.from;
+      first = n;
     }
     std::reverse(route_arcs.begin(), route_arcs.end());
     route_cost = g[static_cast<size_t>(goal)];
@@ -440,13 +557,14 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
     if (all_exact) break;
   }
 
+  if (started) *started = first == start ? -1 : first - goal - 1;
   // The route: one leg per region on the way, joined by the gateway arcs between them.
   Route route;
   route.map_version = map_.version;
   route.cost_s = route_cost;
   route.goal_heading = request.goal_heading;
   route.has_goal_heading = request.has_goal_heading;
-  int at = start;
+  int at = first;
   int64_t crossed = 0;   // the gateway just crossed (entry of the next leg)
   for (int ai : route_arcs) {
     const Arc& a = arcs[static_cast<size_t>(ai)];
@@ -492,6 +610,17 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
     leg.min_clearance = clearance;
     route.legs.push_back(std::move(leg));
     crossed = 0;
+  }
+  if (way_back && first == start && !route.legs.empty() && route.legs.front().region_id == sr) {
+    // The route begins with the way back: the first leg starts where the robot stands.
+    RouteLeg& first = route.legs.front();
+    std::vector<Eigen::Vector2d> points = way_back->points;
+    points.insert(points.end(), first.points.begin() + 1, first.points.end());
+    first.points = std::move(points);
+    first.length += way_back->length;
+    // (min_clearance stays the planned part's: along the track the map knows nothing to measure.)
+    route.length += way_back->length;
+    route.cost_s += way_back->length / speed;
   }
   smooth_crossings(&route);
   if (why) why->clear();

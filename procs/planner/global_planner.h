@@ -6,6 +6,18 @@
 // uses only planned or measured edges (lazy evaluation: few region paths are planned, and the
 // route is the cheapest by real path lengths). Gateway edges cost what EdgeCosts says; closed
 // ones are left out. The region planners are built on first use and kept per region version.
+//
+// Where the route starts (the robot's place need not be where its region's grid has room):
+//   rule                                   | failure it fixes                          | test
+//   pose region's free space, else the     | at a gateway the pose's region has no room | Planner.StartsWhereTheRobotStands...
+//   region beside (start_beside)           | for the body, the neighbour has            |
+//   else back along the robot's own track  | yielding took it into space no region knows:| GlobalPlanner.ARobotCutOffGoesBack...,
+//   (back_along_track, never across a line)| "start cut off" for every later goal        | Planner.ARobotCutOffIsRoutedBack...
+//   the cheapest of every region whose     | overlapping regions without a gateway: out | GlobalPlanner.AStartInOverlapping...
+//   grid holds the place in its main piece | one's gateway and back in (to and fro)     |
+//   (no gateway joins it to the start's),  |                                            |
+//   its first leg across no line of the    | a thin region's grid free where the robot's| (lab_ipa: stuck at a wall end, 6 goals)
+//   robot's own region                     | own region has a wall                      |
 #pragma once
 
 #include <Eigen/Core>
@@ -42,6 +54,11 @@ struct PlanRequest
   double now_s = 0;                // message time, for closed gateways
   int64_t avoid_gateway = 0;       // a gateway not to cross (is there a way round it?)
   bool ignore_closed = false;      // plan as if no gateway were closed (is a closed one all that is in the way?)
+  // The robot's own recent places, start region frame, newest first (Planner keeps them): its
+  // body was there, so they are free whatever the map says. A start cut off from the region's
+  // free space (yielding to a person into space the map never saw) goes back along them to the
+  // first place that is not cut off; never across a line of the map.
+  std::vector<Eigen::Vector2d> track{};
 };
 
 struct PlanStats
@@ -72,6 +89,16 @@ class GlobalPlanner
   // The robot at p in `region` cut off from its free space there, but standing in the main free
   // space of a neighbour across a gateway within reach: that region and p in its frame.
   std::optional<std::pair<int64_t, Eigen::Vector2d>> start_beside(int64_t region, const Eigen::Vector2d& p);
+  // The robot at p in `region` cut off (and no start_beside): back along its `track` (region
+  // frame, newest first) to the first place from which it is not, in `region` or beside it.
+  struct WayBack
+  {
+    int64_t region = 0;                  // where the way back ends ...
+    Eigen::Vector2d at{0, 0};            // ... and the place there, in its frame
+    std::vector<Eigen::Vector2d> points; // p, then the track's places up to `at`, in `region`'s frame
+    double length = 0;                   // [m]
+  };
+  std::optional<WayBack> back_along_track(int64_t region, const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& track);
   // A place to send the robot in a region given by name only: the free cell of its grid with
   // the largest clearance nearest to its freespace centroid. nullopt for a region with no free cell.
   std::optional<Eigen::Vector2d> region_goal_point(int64_t region);
@@ -84,6 +111,14 @@ class GlobalPlanner
   size_t blocked_places() const { return places_.size(); }
 
  private:
+  // The cheapest route from the robot at start_point in region sr (its way back along the track
+  // first, if any), or from the same place in the regions `also` (region, place in its frame),
+  // to the request's goal; stats added to; *started: the index in `also` the route begins at (-1:
+  // the robot's own region).
+  std::optional<Route> search(const PlanRequest& request, int64_t sr, const Eigen::Vector2d& start_point,
+                              const std::vector<std::pair<int64_t, Eigen::Vector2d>>& also,
+                              const std::optional<WayBack>& way_back, std::string* why, PlanStats* stats,
+                              int* started = nullptr);
   // A traversal the search may take: through a region between two points (graph nodes, or the
   // request's start / goal), or across a gateway.
   struct Arc

@@ -21,6 +21,12 @@ constexpr double kNoPathRetryS = 10.0;
 // [m] a turn on the spot's target lies this far out along the wanted heading: beyond collision
 // avoidance's goal tolerance, near enough that it has barely set off when the heading is reached.
 constexpr double kTurnTargetM = 0.5;
+// [m] the robot's track keeps a place this far from the one before (a tenth of the robot's
+// width: the straight pieces between follow where its body went) ...
+constexpr double kTrackStep = 0.1;
+// [m] ... and starts anew when the pose jumps this far between two updates (the localizer
+// corrected itself or relocalized: the line between was never driven).
+constexpr double kTrackJump = 0.5;
 
 }  // namespace
 
@@ -134,6 +140,53 @@ void Planner::finish(GoalStatus status, const std::string& reason, int64_t utime
 void Planner::on_pose(const RobotPose& pose)
 {
   pose_ = pose;
+  record_track();
+}
+
+void Planner::record_track()
+{
+  if (!has_map_ || options_.execution.track_back_m <= 0) return;
+  const auto& map = global_.map();
+  const auto* here = map.region(map.resolve(pose_->region_id));
+  if (!here) return;
+  const Eigen::Vector2d in_map = here->map_from_region * pose_->region_from_base.translation();
+  double step = 0;
+  if (!track_.empty()) {
+    const auto* last = map.region(map.resolve(track_.front().region));
+    step = last ? (last->map_from_region * track_.front().point - in_map).norm() : kTrackJump + 1;
+    if (step < kTrackStep) return;
+    if (step > kTrackJump) {
+      track_.clear();
+      track_length_ = 0;
+      step = 0;
+    }
+  }
+  track_.push_front({pose_->region_id, pose_->region_from_base.translation(), step});
+  track_length_ += step;
+  while (track_.size() > 2 && track_length_ - track_[track_.size() - 2].step >= options_.execution.track_back_m) {
+    track_.pop_back();
+    track_length_ -= track_.back().step;
+    track_.back().step = 0;
+  }
+}
+
+std::vector<Eigen::Vector2d> Planner::track_in(int64_t region) const
+{
+  std::vector<Eigen::Vector2d> out;
+  const auto& map = global_.map();
+  const auto* to = map.region(map.resolve(region));
+  if (!to) return out;
+  const Pose2 region_from_map = to->map_from_region.inverse();
+  for (const auto& place : track_) {
+    if (place.region == region) {
+      out.push_back(place.point);
+      continue;
+    }
+    const auto* from = map.region(map.resolve(place.region));
+    if (!from) break;   // a region gone from the map: the track ends there
+    out.push_back(region_from_map * from->map_from_region * place.point);
+  }
+  return out;
 }
 
 void Planner::on_blocked(int64_t utime, bool blocked)
@@ -245,6 +298,7 @@ PlanRequest Planner::request_from_pose(int64_t utime) const
   req.goal_heading = goal_->region_from_goal.theta();
   if (goal_->beyond_known) req.goal_reach = options_.grid.beyond_known_reach;
   req.now_s = utime * kUs;
+  req.track = track_in(pose_->region_id);
   return req;
 }
 

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <string>
 #include <vector>
@@ -133,6 +134,10 @@ class Planner
   void resolve_goal();
   // Every region and gateway of the route is still in the map.
   bool route_valid() const;
+  // Keeps the robot's own track (places kTrackStep apart, execution.track_back_m long) from the pose.
+  void record_track();
+  // The track's places in `region`'s frame (through the map frame), newest first.
+  std::vector<Eigen::Vector2d> track_in(int64_t region) const;
 
   PlannerOptions options_;
   GlobalPlanner global_;
@@ -162,6 +167,14 @@ class Planner
   int64_t replans_ = 0;
   int64_t map_version_ = 0;
   PlanStats last_stats_;
+  struct TrackPlace
+  {
+    int64_t region = 0;
+    Eigen::Vector2d point{0, 0};   // region frame
+    double step = 0;               // [m] to the next older place
+  };
+  std::deque<TrackPlace> track_;   // newest first
+  double track_length_ = 0;        // [m] sum of the steps
 };
 
 }  // namespace rgnav::planner

@@ -73,6 +73,7 @@ ExecutionOptions load_execution(const config::Config& c, const config::RobotDesc
   e.closed_after_s = c.number("closed_after_s", e.closed_after_s, e.blocked_after_s, 3600.0);
   e.switch_gain = c.number("switch_gain", e.switch_gain, 0.0, 1.0);
   e.off_route_m = c.number("off_route_m", e.off_route_m, 0.1, 50.0);
+  e.track_back_m = c.number("track_back_m", e.track_back_m, 0.0, 100.0);
   // Targets are re-sent every resend period; a pose older than that many periods stops them.
   e.pose_timeout_s = c.number("pose_timeout_s", e.pose_timeout_s, e.resend_period_s, 60.0);
   return e;

@@ -68,6 +68,8 @@ struct ExecutionOptions
   double closed_after_s = 30.0;        // [s] ... and with no way round, blocked this long before it counts as closed
   double switch_gain = 0.15;           // a new route replaces the running one only if this much cheaper (share)
   double off_route_m = 1.5;            // [m] farther than this from the route: replan from where the robot is
+  double track_back_m = 8.0;           // [m] the robot's own track kept this long: a start cut off from the map's free
+                                       // space goes back along it (GlobalPlanner::back_along_track); 0: off
   double pose_timeout_s = 2.0;         // [s] no pose this long: targets are no longer sent
 };
 

@@ -36,6 +36,13 @@ bool RegionPlanner::cut_off(const Eigen::Vector2d& p, double reach) const
   return !grid_.nearest_reachable_in(p, grid_.main_component(), r).has_value();
 }
 
+bool RegionPlanner::crosses_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const
+{
+  for (const auto& [u, v] : walls_)
+    if (geometry::segments_cross(a, b, u, v)) return true;
+  return false;
+}
+
 std::optional<RegionPath> RegionPlanner::plan(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::string* why,
                                               double from_reach, double to_reach, bool to_clear_of_walls,
                                               bool from_is_robot) const
@@ -68,8 +75,7 @@ std::optional<RegionPath> RegionPlanner::plan(const Eigen::Vector2d& from, const
   if (!goal) return fail("goal is blocked");
   if (to_clear_of_walls && *goal != grid_.cell_of(to)) {
     const Eigen::Vector2d g = grid_.center_of(*goal);
-    for (const auto& [a, b] : walls_)
-      if (geometry::segments_cross(g, to, a, b)) return fail("goal is behind a wall");
+    if (crosses_line(g, to)) return fail("goal is behind a wall");
   }
   QuadSearchStats stats;
   const auto cells = tree_.search(*start, *goal, &stats);

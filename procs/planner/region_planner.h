@@ -51,6 +51,8 @@ class RegionPlanner
   // (< 0: adapt_distance) that it gets to straight, clear of the map's lines. Standing there,
   // nothing changes that.
   bool cut_off(const Eigen::Vector2d& p, double reach = -1) const;
+  // The straight line a->b crosses a line of the region's map.
+  bool crosses_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
 
  private:
   std::vector<Eigen::Vector2d> smooth(const std::vector<Eigen::Vector2d>& points) const;

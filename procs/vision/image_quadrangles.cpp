@@ -62,21 +62,37 @@ std::vector<ImageSegment> detect_segments(const cv::Mat& gray)
 
 std::vector<ImageSegment> merge_segments(std::vector<ImageSegment> segs, const QuadrangleOptions& o)
 {
-  const double max_angle = o.merge_angle_deg * M_PI / 180.0;
-  // Repeat until nothing merges: a merged segment may now reach a third one.
+  // The angle test as a cosine (no acos per pair: merging compares every pair, and the
+  // segments of a textured view run to a thousand).
+  const double min_cos = std::cos(o.merge_angle_deg * M_PI / 180.0);
+  std::vector<Vector2d> dir(segs.size());
+  std::vector<double> len(segs.size());
+  std::vector<char> gone(segs.size(), 0);
+  const auto update = [&](size_t i) {
+    len[i] = length(segs[i]);
+    dir[i] = len[i] > 1e-9 ? Vector2d((segs[i].b - segs[i].a) / len[i]) : Vector2d::Zero();
+  };
+  for (size_t i = 0; i < segs.size(); ++i) update(i);
+  // Passes until nothing merges: a merged segment may now reach a third one. Within a pass a
+  // segment that grew is compared with all the others again.
   for (bool merged = true; merged;) {
     merged = false;
-    for (size_t i = 0; i < segs.size() && !merged; ++i)
-      for (size_t j = i + 1; j < segs.size() && !merged; ++j) {
+    for (size_t i = 0; i < segs.size(); ++i) {
+      if (gone[i] || len[i] < 1e-9) continue;
+      for (size_t j = 0; j < segs.size(); ++j) {
+        if (j == i || gone[j] || len[j] < 1e-9) continue;
+        const Vector2d &us = dir[i], &ut = dir[j];
+        // alpha_max, or what the shorter one's direction is good for: its ends are found to
+        // about D_L, so a 20 px piece of an edge leans by up to atan(D_L / 20 px) = 6 degrees.
+        const double cos_ij = std::fabs(us.dot(ut)), shorter = std::min(len[i], len[j]);
+        if (cos_ij < min_cos && cos_ij < shorter / std::hypot(o.merge_distance_px, shorter)) continue;
         const ImageSegment &s = segs[i], &t = segs[j];
-        if (length(s) < 1e-9 || length(t) < 1e-9 || line_angle(s, t) > max_angle) continue;
         // D_L: mean distance of each one's end points from the other's line.
-        const Vector2d us = (s.b - s.a).normalized(), ut = (t.b - t.a).normalized();
         const double dl = 0.25 * (std::fabs(geometry::cross(us, t.a - s.a)) + std::fabs(geometry::cross(us, t.b - s.a)) +
                                   std::fabs(geometry::cross(ut, s.a - t.a)) + std::fabs(geometry::cross(ut, s.b - t.a)));
         if (dl > o.merge_distance_px) continue;
         // Along the common line: overlap, or a gap below D_gap.
-        const double t0 = (t.a - s.a).dot(us), t1 = (t.b - s.a).dot(us), ls = length(s);
+        const double t0 = (t.a - s.a).dot(us), t1 = (t.b - s.a).dot(us), ls = len[i];
         const double gap = std::max({0.0, std::min(t0, t1) - ls, -std::max(t0, t1)});
         if (gap > o.merge_gap_px) continue;
         // The new segment: the two end points farthest apart.
@@ -86,15 +102,20 @@ std::vector<ImageSegment> merge_segments(std::vector<ImageSegment> segs, const Q
           for (int b = a + 1; b < 4; ++b)
             if ((p[b] - p[a]).norm() > length(m)) m = {p[a], p[b]};
         segs[i] = m;
-        segs.erase(segs.begin() + static_cast<long>(j));
+        update(i);
+        gone[j] = 1;
         merged = true;
+        j = static_cast<size_t>(-1);   // the grown segment against all again (++j makes it 0)
       }
+    }
   }
-  segs.erase(std::remove_if(segs.begin(), segs.end(), [&](const ImageSegment& s) { return length(s) < o.min_length_px; }),
-             segs.end());
-  std::sort(segs.begin(), segs.end(), [](const ImageSegment& a, const ImageSegment& b) { return length(a) > length(b); });
-  if (segs.size() > static_cast<size_t>(o.max_segments)) segs.resize(static_cast<size_t>(o.max_segments));
-  return segs;
+  std::vector<ImageSegment> out;
+  out.reserve(segs.size());
+  for (size_t i = 0; i < segs.size(); ++i)
+    if (!gone[i] && len[i] >= o.min_length_px) out.push_back(segs[i]);
+  std::stable_sort(out.begin(), out.end(), [](const ImageSegment& a, const ImageSegment& b) { return length(a) > length(b); });
+  if (out.size() > static_cast<size_t>(o.max_segments)) out.resize(static_cast<size_t>(o.max_segments));
+  return out;
 }
 
 std::vector<Quadrangle> group_quadrangles(const std::vector<ImageSegment>& segs, const QuadrangleOptions& o)

@@ -1,5 +1,6 @@
 // Quadrangle hypotheses in an image (diss. 3.3.1): line segments (OpenCV's LSD line segment
-// detector), merged where they lie on one line (3.1.1: alpha_max 1 degree, D_L 2 px, D_gap 70 px),
+// detector), merged where they lie on one line (3.1.1: alpha_max 1 degree — or, for a piece too
+// short to hold its direction that well, atan(D_L / its length) —, D_L 2 px, D_gap 70 px),
 // short ones dropped, then grouped in pairs of corners (3.1, Fig. 3.2, the non-restrictive case:
 // alpha 20..160 degrees, DN_max 25 px, DO_min 15 px): two corners i-j and k-l form the quadrangle
 // i-j-l-k when at least one of the links i-k, j-l is a corner too (the fourth corner may be hidden

@@ -1,5 +1,7 @@
 #include "vision/rectangle_detector.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -40,6 +42,25 @@ std::vector<Sample> side_samples(const Quadrangle& q, const cv::Mat& disp16, int
     }
   }
   return out;
+}
+
+// Mean grey level inside the quadrangle shrunk toward its centre (its edges and frame left out):
+// what the object shows (a whiteboard is white), -1 when nothing of it is in the image.
+double grey_inside(const cv::Mat& gray, const Quadrangle& q)
+{
+  const Eigen::Vector2d centre = (q[0] + q[1] + q[2] + q[3]) / 4.0;
+  std::vector<cv::Point> poly;
+  for (const auto& c : q) {
+    const Eigen::Vector2d p = centre + 0.8 * (c - centre);
+    poly.emplace_back(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
+  }
+  const cv::Rect box = cv::boundingRect(poly) & cv::Rect(0, 0, gray.cols, gray.rows);
+  if (box.area() <= 0) return -1.0;
+  cv::Mat mask = cv::Mat::zeros(box.size(), CV_8U);
+  for (auto& p : poly) p -= box.tl();
+  cv::fillConvexPoly(mask, poly, cv::Scalar(255));
+  if (cv::countNonZero(mask) == 0) return -1.0;
+  return cv::mean(gray(box), mask)[0];
 }
 
 // The disparity the plane n·X = d predicts at a pixel (0: the ray misses it in front).
@@ -125,7 +146,7 @@ std::vector<DetectedRectangle> detect_rectangles(const cv::Mat& gray, const cv::
     for (int k = 0; k < 4; ++k) sides_on += side_on[k] >= std::max(2, side_all[k] / 4);
     if (support < o.min_support || sides_on < 3) continue;
     if (std::min(rect->side_a, rect->side_b) < o.min_side_m || std::max(rect->side_a, rect->side_b) > o.max_side_m) continue;
-    out.push_back({q, *rect, support});
+    out.push_back({q, *rect, support, grey_inside(gray, q)});
   }
   return out;
 }

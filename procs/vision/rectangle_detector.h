@@ -35,6 +35,7 @@ struct DetectedRectangle
   Quadrangle image;     // [px] rectified left image
   Rectangle3d camera;   // rectified left camera frame
   double support = 0.0; // share of the samples on its plane
+  double grey_inside = -1.0;  // mean grey level (0..255) of the image inside it (its sides' margin left out)
 };
 
 // `gray`: the rectified left image (8-bit); `disparity16`: its disparity (CV_16S, 1/16 px) at

@@ -69,7 +69,7 @@ FrameResult VisionPipeline::process(const StereoFrame& frame, const std::functio
     o.refine.focal_baseline = full.focal * full.baseline;
     const Pinhole pinhole{full.focal, full.focal, full.cx, full.cy};
     for (const auto& d : detect_rectangles(grey, disparity, options_.disparity.downscale, pinhole, o))
-      r.rectangles.push_back(to_object(d.camera, base_from_rectified, options_.rectangles.kinds));
+      r.rectangles.push_back(to_object(d.camera, base_from_rectified, options_.rectangles.kinds, d.grey_inside));
   }
   const auto t6 = Clock::now();
   r.rectify_ms = ms_between(t0, t1);

@@ -84,6 +84,9 @@ int main(int argc, char** argv)
   app.add_option("--cap-factor", cap_factor, "a run is capped at this many times the tour's time at 0.5 m/s (at most --max-sim-s)")
       ->check(CLI::Range(1.0, 100.0));
   app.add_option("--jobs", jobs, "runs at once (threads)")->check(CLI::Range(1, 16));
+  bool laser_only = false;
+  app.add_flag("--laser-only", laser_only,
+               "collision avoidance without the vision stand-in (solids the laser misses stay unseen)");
   app.add_option("--spin-at-start", spin_s, "[s] the robot turns on the spot this long (0.5 rad/s) before exploring")
       ->check(CLI::Range(0.0, 60.0));
   app.add_option("--walkers", walkers, "people added to a world that has none")->check(CLI::Range(0, 20));
@@ -101,12 +104,16 @@ int main(int argc, char** argv)
     const auto& sim_options = chain.sim;
     const auto& planner_options = chain.planner;
     const auto exp_cfg = rgnav::config::Config::load(explorer_config);
-    const auto explorer_options = rgnav::explorer::load_explorer_options(exp_cfg, loaded.robot);
+    auto explorer_options = rgnav::explorer::load_explorer_options(exp_cfg, loaded.robot);
+    // As the explorer node reads the planner's config; here --planner-config names it.
+    explorer_options.grid = planner_options.grid;
+    exp_cfg.section("view").string("planner_config", "");
     rgnav::config::finish_except(exp_cfg, {"node", "channels", "pose", "step", "persist"});
     ee::RunSetup setup{loaded, chain.lld, chain.ca, chain.sim};
     setup.max_sim_s = max_sim_s;
     setup.trace = trace;
     setup.spin_at_start_s = spin_s;
+    setup.vision = !laser_only;
     const auto& l = sim_options.laser;
     const rgnav::geometry::Pose2 base_from_laser(l.mount_x, l.mount_y, l.mount_yaw);
     ee::FrontierOptions frontier;
@@ -305,6 +312,7 @@ int main(int argc, char** argv)
                    {"starts_per_world", starts + 1}};
     j["seed"] = seed;
     j["spin_at_start_s"] = spin_s;
+    j["vision_stand_in"] = !laser_only;
     j["targets"] = {{"rooms_entered_ratio", 1.0},  {"area_seen_ratio", 0.98},     {"premature_ends", 0},
                     {"length_vs_frontier", 0.8},   {"length_vs_tour", 1.5},       {"seg_precision_delta_min", -0.02}};
     const auto parent = std::filesystem::path(json_path).parent_path();

@@ -1,9 +1,12 @@
 #include "explore_run.h"
 
+#include "vision_stand_in.h"
+
 #include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "drive_loop.h"
@@ -84,6 +87,8 @@ RunResult run_exploration(const WorldTruth& w, const StartTruth& start, ExploreD
   int64_t last_seen_utime = 0;
   int64_t aligned = 0;
   double next_trace = 0;
+  std::optional<VisionStandIn> vision;
+  if (setup.vision) vision.emplace(w.world, VisionStandInOptions{});
 
   while (true) {
     const double t = loop.sim().time_s();
@@ -92,6 +97,8 @@ RunResult run_exploration(const WorldTruth& w, const StartTruth& start, ExploreD
       break;
     }
     const sim::StepOutput& out = loop.sense();
+    if (vision && vision->due(t) && loop.ready())
+      loop.obstacle_points(loop.sim().now_utime(), vision->update(t, loop.truth(), loop.odometry().pose));
     for (const auto& o : out.odometry) {
       truth_track.add(o.utime, to_pose(o.world_from_base));
       const Vector2d p(o.world_from_base.x, o.world_from_base.y);
@@ -142,7 +149,8 @@ RunResult run_exploration(const WorldTruth& w, const StartTruth& start, ExploreD
         line << std::fixed << std::setprecision(2) << w.name << " " << start.label << " " << driver.method()
              << " t=" << loop.sim().time_s() << " at " << loop.truth().x() << "," << loop.truth().y() << " slam "
              << view.map_from_base.x() << "," << view.map_from_base.y() << " ca "
-             << collision_avoidance::mode_name(loop.ca().mode()) << " seen " << seen.ratio() << " rooms "
+             << collision_avoidance::mode_name(loop.ca().mode()) << " (" << loop.ca().status() << ", target "
+             << loop.ca().next_target() << ") seen " << seen.ratio() << " rooms "
              << entered_labels.size() << "/" << reachable_labels.size() << " | " << driver.trace_line();
         std::cerr << line.str() << "\n";
       }

@@ -68,6 +68,9 @@ struct RunSetup
   // > 0: the robot first turns on the spot this long at 0.5 rad/s before the driver takes over
   // (a look around: the laser sees only ahead). 0: the driver starts at once.
   double spin_at_start_s = 0.0;
+  // Collision avoidance hears what the vision would see of solids the laser misses (from ground
+  // truth: vision_stand_in.h); false: the laser alone.
+  bool vision = true;
   bool trace = false;
 };
 

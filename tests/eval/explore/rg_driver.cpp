@@ -106,7 +106,13 @@ class RgDriver final : public ExploreDriver
       }
     }
     explorer_cpu_s_ += localize_eval::thread_cpu() - c2;
-    if (o.targets) return plan_eval::to_ca_targets(*o.targets);
+    if (o.targets) {
+      // For the trace: what collision avoidance was last given, seen from the robot.
+      last_targets_.clear();
+      for (const auto& p : o.targets->odom_from_target) last_targets_.push_back((v.odom_from_base.inverse() * p).translation());
+      last_final_is_goal_ = o.targets->final_is_goal;
+      return plan_eval::to_ca_targets(*o.targets);
+    }
     return std::nullopt;
   }
 
@@ -127,6 +133,9 @@ class RgDriver final : public ExploreDriver
       out << " route";
       for (const auto& leg : planner_.route().legs) out << " r" << leg.region_id;
     }
+    out << " targets (robot frame, when sent)";
+    for (const auto& p : last_targets_) out << " (" << p.x() << ", " << p.y() << ")";
+    if (last_final_is_goal_) out << " goal";
     return out.str();
   }
 
@@ -174,6 +183,8 @@ class RgDriver final : public ExploreDriver
   std::map<std::string, int> goals_by_kind_;
   double explorer_cpu_s_ = 0, planner_cpu_s_ = 0;
   bool trace_ = std::getenv("EXPLORE_TRACE") != nullptr;
+  std::vector<Eigen::Vector2d> last_targets_;
+  bool last_final_is_goal_ = false;
 };
 
 }  // namespace

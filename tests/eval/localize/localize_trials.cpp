@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include "bench_stats.h"
@@ -109,6 +110,17 @@ nlohmann::json run_tracking(const BenchWorld& w, localizer::Localizer& loc, Tria
   return t;
 }
 
+namespace {
+
+std::string unsure_counts(const std::map<localizer::Unsure, int>& counts)
+{
+  std::string s;
+  for (const auto& [why, n] : counts) s += std::string(" [") + localizer::to_string(why) + "] " + std::to_string(n);
+  return s;
+}
+
+}  // namespace
+
 // From random starts: 30 s drives along the tour from a random point, the pose unknown.
 nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialContext& ctx, int trials, int mrpt_trials,
                           Totals& totals)
@@ -126,6 +138,7 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
     Error last_error;
     bool started = false, wrong_claim = false;
     Pose2 truth_at_update;
+    std::map<localizer::Unsure, int> unsure;   // updates per reason while unsure (trace)
     const auto res = run_drive(
         w.world, ctx.sim, d,
         [&](const DriveStep& st) {
@@ -137,6 +150,7 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
             mrpt->scan(st.scan, st.odom_from_base, rt ? &tg : nullptr);
           }
           if (!loc.update(st.scan, st.odom_from_base)) return;
+          if (loc.mode() == localizer::Mode::kGlobal) ++unsure[loc.unsure()];
           const Error e = error_of(loc.estimate(), w.frames, st.world_from_base);
           const bool claimed = loc.estimate().valid && loc.mode() == localizer::Mode::kTracking;
           settle.add(st.time_s, st.true_distance, claimed && e.good());
@@ -167,7 +181,7 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
                 << " error " << last_error.xy << " m " << last_error.theta / kDeg << " deg mode " << localizer::to_string(loc.mode())
                 << " share " << loc.estimate().cluster_share << " inliers " << loc.estimate().inlier_ratio << " region "
                 << loc.estimate().region << " fit " << (w.frames.fit_rmse.count(loc.estimate().region) ? w.frames.fit_rmse.at(loc.estimate().region) : NAN) << " start " << route[0].x()
-                << " " << route[0].y() << "\n";
+                << " " << route[0].y() << " unsure" << unsure_counts(unsure) << "\n";
     if (settle.good_now) {
       times.push_back(settle.first_good_after);
       travels.push_back(settle.distance_at);
@@ -222,10 +236,12 @@ nlohmann::json run_kidnaps(const BenchWorld& w, localizer::Localizer& loc, Trial
     auto db = ctx.drive(route_b, 40.0, a.end_odom);
     Settling settle;
     double flag_s = NAN;
+    std::map<localizer::Unsure, int> unsure;   // updates per reason while unsure (trace)
     const auto b = run_drive(w.world, ctx.sim, db, [&](const DriveStep& st) {
       const bool updated = loc.update(st.scan, st.odom_from_base);
       if (loc.take_kidnap_flag() && std::isnan(flag_s)) flag_s = st.time_s;
       if (!updated) return;
+      if (loc.mode() == localizer::Mode::kGlobal) ++unsure[loc.unsure()];
       const bool good = loc.estimate().valid && loc.mode() == localizer::Mode::kTracking &&
                         error_of(loc.estimate(), w.frames, st.world_from_base).good();
       settle.add(st.time_s, st.true_distance, good);
@@ -240,7 +256,7 @@ nlohmann::json run_kidnaps(const BenchWorld& w, localizer::Localizer& loc, Trial
     if (std::getenv("LOCALIZE_TRACE"))
       std::cerr << w.name << " kidnap " << trial << (recovered ? " ok" : " FAIL") << " flagged " << flag_s << " settled "
                 << settle.first_good_after << " mode " << localizer::to_string(loc.mode()) << " share "
-                << loc.estimate().cluster_share << " carried " << (route_b[0] - route.back()).norm() << " m\n";
+                << loc.estimate().cluster_share << " carried " << (route_b[0] - route.back()).norm() << " m unsure" << unsure_counts(unsure) << "\n";
     if (settle.good_now) recovers.push_back(settle.first_good_after);
   }
   nlohmann::json kj;

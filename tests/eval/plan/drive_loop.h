@@ -54,6 +54,11 @@ class DriveLoop
   // Whether odometry has come (before it, act() must not be called).
   bool ready() const { return have_odometry_; }
   void set_targets(const collision_avoidance::Targets& targets) { ca_.set_targets(targets); }
+  // OBSTACLES_3D's points (odometry frame), as the node gives them to collision avoidance.
+  void obstacle_points(int64_t utime, std::vector<Eigen::Vector2d> odom_points)
+  {
+    ca_.on_obstacle_points(time::from_utime(utime), std::move(odom_points));
+  }
   // Second half: the trajectory to the follower, the follower's command to the drive.
   void act();
   // Instead of act(): the drive told these velocities directly for this period.

@@ -20,6 +20,7 @@ vision::FrameSyncOptions sync_options(const vision::VisionNodeOptions& o)
 HeadInTheLoop::HeadInTheLoop(const sim::World& world, const stereo::StereoCalibration& calibration,
                              const vision::VisionNodeOptions& vision, const HeadLoopOptions& options)
     : options_(options),
+      resolution_(vision.vision.map.resolution),
       renderer_(world, calibration, options.render),
       pipeline_(vision::rig_from_calibration(calibration), vision.vision)
 {
@@ -33,6 +34,27 @@ HeadInTheLoop::HeadInTheLoop(const sim::World& world, const stereo::StereoCalibr
                                                                   options_.grid_occupied_min)});
   };
   sync_ = std::make_unique<vision::FrameSync>(pipeline_, sync_options(vision), std::move(cb));
+  solids_ = world.boxes;
+  for (const auto& t : world.tables)
+    for (const auto& part : t.parts()) solids_.push_back(part);
+}
+
+void HeadInTheLoop::mark(const Pending& grid, const geometry::Pose2& world_from_odom)
+{
+  const double half_cell = 0.5 * resolution_;
+  for (auto& [name, m] : marked_) m.cells_last = 0;
+  for (const auto& b : solids_) {
+    int cells = 0;
+    for (const auto& q : grid.points) {
+      const Eigen::Vector2d l = Eigen::Rotation2Dd(-b.yaw) * (world_from_odom * q - b.center);
+      if (std::abs(l.x()) <= 0.5 * b.size.x() + half_cell && std::abs(l.y()) <= 0.5 * b.size.y() + half_cell) ++cells;
+    }
+    if (cells == 0) continue;
+    Marked& m = marked_[b.name];
+    ++m.grids;
+    m.cells_last = cells;
+    m.last_stamp = grid.stamp;
+  }
 }
 
 void HeadInTheLoop::after_step(const sim::Simulator& sim, const sim::StepOutput& out,
@@ -66,7 +88,25 @@ void HeadInTheLoop::after_step(const sim::Simulator& sim, const sim::StepOutput&
     f.tilt = options_.tilt;
     sync_->on_frame(std::move(f));
   }
+  const auto& truth = sim.truth();
+  const geometry::Pose2 world_from_base(truth.x, truth.y, truth.theta);
+  for (const auto& o : out.odometry)
+    world_from_odom_ = world_from_base * geometry::Pose2(o.odom_from_base.x, o.odom_from_base.y, o.odom_from_base.theta).inverse();
+  for (const auto& e : out.collisions) {
+    ContactView c;
+    c.with = e.with;
+    c.t_s = sim.time_s();
+    if (last_delivered_stamp_ >= 0) c.grid_age_s = static_cast<double>(now - last_delivered_stamp_) * 1e-6;
+    if (auto it = marked_.find(e.with); it != marked_.end()) {
+      c.cells_now = it->second.cells_last;
+      c.grids_marking = it->second.grids;
+      if (it->second.last_stamp >= 0) c.last_marked_age_s = static_cast<double>(now - it->second.last_stamp) * 1e-6;
+    }
+    contacts_.push_back(c);
+  }
   while (!pending_.empty() && pending_.front().due_utime <= now) {
+    mark(pending_.front(), world_from_odom_);
+    last_delivered_stamp_ = pending_.front().stamp;
     ca.on_obstacle_points(time::from_utime(pending_.front().stamp), std::move(pending_.front().points));
     pending_.pop_front();
   }

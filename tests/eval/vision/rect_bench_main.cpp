@@ -19,6 +19,8 @@
 //     fits), their depth from a disparity with sigma_disp px of noise (stereo matching). Height
 //     and width errors against the truth (Table 3.1's measure) and the corner errors.
 //   - "rendered_doors": the whole detector on rendered views (rendered_doors.h).
+//   - "rendered_wall_objects": the same on rendered whiteboards and posters, and the kind the
+//     vision gives the ones found (rendered_wall_objects.h).
 #include <CLI/CLI.hpp>
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
@@ -32,6 +34,7 @@
 
 #include "percentile.h"
 #include "rendered_doors.h"
+#include "rendered_wall_objects.h"
 #include "vision/rectangle3d.h"
 
 namespace {
@@ -231,14 +234,17 @@ int main(int argc, char** argv)
   app.add_option("--trials", trials, "random views per kind of object");
   app.add_option("--sigma-px", sigma_px, "corner position noise in the image [px]");
   app.add_option("--sigma-disparity", sigma_disp, "disparity noise [px]");
-  app.add_option("--rendered-views", rendered_views, "rendered views of doors (0: none)");
+  app.add_option("--rendered-views", rendered_views, "rendered views of doors, and of whiteboards and posters (0: none)");
   app.add_option("--world", world, "world whose doors are rendered");
   app.add_option("--calibration", calibration, "the simulated head's calibration");
   CLI11_PARSE(app, argc, argv);
   nlohmann::json j;
   j["dissertation"] = dissertation_experiment();
   j["random_views"] = random_views(trials, seed, sigma_px, sigma_disp);
-  if (rendered_views > 0) j["rendered_doors"] = rgnav::bench::rendered_doors(world, calibration, rendered_views, seed);
+  if (rendered_views > 0) {
+    j["rendered_doors"] = rgnav::bench::rendered_doors(world, calibration, rendered_views, seed);
+    j["rendered_wall_objects"] = rgnav::bench::rendered_wall_objects(world, calibration, rendered_views, seed);
+  }
   // The keys: the dissertation's experiment as it was set up (every corner's depth given;
   // the vanishing-line method alone gives its 968 of 1000 there), with the refined fit the
   // vision process uses.

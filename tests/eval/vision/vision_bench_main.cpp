@@ -6,7 +6,10 @@
 //     world's tables from the sides that are free, head tilted down; every frame through the vision
 //     pipeline with the shipped config on one OpenCV thread, the odometry pose = the true pose.
 //     frame_ms_*: JPEG decode of both images + rectify + SGBM + points + OctoMap insertion + column
-//     projection. octomap_points_per_s: points given to OctoMap's insertPointCloud per second of it.
+//     projection (+ the 3D rectangles in every rectangles.every_frames-th frame, their p50 in
+//     frame_stage_ms_p50.rectangles over the frames that ran them); wall-clock time.
+//     frame_cpu_ms_p50/p90: the same frames in CPU time of the thread (what they cost one core,
+//     whatever else the machine runs). octomap_points_per_s: points given to OctoMap's insertPointCloud per second of it.
 //     grid_*: the grid of every frame against the cells holding rendered ground-truth points in the
 //     height band (within max_range of the camera, all frames so far): false obstacles = occupied
 //     cells with no such cell within one cell (_3_cells: within three, i.e. not just a surface
@@ -22,6 +25,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <set>
@@ -45,6 +49,14 @@ using rgnav::bench::percentile;
 
 using namespace rgnav;
 using Clock = std::chrono::steady_clock;
+
+// CPU time of the calling thread [ms].
+double thread_cpu_ms()
+{
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
 
 double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b)
 {
@@ -223,6 +235,7 @@ int main(int argc, char** argv)
     const double res = options.vision.map.resolution;
     const cv::Matx33d K = calibration.M1;
 
+    std::vector<double> frame_cpu_ms, rectangles_ms;
     std::vector<double> frame_ms, decode_ms, rectify_ms, disparity_ms, points_ms, map_ms, project_ms, points_per_frame;
     double insert_points = 0, insert_s = 0, memory_max = 0;
     std::vector<double> table_ratios;
@@ -254,6 +267,7 @@ int main(int argc, char** argv)
         const image_t left_msg = stereo::encode_image(r.left.image, 1, stereo::Encoding::kJpeg, 90);
         const image_t right_msg = stereo::encode_image(r.right.image, 1, stereo::Encoding::kJpeg, 90);
         const auto t0 = Clock::now();
+        const double cpu0 = thread_cpu_ms();
         vision::StereoFrame f;
         f.left = *stereo::decode_image(left_msg);
         f.right = *stereo::decode_image(right_msg);
@@ -262,6 +276,8 @@ int main(int argc, char** argv)
         f.tilt = tilt;
         f.odom_from_base = geometry::Pose2(p.x(), p.y(), ap.heading);
         const vision::FrameResult fr = pipeline.process(f);
+        frame_cpu_ms.push_back(thread_cpu_ms() - cpu0);
+        if (fr.rectangles_run) rectangles_ms.push_back(fr.rectangles_ms);
         frame_ms.push_back(dec + fr.total_ms);
         decode_ms.push_back(dec);
         rectify_ms.push_back(fr.rectify_ms);
@@ -313,9 +329,12 @@ int main(int argc, char** argv)
     j["frames"] = frame_ms.size();
     j["frame_ms_p50"] = percentile(frame_ms, 0.5);
     j["frame_ms_p90"] = percentile(frame_ms, 0.9);
+    j["frame_cpu_ms_p50"] = percentile(frame_cpu_ms, 0.5);
+    j["frame_cpu_ms_p90"] = percentile(frame_cpu_ms, 0.9);
     j["frame_stage_ms_p50"] = {{"jpeg_decode", percentile(decode_ms, 0.5)},  {"rectify", percentile(rectify_ms, 0.5)},
                                {"sgbm", percentile(disparity_ms, 0.5)},      {"points", percentile(points_ms, 0.5)},
-                               {"octomap_insert", percentile(map_ms, 0.5)},  {"column_projection", percentile(project_ms, 0.5)}};
+                               {"octomap_insert", percentile(map_ms, 0.5)},  {"column_projection", percentile(project_ms, 0.5)},
+                               {"rectangles", rectangles_ms.empty() ? 0.0 : percentile(rectangles_ms, 0.5)}};
     j["points_per_frame_p50"] = percentile(points_per_frame, 0.5);
     j["octomap_points_per_s"] = insert_s > 0 ? insert_points / insert_s : 0.0;
     j["map_memory_mb_max"] = memory_max;

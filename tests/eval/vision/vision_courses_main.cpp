@@ -8,7 +8,10 @@
 // solid in that band, table tops, seats and shelves included; the simulator stops the robot there.
 //   courses, collisions_vision_off, collisions_vision_on: contacts over all courses;
 //   courses_collided_vision_off/on: courses with at least one; reached_vision_off/on: goals reached
-//   within the time limit; with_what_*: what was hit (table top, leg, seat, shelf, wall).
+//   within the time limit; with_what_*: what was hit (table top, leg, seat, shelf, wall);
+//   per_course[].vision_on_contacts_in_grid: for each contact with vision on, what the grids
+//   delivered to collision avoidance had shown of the solid hit (head_in_the_loop.h ContactView:
+//   grids_marking 0 = the vision never put it in the grid).
 // The configs are the shipped ones (robot, lld, collision_avoidance, vision, stereo_capture_sim);
 // the vision's 3D rectangles are off here (they do not touch the grid and cost about as much again).
 #include <CLI/CLI.hpp>
@@ -27,6 +30,7 @@
 #include "drivers/stereo/stereo_capture_node.h"
 #include "lld/lld_options.h"
 #include "runtime/process_main.h"
+#include "sim/world_yaml.h"
 #include "vision/vision_options.h"
 
 #include "course_drive.h"
@@ -77,7 +81,7 @@ struct ModeTotals
 int main(int argc, char** argv)
 {
   CLI::App app{"obstacle courses in furnished rooms, vision off and on"};
-  std::string out_path;
+  std::string out_path, world_dir;
   std::string config_dir = runtime::default_config_dir();
   int ncourses = 50, only = -1;
   uint64_t seed = 1;
@@ -87,6 +91,7 @@ int main(int argc, char** argv)
   app.add_option("--courses", ncourses, "courses drawn (each driven twice)");
   app.add_option("--seed", seed);
   app.add_option("--only", only, "drive only this course (debugging; CB_DEBUG=1: a trace)");
+  app.add_option("--world-out", world_dir, "write each driven course's world here (course_K.yaml)");
   app.add_option("--vision-latency", latency, "capture -> grid at collision avoidance [s]");
   app.add_option("--time-limit", time_limit, "per course and mode [s simulated]");
   CLI11_PARSE(app, argc, argv);
@@ -132,6 +137,7 @@ int main(int argc, char** argv)
       redrawn += fc.redrawn;
       if (only >= 0 && k != only) continue;
       ++driven;
+      if (!world_dir.empty()) std::ofstream(world_dir + "/course_" + std::to_string(k) + ".yaml") << sim::world_to_yaml(fc.course.world);
       tables += fc.tables;
       chairs += fc.chairs;
       shelves += fc.shelves;
@@ -148,6 +154,10 @@ int main(int argc, char** argv)
         head.after_step(s, out, ca);
       };
       const bench::CourseDriveResult r_on = bench::drive_course(fc.course, k, lo, co.ca, o);
+      nlohmann::json seen = nlohmann::json::array();
+      for (const auto& c : head.contacts())
+        seen.push_back({{"with", c.with}, {"t_s", c.t_s}, {"grid_age_s", c.grid_age_s}, {"cells_now", c.cells_now},
+                        {"grids_marking", c.grids_marking}, {"last_marked_age_s", c.last_marked_age_s}});
       frame_ms.insert(frame_ms.end(), head.frame_ms().begin(), head.frame_ms().end());
       per_course.push_back({{"course", k},
                             {"tables", fc.tables},
@@ -155,11 +165,14 @@ int main(int argc, char** argv)
                             {"shelves", fc.shelves},
                             {"vision_off", off.add(r_off)},
                             {"vision_on", on.add(r_on)},
+                            {"vision_on_contacts_in_grid", seen},
                             {"frames", head.frames()}});
       std::cerr << "course " << k << " (" << fc.tables << " tables, " << fc.chairs << " chairs, " << fc.shelves
                 << " shelves): off " << r_off.collisions << " collisions, " << (r_off.arrived ? "reached" : "not reached")
                 << " in " << r_off.time_s << " s; on " << r_on.collisions << " collisions, "
-                << (r_on.arrived ? "reached" : "not reached") << " in " << r_on.time_s << " s, " << head.frames() << " frames\n";
+                << (r_on.arrived ? "reached" : "not reached") << " in " << r_on.time_s << " s, " << head.frames() << " frames";
+      if (!seen.empty()) std::cerr << "; the grid on what was hit: " << seen.dump();
+      std::cerr << "\n";
     }
     j["courses"] = driven;
     j["collisions_vision_off"] = off.collisions;

@@ -17,6 +17,7 @@
 #include "explorer/explorer_node.h"
 #include "explorer/explorer_state.h"
 #include "msg/conversions.h"
+#include "planner/planner_options.h"
 #include "one_room.h"
 #include "runtime/node.h"
 
@@ -70,6 +71,26 @@ TEST(ExplorerConfig, ShippedConfigHasTheHeadersDefaults)
   EXPECT_EQ(c.step_period_s, dc.step_period_s);
 }
 
+// View points are cells of the planner's grid: the node reads the planner's config beside its
+// own (view.planner_config), and refuses a missing one naming it.
+TEST(ExplorerConfig, TheGridIsThePlannersOwn)
+{
+  const auto r = robot();
+  const auto shipped = config::Config::load(RGNAV_SOURCE_DIR "/config/explorer.yaml");
+  const auto c = load_explorer_node_config(shipped, r, RGNAV_SOURCE_DIR "/config/explorer.yaml");
+  const auto planner = planner::load_planner_options(config::Config::load(RGNAV_SOURCE_DIR "/config/planner.yaml"), r);
+  EXPECT_DOUBLE_EQ(c.options.explorer.grid.resolution, planner.grid.resolution);
+  EXPECT_DOUBLE_EQ(c.options.explorer.grid.unknown_overlap, planner.grid.unknown_overlap);
+  EXPECT_DOUBLE_EQ(c.options.explorer.grid.robot_radius, r.radius);
+  const auto elsewhere = config::Config::parse("view:\n  planner_config: no_such_planner.yaml\n", "explorer.yaml");
+  try {
+    load_explorer_node_config(elsewhere, r, RGNAV_SOURCE_DIR "/config/explorer.yaml");
+    ADD_FAILURE() << "a missing planner config was accepted";
+  } catch (const config::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_planner.yaml"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ExplorerConfig, BadValuesAreRefusedNamingFileAndKey)
 {
   const auto r = robot();
@@ -94,6 +115,10 @@ TEST(ExplorerConfig, BadValuesAreRefusedNamingFileAndKey)
   refused("goals:\n  max_attempts: 0\n", "goals.max_attempts");
   refused("goals:\n  switch_gain: 1.5\n", "goals.switch_gain");
   refused("goals:\n  timeout_s: nan\n", "goals.timeout_s");
+  refused("goals:\n  progress_timeout_s: 0\n", "goals.progress_timeout_s");
+  refused("view:\n  range_m: 0\n", "view.range_m");
+  refused("view:\n  heading_tolerance_rad: 4\n", "view.heading_tolerance_rad");
+  refused("view:\n  planner_config: \"\"\n", "view.planner_config");
   refused("persist:\n  period_s: 0\n", "persist.period_s");
   refused("step:\n  period_s: 0\n", "step.period_s");
   refused("pose:\n  fresh_s: 100\n", "pose.fresh_s");

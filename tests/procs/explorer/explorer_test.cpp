@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "explorer/explorer.h"
@@ -191,11 +193,16 @@ TEST(Explorer, FrontierThenThroughItThenDone)
   Command c = ex.step(t);
   ASSERT_TRUE(c.goal);
   EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kFrontier);
-  EXPECT_NEAR(c.goal->map_point.x(), 5.9, 0.1);
+  EXPECT_NEAR(c.goal->frontier_point.x(), 5.9, 0.1);
+  // Looked at from a view point: clear of the unknown past the open end, within range, facing it.
+  EXPECT_LT(c.goal->map_point.x(), 6.0 - o.robot_radius);
+  EXPECT_GT(c.goal->map_point.x(), 6.0 - o.view.range_m);
+  EXPECT_LT(std::abs(c.goal->heading), 0.5);
+  EXPECT_DOUBLE_EQ(c.goal->heading_tolerance, o.view.heading_tolerance);
   EXPECT_FALSE(c.goal->beyond_known);
 
   ex.goal_report(c.goal->goal_id, GoalOutcome::kReached, "", t += kSecond);
-  ex.set_pose({t, Pose2(5.5, 0.9, 0)});
+  ex.set_pose({t, Pose2(c.goal->map_point, 0)});
   c = ex.step(t);
   ASSERT_TRUE(c.goal) << ex.status().activity;
   EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kGateway);
@@ -216,6 +223,77 @@ TEST(Explorer, FrontierThenThroughItThenDone)
   EXPECT_TRUE(ex.take_finished_regions().empty()) << "each region is offered for naming once";
 }
 
+// A frontier the robot could only look at from space it cannot drive to (past a gap narrower
+// than its body) has no view point there: its goal is the frontier itself, any heading, left to
+// the planner (which may know a way round), never a place past the gap.
+TEST(Explorer, AFrontierSeenOnlyFromBeyondAGapTheRobotCannotPassHasNoViewPointThere)
+{
+  ExplorerOptions o = no_look();
+  auto map = std::make_shared<rgmap::RgMap>();
+  // A hallway [0, 9] x [0, 1.8] open at its east end, cut at x = 6 by a wall with a 0.3 m gap.
+  map->current_region = add_region(map.get(), V(0, 0), V(9, 1.8),
+                                   {{V(0, 0), V(9, 0)}, {V(0, 1.8), V(9, 1.8)}, {V(0, 0), V(0, 1.8)},
+                                    {V(6, 0), V(6, 1.5)}})
+                            .id;
+  map->version = 1;
+  Explorer ex(o);
+  ex.set_map(map);
+  ex.set_pose({kUtime, Pose2(1, 0.9, 0)});
+  const Command c = ex.step(kUtime);
+  ASSERT_TRUE(c.goal) << ex.status().activity;
+  EXPECT_NEAR(c.goal->frontier_point.x(), 8.9, 0.1);
+  EXPECT_LT((c.goal->map_point - c.goal->frontier_point).norm(), 1e-9) << "a view point past the gap";
+  EXPECT_GE(c.goal->heading_tolerance, M_PI);
+
+  // The gap a door wide: the frontier is a goal.
+  map->region(map->current_region)->segments.back().b = V(6, 0.6);
+  map->version = 2;
+  Explorer wide(o);
+  wide.set_map(map);
+  wide.set_pose({kUtime, Pose2(1, 0.9, 0)});
+  const Command d = wide.step(kUtime);
+  ASSERT_TRUE(d.goal) << wide.status().activity;
+  EXPECT_GT(d.goal->map_point.x(), 7.0);
+}
+
+// A goal the robot gets no nearer to (held by something the map does not show) fails after
+// progress_timeout_s, long before the goal's own timeout.
+TEST(Explorer, AGoalWithoutProgressFails)
+{
+  ExplorerOptions o = no_look();
+  o.progress_timeout_s = 20;
+  Explorer ex(o);
+  int64_t t = kUtime;
+  ex.set_map(hallway(false));
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  Command c = ex.step(t);
+  ASSERT_TRUE(c.goal);
+  for (int k = 0; k < 19; ++k) {
+    ex.set_pose({t += kSecond, Pose2(1 + 0.01 * k, 0.9, 0)});
+    ex.step(t);
+  }
+  EXPECT_EQ(ex.status().goals_failed, 0);
+  ex.set_pose({t += 2 * kSecond, Pose2(1.2, 0.9, 0)});
+  ex.step(t);
+  EXPECT_EQ(ex.status().goals_failed, 1) << ex.status().activity;
+}
+
+// The explorer's goal after a step, recovery goals (a look, a step back) taken as done.
+std::optional<ExploreGoal> next_goal(Explorer& ex, int64_t t, int* recoveries = nullptr)
+{
+  for (int k = 0; k < 10; ++k) {
+    const Command c = ex.step(t);
+    if (!c.goal) {
+      if (ex.status().activity.find("changing the view") == std::string::npos) return std::nullopt;
+      continue;   // a recovery is due at the next step
+    }
+    if (c.goal->kind != ExploreGoal::Kind::kLook && c.goal->kind != ExploreGoal::Kind::kStep) return c.goal;
+    if (recoveries) ++*recoveries;
+    ex.goal_report(c.goal->goal_id, GoalOutcome::kReached, "", t);
+  }
+  return std::nullopt;
+}
+
 TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
 {
   ExplorerOptions o = no_look();
@@ -226,27 +304,30 @@ TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
   auto map = hallway(false);
   ex.set_map(map);
   ex.set_pose({t, Pose2(1, 0.9, 0)});
-  Command c = ex.step(t);
-  ASSERT_TRUE(c.goal);
-  ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "blocked", t);
-  c = ex.step(t += kSecond);
-  EXPECT_FALSE(c.goal);
+  auto g = next_goal(ex, t);
+  ASSERT_TRUE(g);
+  ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "blocked", t);
+  // Nothing else left, and it failed from here: the robot looks behind (no track to step back
+  // along yet), then waits.
+  int recoveries = 0;
+  EXPECT_FALSE(next_goal(ex, t += kSecond, &recoveries));
+  EXPECT_EQ(recoveries, 1);
   EXPECT_EQ(ex.phase(), Phase::kExploring) << "not done while a retry is due: " << ex.status().activity;
   // Failing again from the same place on the same map is no new attempt: still not done.
   for (int k = 0; k < 3; ++k) {
-    c = ex.step(t += 31 * kSecond);
-    ASSERT_TRUE(c.goal) << "tried again after retry_after_s";
-    ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "blocked", t);
+    g = next_goal(ex, t += 31 * kSecond, &recoveries);
+    ASSERT_TRUE(g) << "tried again after retry_after_s";
+    ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "blocked", t);
   }
-  c = ex.step(t += kSecond);
+  EXPECT_EQ(recoveries, 1) << "looked from here once";
+  next_goal(ex, t += kSecond);
   EXPECT_EQ(ex.phase(), Phase::kExploring) << ex.status().activity;
   // From elsewhere it counts: the second attempt sets it aside for good.
   ex.set_pose({t, Pose2(2, 0.9, 0)});
-  c = ex.step(t += 31 * kSecond);
-  ASSERT_TRUE(c.goal);
-  ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "blocked", t);
-  c = ex.step(t += 100 * kSecond);
-  EXPECT_FALSE(c.goal);
+  g = next_goal(ex, t += 31 * kSecond);
+  ASSERT_TRUE(g);
+  ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "blocked", t);
+  EXPECT_FALSE(next_goal(ex, t += 100 * kSecond));
   EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
   EXPECT_EQ(ex.status().goals_failed, 5);
 }

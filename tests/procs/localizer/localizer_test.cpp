@@ -10,6 +10,7 @@
 #include "geometry/pose_track.h"
 #include "localizer/likelihood_field.h"
 #include "localizer/localizer.h"
+#include "localizer/path_score.h"
 #include "localizer/resampling.h"
 #include "twin_rooms.h"
 #include "two_room_map.h"
@@ -128,6 +129,33 @@ TEST(Localizer, TracksThroughTheDoorAndReportsTheGatewayPassed)
   const auto& e = loc.estimate();
   EXPECT_LT((e.map_from_base.translation() - drive.truth.translation()).norm(), 0.11);   // up to one gate of travel behind
   EXPECT_GT(e.confidence, 0.5);
+}
+
+// A view of the path is scored in the region that holds the place it was taken from: a pose in
+// room_a given in room_b's frame is found in room_a, at the same map-frame place.
+TEST(PathScore, AViewIsScoredInTheRegionHoldingItsPlace)
+{
+  const auto w = testing::two_room_world();
+  RegionMaps maps;
+  maps.set_map(w.map);
+  const Pose2 in_a(2.0, 1.5, 0.3);   // map frame = room_a's frame
+  const Pose2 seen_from_b = in_region(w, w.room_b, in_a);
+  const auto [held, pose] = holding_region(maps, w.room_b, seen_from_b, 0.3);
+  ASSERT_NE(held, nullptr);
+  EXPECT_EQ(held->id, w.room_a);
+  EXPECT_LT((pose.translation() - in_a.translation()).norm(), 1e-9);
+  EXPECT_EQ(holding_region(maps, w.room_b, seen_from_b, 0.3, 0).first->id, w.room_b);   // no gateway crossed: its own region
+  // A path from room_a into room_b scores the same at the true pose whichever room's frame asks.
+  const BeamScorer scorer(0.2, 0.9, 0.1, 1.0);
+  const auto scan_points = [&](const Pose2& map_pose) {
+    return beam_end_points(testing::cast_scan(w.walls, map_pose, kLaser, 1, 1), kLaser, 30);
+  };
+  const Pose2 then(2.0, 1.5, 0.0), now(6.0, 1.5, 0.0);
+  const auto p_then = scan_points(then), p_now = scan_points(now);
+  const std::vector<PlacedView> views{{now.between(then), &p_then}, {Pose2(), &p_now}};
+  const double truth = path_score(maps, scorer, w.room_b, in_region(w, w.room_b, now), views, 0.3);
+  EXPECT_GT(truth, -0.05 * static_cast<double>(p_then.size() + p_now.size()));   // nearly every point on a wall
+  EXPECT_LT(path_score(maps, scorer, w.room_b, in_region(w, w.room_b, Pose2(6.0, 0.9, 0.0)), views, 0.3), truth - 5.0);
 }
 
 TEST(Localizer, FindsItselfFromAnUnknownPoseWhileDriving)

@@ -447,6 +447,95 @@ TEST(GlobalPlanner, TheRobotStepsOffAScrapOfFreeSpaceButNotThroughAWall)
   EXPECT_NEAR(step->length, 1.0, 1e-6);
 }
 
+// The robot stands where the map knows nothing round it, too widely to step off (collision
+// avoidance took it aside for a person): it came there, so the way it came is free. Its own
+// track (newest first) leads the route back to where the map has room; a track across a line
+// of the map (a localization jump through a wall) is not taken.
+TEST(GlobalPlanner, ARobotCutOffGoesBackAlongItsOwnTrack)
+{
+  const auto wide = room_with_a_scrap(false, 0.8);
+  const int64_t room = wide.regions().begin()->first;
+  std::vector<V> track;   // it drove from (3.5, 2) to (1.5, 2)
+  for (double x = 1.6; x <= 3.5 + 1e-9; x += 0.1) track.push_back(V(x, 2.0));
+  GlobalPlanner gp(options());
+  gp.set_map(wide);
+  std::string why;
+  PlanRequest req{room, V(1.5, 2.0), room, V(4.5, 2.0)};
+  ASSERT_FALSE(gp.plan(req, &why)) << "without its track, cut off";
+  req.track = track;
+  const auto route = gp.plan(req, &why);
+  ASSERT_TRUE(route) << why;
+  const auto& points = route->legs.front().points;
+  EXPECT_LT((points.front() - V(1.5, 2.0)).norm(), 1e-9) << "from where it stands";
+  ASSERT_GE(points.size(), 3u);
+  EXPECT_LT((points[1] - V(1.6, 2.0)).norm(), 1e-9) << "back along the track";
+  EXPECT_LT(route->length, 3.5);
+  EXPECT_NEAR(route->legs.front().length, route->length, 1e-9);
+  // Away from its track (it came the other way round): the track is no help where it leads
+  // only through more unknown space beyond reach.
+  req.track = {V(1.5, 2.1), V(1.5, 2.2)};
+  EXPECT_FALSE(gp.plan(req, &why));
+  EXPECT_EQ(no_path_cause(why), NoPathCause::kStartCutOff) << why;
+
+  const auto walled = room_with_a_scrap(true);
+  GlobalPlanner gw(options());
+  gw.set_map(walled);
+  req.track.clear();
+  for (const V& q : track)
+    if (q.x() > 2.3) req.track.push_back(q);   // the pose jumped out through the wall
+  ASSERT_TRUE(gw.region_planner(room)->crosses_line(req.start, req.track.front()));
+  ASSERT_FALSE(gw.region_planner(room)->cut_off(req.track.front()));
+  EXPECT_FALSE(gw.plan(req, &why)) << "a track through the wall";
+  EXPECT_EQ(no_path_cause(why), NoPathCause::kStartCutOff) << why;
+}
+
+// A hall's floor split between two overlapping regions, L [0,5]x[0,4] and R [3,8]x[0,4], with no
+// gateway between them; each opens onto a hallway below. The robot stands in L where R's free
+// space holds it too: the route starts in R and goes straight to a goal in R, not out through
+// L's opening, along the hallway and in through R's (to and fro).
+TEST(GlobalPlanner, AStartInOverlappingRegionsTakesTheCheapestOfThem)
+{
+  rgmap::RgMap map;
+  const std::vector<Wall> hall = {{V(0, 4), V(8, 4)}, {V(0, 0), V(0, 4)}, {V(8, 0), V(8, 4)},
+                                  {V(0, 0), V(1, 0)}, {V(2.2, 0), V(5.8, 0)}, {V(7, 0), V(8, 0)}};
+  const int64_t l = add_region(&map, "L", V(0, 0), V(5, 4), hall).id;
+  const int64_t r = add_region(&map, "R", V(3, 0), V(8, 4), hall).id;
+  const int64_t h = add_region(&map, "hallway", V(0, -2), V(8, 0), {{V(0, -2), V(8, -2)}, {V(0, -2), V(0, 0)}, {V(8, -2), V(8, 0)}}).id;
+  add_gateway(&map, rgmap::GatewayClass::kOpening, h, l, V(1.6, 0));
+  add_gateway(&map, rgmap::GatewayClass::kOpening, h, r, V(6.4, 0));
+  map.version = 1;
+  GlobalPlanner gp(options());
+  gp.set_map(map);
+  std::string why;
+  const auto route = gp.plan({l, V(4.5, 2.0), r, V(4.0, 2.0)}, &why);
+  ASSERT_TRUE(route) << why;
+  ASSERT_EQ(route->legs.size(), 1u);
+  EXPECT_EQ(route->legs[0].region_id, r);
+  EXPECT_LT((route->legs[0].points.front() - V(1.5, 2.0)).norm(), 1e-9) << "from where it stands, in R's frame";
+  EXPECT_LT(route->length, 3.0);
+  // From where only L holds the robot, the way is through the hallway.
+  const auto around = gp.plan({l, V(1.5, 2.0), r, V(4.0, 2.0)}, &why);
+  ASSERT_TRUE(around) << why;
+  EXPECT_EQ(around->legs.front().region_id, l);
+
+  // L has mapped a wall at x = 4 that R has not (each grid draws its own lines): R's straight
+  // way from the robot would cross it, so the route does not start in R.
+  rgmap::RgMap walled;
+  std::vector<Wall> l_lines = hall;
+  l_lines.push_back({V(4.0, 0.0), V(4.0, 3.0)});
+  const int64_t wl = add_region(&walled, "L", V(0, 0), V(5, 4), l_lines).id;
+  const int64_t wr = add_region(&walled, "R", V(3, 0), V(8, 4), hall).id;
+  const int64_t wh = add_region(&walled, "hallway", V(0, -2), V(8, 0), {{V(0, -2), V(8, -2)}, {V(0, -2), V(0, 0)}, {V(8, -2), V(8, 0)}}).id;
+  add_gateway(&walled, rgmap::GatewayClass::kOpening, wh, wl, V(1.6, 0));
+  add_gateway(&walled, rgmap::GatewayClass::kOpening, wh, wr, V(6.4, 0));
+  walled.version = 1;
+  GlobalPlanner gw(options());
+  gw.set_map(walled);
+  const auto own = gw.plan({wl, V(3.6, 1.5), wr, V(4.0, 1.5)}, &why);
+  ASSERT_TRUE(own) << why;
+  EXPECT_EQ(own->legs.front().region_id, wl) << "not through L's wall in R's grid";
+}
+
 // NO_PATH's reason begins with its cause: the goal out of reach, or only gateways taken for
 // closed in the way (the same goal once they reopen).
 TEST(GlobalPlanner, NoPathSaysWhetherTheGoalIsOutOfReachOrBehindAClosedGateway)
@@ -842,6 +931,38 @@ TEST(Planner, StartsWhereTheRobotStandsWhenItsRegionHasNoRoomForIt)
   EXPECT_EQ(planner.status(), GoalStatus::kReached) << planner.reason();
   EXPECT_EQ(planner.replans(), 1) << "planned once, never off the route";
   EXPECT_LT((robot.map_from_base.translation() - goal_map).norm(), 0.3);
+}
+
+// The Planner keeps the robot's track from its poses: a robot that drove into space the map
+// never saw is routed back the way it came; one whose pose jumped there (the localizer
+// corrected itself) has no track to the place, and is cut off.
+TEST(Planner, ARobotCutOffIsRoutedBackTheWayItCame)
+{
+  const auto wide = room_with_a_scrap(false, 0.8);
+  const int64_t room = wide.regions().begin()->first;
+  const auto run = [&](bool jump) {
+    Planner planner(options());
+    planner.set_map(wide);
+    int64_t utime = kUtime;
+    const auto at = [&](double x) {
+      utime += 50'000;
+      planner.on_pose({utime, room, Pose2(x, 2.0, M_PI), Pose2(x, 2.0, M_PI)});
+    };
+    if (jump) {
+      at(3.5);
+    } else {
+      for (double x = 3.5; x >= 1.5 - 1e-9; x -= 0.03) at(x);
+    }
+    at(1.5);
+    planner.set_goal(pose_goal(5, room, 4.5, 2.0), utime);
+    planner.update(utime);
+    return std::make_pair(planner.status(), planner.reason());
+  };
+  const auto [driven, driven_why] = run(false);
+  EXPECT_EQ(driven, GoalStatus::kActive) << driven_why;
+  const auto [jumped, jumped_why] = run(true);
+  EXPECT_EQ(jumped, GoalStatus::kNoPath);
+  EXPECT_EQ(no_path_cause(jumped_why), NoPathCause::kStartCutOff) << jumped_why;
 }
 
 }  // namespace

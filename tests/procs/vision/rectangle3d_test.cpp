@@ -2,6 +2,7 @@
 // whatever the rectangle's pose, from one measured corner; the normal points toward the camera;
 // what is no projection of a rectangle in front of the camera gives nothing.
 #include "vision/rectangle3d.h"
+#include "vision/image_quadrangles.h"
 #include "vision/object_rectangles.h"
 
 #include <gtest/gtest.h>
@@ -156,6 +157,39 @@ TEST(Rectangle3d, ObjectsInTheBaseFrameWithTheirKind)
   EXPECT_EQ(to_object(table, base_from_camera).kind, 4);
 }
 
+// Whiteboards and monitors (the kinds beside doors): an upright rectangle on the wall
+// above the floor is a whiteboard when its inside is white, whatever its size from Table 3.1's
+// 0.3 m board to a 1.4 m one; the same outline not white is a picture (unknown); a landscape
+// screen-sized one standing at desk height and not white is a monitor, white it is a small board.
+TEST(Rectangle3d, WhiteboardsByWhatIsOnThemMonitorsBySizeAndPlace)
+{
+  Eigen::Isometry3d base_from_camera = Eigen::Isometry3d::Identity();
+  base_from_camera.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  base_from_camera.translation() = Eigen::Vector3d(0.05, 0.0, 1.25);
+  const Eigen::Isometry3d camera_from_base = base_from_camera.inverse();
+  // Upright at x = 3, facing the robot: width along y, from z0 to z1.
+  auto upright = [&](double width, double z0, double z1) {
+    Rectangle3d r;
+    const std::array<Eigen::Vector3d, 4> c{Eigen::Vector3d(3, 0.5 * width, z0), Eigen::Vector3d(3, 0.5 * width, z1),
+                                           Eigen::Vector3d(3, -0.5 * width, z1), Eigen::Vector3d(3, -0.5 * width, z0)};
+    for (int i = 0; i < 4; ++i) r.corners[i] = camera_from_base * c[i];
+    r.normal = camera_from_base.linear() * Eigen::Vector3d(-1, 0, 0);
+    return r;
+  };
+  constexpr int kUnknown = 0, kWhiteboard = 2, kMonitor = 3;
+  const double white = 225.0, dark = 60.0;
+  EXPECT_EQ(to_object(upright(1.4, 1.0, 1.9), base_from_camera, {}, white).kind, kWhiteboard);
+  EXPECT_EQ(to_object(upright(0.302, 1.3, 1.514), base_from_camera, {}, white).kind, kWhiteboard);
+  EXPECT_EQ(to_object(upright(1.4, 1.0, 1.9), base_from_camera, {}, dark).kind, kUnknown);   // a picture
+  EXPECT_EQ(to_object(upright(1.4, 1.0, 1.9), base_from_camera).kind, kUnknown);             // nothing seen inside
+  EXPECT_EQ(to_object(upright(0.6, 1.1, 1.9), base_from_camera, {}, dark).kind, kUnknown);   // a portrait poster
+  EXPECT_EQ(to_object(upright(1.4, 0.0, 0.9), base_from_camera, {}, white).kind, kUnknown);  // down to the floor: a box's face
+  // A 20-inch screen on a desk (0.75 m), 0.44 x 0.27 m.
+  EXPECT_EQ(to_object(upright(0.44, 0.85, 1.12), base_from_camera, {}, dark).kind, kMonitor);
+  EXPECT_EQ(to_object(upright(0.44, 0.85, 1.12), base_from_camera, {}, white).kind, kWhiteboard);
+  EXPECT_EQ(to_object(upright(0.44, 1.6, 1.87), base_from_camera, {}, dark).kind, kUnknown);  // hung high: a picture
+}
+
 TEST(Rectangle3d, InternalAnglesOfASquareAndASkewedOne)
 {
   const Quadrangle square{Eigen::Vector2d(0, 0), Eigen::Vector2d(10, 0), Eigen::Vector2d(10, 10), Eigen::Vector2d(0, 10)};
@@ -165,6 +199,36 @@ TEST(Rectangle3d, InternalAnglesOfASquareAndASkewedOne)
   EXPECT_NEAR(a[0], M_PI / 4, 1e-12);
   EXPECT_NEAR(a[1], 3 * M_PI / 4, 1e-12);
   EXPECT_NEAR(a[0] + a[1] + a[2] + a[3], 2 * M_PI, 1e-12);
+}
+
+// Image lines (diss. 3.1.1): pieces of one edge merge, also through a piece that joins two
+// that lie too far apart on their own; a parallel edge 4 px beside stays; short ones go; a
+// short piece may lean more than alpha_max, a long line may not.
+TEST(ImageSegments, PiecesOfOneEdgeMergeAndParallelEdgesStayApart)
+{
+  QuadrangleOptions o;
+  std::vector<ImageSegment> segs{
+      {Eigen::Vector2d(0, 100), Eigen::Vector2d(100, 100.5)},     // a piece of an edge ...
+      {Eigen::Vector2d(300, 101.5), Eigen::Vector2d(400, 102)},   // ... 200 px on: too far for D_gap alone ...
+      {Eigen::Vector2d(150, 100.8), Eigen::Vector2d(250, 101.2)}, // ... this piece joins them (given last)
+      {Eigen::Vector2d(0, 104), Eigen::Vector2d(400, 106)},       // the parallel edge beside it
+      {Eigen::Vector2d(50, 300), Eigen::Vector2d(60, 300)}};      // shorter than L_min
+  const auto merged = merge_segments(segs, o);
+  ASSERT_EQ(merged.size(), 2u);
+  for (const auto& m : merged) EXPECT_NEAR((m.b - m.a).norm(), 400.0, 0.1);
+  // Without the joining piece the two far pieces stay apart.
+  segs.erase(segs.begin() + 2);
+  EXPECT_EQ(merge_segments(segs, o).size(), 3u);
+  // A 21 px piece continuing an edge leans 1.6 degrees (its ends are found to a pixel or so):
+  // beyond alpha_max (1 degree), within what its length is good for, so it joins the edge.
+  const std::vector<ImageSegment> edge{{Eigen::Vector2d(0, 100), Eigen::Vector2d(200, 100)},
+                                       {Eigen::Vector2d(205, 100), Eigen::Vector2d(226, 100.6)}};
+  const auto joined = merge_segments(edge, o);
+  ASSERT_EQ(joined.size(), 1u);
+  EXPECT_NEAR((joined[0].b - joined[0].a).norm(), 226.0, 0.1);
+  // Two 100 px lines crossing at 1.6 degrees (within D_L of each other) are two lines.
+  EXPECT_EQ(merge_segments({{Eigen::Vector2d(0, 100), Eigen::Vector2d(100, 100)},
+                            {Eigen::Vector2d(0, 98.6), Eigen::Vector2d(100, 101.4)}}, o).size(), 2u);
 }
 
 }  // namespace

@@ -131,7 +131,7 @@ TEST(VisionNode, AWallAheadBecomesOccupiedCells)
 
 // A whiteboard on the wall (a bright rectangle 150 x 100 px with a dark rim, on the textured
 // wall 2 m ahead): OBJECTS_3D carries it in the base frame, upright, facing the robot, its size
-// f * B / d from the pixels (0.6 x 0.4 m), on the wall.
+// f * B / d from the pixels (0.6 x 0.4 m), on the wall, a whiteboard by the white inside it.
 TEST(VisionNode, ARectangleOnTheWallIsPublishedAsAnObject)
 {
   Fixture f;
@@ -158,7 +158,7 @@ TEST(VisionNode, ARectangleOnTheWallIsPublishedAsAnObject)
     ++boards;
     EXPECT_LT(r.normal[0], -0.95);
     for (int i = 0; i < 4; ++i) EXPECT_NEAR(r.corners[i][0], wall_x, 0.08);
-    EXPECT_EQ(r.kind, rectangle3d_t::KIND_UNKNOWN);
+    EXPECT_EQ(r.kind, rectangle3d_t::KIND_WHITEBOARD);
   }
   EXPECT_GE(boards, 1) << objects[0].nrectangles << " rectangles, none of the board's size";
 }

@@ -1,0 +1,37 @@
+// Scoring the views of the robot's path (view_path.h) at a candidate pose "the robot stands
+// here now". Each view is scored in the region that holds the place it was taken from, reached
+// through the gateways (as a particle is handed over, diss. 5.3): a path of a few metres often
+// began in another region, and its early views see walls that the current region's stacked map
+// (its own lines and its direct neighbours') does not hold. Scored against the current region
+// alone, the true pose would lose to a look-alike whose region happens to hold those walls.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/pose2.h"
+#include "localizer/region_maps.h"
+#include "localizer/scan_model.h"
+
+namespace rgnav::localizer {
+
+struct PlacedView
+{
+  geometry::Pose2 now_from_then;                   // the view's base pose in the current base frame
+  const std::vector<Eigen::Vector2d>* points = nullptr;   // its end points, its own base frame
+};
+
+// The region (and the pose in it) holding a pose given in `region`'s frame: `region` itself if
+// the pose lies in its freespace and within `bbox_margin` of its measurement rectangle, else
+// the first region up to `hops` gateways away that does; `region` if none does.
+std::pair<const RegionModel*, geometry::Pose2> holding_region(const RegionMaps& maps, int64_t region,
+                                                              const geometry::Pose2& region_from_base, double bbox_margin,
+                                                              int hops = 2);
+
+// Sum of log p (scorer) of every view's points, each view in the region holding its place.
+double path_score(const RegionMaps& maps, const BeamScorer& scorer, int64_t region, const geometry::Pose2& region_from_base,
+                  const std::vector<PlacedView>& views, double bbox_margin);
+
+}  // namespace rgnav::localizer
