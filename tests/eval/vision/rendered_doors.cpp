@@ -1,6 +1,7 @@
 #include "rendered_doors.h"
 
 #include "percentile.h"
+#include "rendered_view_rig.h"
 
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
@@ -20,22 +21,8 @@
 namespace rgnav::bench {
 namespace {
 
-using Corners = std::array<Eigen::Vector3d, 4>;
 constexpr double kFrameWidth = 0.06;  // the renderer's jambs and lintel (render_faces.cpp) ...
 constexpr double kFrameDepth = 0.2;   // ... across the wall: their faces stand half this in front of it
-
-// Largest corner distance under the best pairing of the corners around (either way, any start).
-double max_corner_distance(const Corners& a, const Corners& b)
-{
-  double best = 1e9;
-  for (int dir : {1, -1})
-    for (int shift = 0; shift < 4; ++shift) {
-      double worst = 0.0;
-      for (int i = 0; i < 4; ++i) worst = std::max(worst, (a[i] - b[((shift + dir * i) % 4 + 4) % 4]).norm());
-      best = std::min(best, worst);
-    }
-  return best;
-}
 
 // The frame's face toward `viewer`: its opening (widen 0, top the door's height) or its outer
 // outline (widen and top by the frame's width).
@@ -54,29 +41,17 @@ Corners door_outline(const sim::Door& d, double widen, double top, const Eigen::
 
 nlohmann::json rendered_doors(const std::string& world_file, const std::string& calibration_file, int views, uint64_t seed)
 {
-  const sim::World world = sim::load_world(world_file);
-  const stereo::StereoCalibration cal = stereo::load_stereo_calibration(calibration_file);
-  sim::StereoRenderOptions ro;
-  ro.noise_seed = seed;
-  const sim::StereoRenderer renderer(world, cal, ro);
-  vision::DisparityOptions dopt;
-  dopt.num_disparities = 96;
-  const vision::DenseStereo stereo(dopt);
-  const double fx = cal.M1(0, 0), fy = cal.M1(1, 1);
-  const vision::Pinhole cam{fx, fy, cal.M1(0, 2), cal.M1(1, 2)};
-  vision::RectangleDetectorOptions o;
-  o.refine.focal_baseline = fx * cal.baseline();
-  const double camera_height = stereo::base_from_left_camera(cal, 0.0, 0.0).translation().z();
+  const RenderedViewRig rig(world_file, calibration_file, seed);
 
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   int drawn = 0, attempts = 0, found = 0, rectangles = 0;
   std::vector<double> corner_err, height_err, width_err, frame_ms;
   nlohmann::json j;
-  if (world.doors.empty()) return j;
+  if (rig.world.doors.empty()) return j;
   while (drawn < views && attempts < 50 * views) {
     ++attempts;
-    const sim::Door& door = world.doors[static_cast<size_t>(uni(rng) * static_cast<double>(world.doors.size())) % world.doors.size()];
+    const sim::Door& door = rig.world.doors[static_cast<size_t>(uni(rng) * static_cast<double>(rig.world.doors.size())) % rig.world.doors.size()];
     const Eigen::Vector2d along = (door.latch - door.hinge).normalized(), normal(-along.y(), along.x());
     const Eigen::Vector2d centre = 0.5 * (door.hinge + door.latch);
     const double dist = 2.4 + 2.6 * uni(rng), off = (uni(rng) * 2 - 1) * 50.0 * M_PI / 180.0;
@@ -84,17 +59,17 @@ nlohmann::json rendered_doors(const std::string& world_file, const std::string& 
     const Eigen::Vector2d at = centre + dist * side * (std::cos(off) * normal + std::sin(off) * along);
     sim::HeadView view;
     view.robot = sim::Pose2{at.x(), at.y(), std::atan2(centre.y() - at.y(), centre.x() - at.x())};
-    view.tilt = std::atan2(0.5 * door.height - camera_height, dist);
+    view.tilt = std::atan2(0.5 * door.height - rig.camera_height, dist);
     view.frame = static_cast<uint64_t>(attempts);
-    const Eigen::Isometry3d world_from_cam = renderer.world_from_left_camera(view);
+    const Eigen::Isometry3d world_from_cam = rig.renderer.world_from_left_camera(view);
     const Eigen::Isometry3d cam_from_world = world_from_cam.inverse();
     // Every corner of the frame's outline in view and not hidden (the depth drawn there is the
     // frame's, within its depth across the wall).
-    const sim::CameraRender probe = renderer.render_camera(world_from_cam, cal.M1);
+    const sim::CameraRender probe = rig.renderer.render_camera(world_from_cam, rig.cal.M1);
     bool visible = true;
     for (const auto& c : door_outline(door, kFrameWidth, door.height + kFrameWidth, at)) {
       const Eigen::Vector3d p = cam_from_world * c;
-      const Eigen::Vector2d px = cam.project(p);
+      const Eigen::Vector2d px = rig.cam.project(p);
       const int u = static_cast<int>(px.x()), v = static_cast<int>(px.y());
       if (p.z() < 0.3 || u < 3 || v < 3 || u >= probe.depth.cols - 3 || v >= probe.depth.rows - 3) {
         visible = false;
@@ -110,12 +85,12 @@ nlohmann::json rendered_doors(const std::string& world_file, const std::string& 
     }
     if (!visible) continue;
     ++drawn;
-    const sim::StereoRender r = renderer.render(view);
+    const sim::StereoRender r = rig.renderer.render(view);
     const auto t0 = std::chrono::steady_clock::now();
     cv::Mat left, right;
     cv::cvtColor(r.left.image, left, cv::COLOR_BGR2GRAY);
     cv::cvtColor(r.right.image, right, cv::COLOR_BGR2GRAY);
-    const auto detected = vision::detect_rectangles(left, stereo.disparity(left, right), 1, cam, o);
+    const auto detected = vision::detect_rectangles(left, rig.stereo.disparity(left, right), 1, rig.cam, rig.detector);
     frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     rectangles += static_cast<int>(detected.size());
     const Corners opening = door_outline(door, 0.0, door.height, at), outer = door_outline(door, kFrameWidth, door.height + kFrameWidth, at);

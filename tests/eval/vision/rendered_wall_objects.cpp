@@ -1,6 +1,7 @@
 #include "rendered_wall_objects.h"
 
 #include "percentile.h"
+#include "rendered_view_rig.h"
 
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
@@ -20,25 +21,11 @@
 namespace rgnav::bench {
 namespace {
 
-using WallCorners = std::array<Eigen::Vector3d, 4>;
 
-WallCorners wall_object_corners(const sim::WallObject& o)
+Corners wall_object_corners(const sim::WallObject& o)
 {
   return {Eigen::Vector3d(o.a.x(), o.a.y(), o.z_min), Eigen::Vector3d(o.b.x(), o.b.y(), o.z_min),
           Eigen::Vector3d(o.b.x(), o.b.y(), o.z_max), Eigen::Vector3d(o.a.x(), o.a.y(), o.z_max)};
-}
-
-// Largest corner distance under the best pairing of the corners around (either way, any start).
-double worst_corner_distance(const WallCorners& a, const WallCorners& b)
-{
-  double best = 1e9;
-  for (int dir : {1, -1})
-    for (int shift = 0; shift < 4; ++shift) {
-      double worst = 0.0;
-      for (int i = 0; i < 4; ++i) worst = std::max(worst, (a[i] - b[((shift + dir * i) % 4 + 4) % 4]).norm());
-      best = std::min(best, worst);
-    }
-  return best;
 }
 
 // The direction a wall object faces: away from the wall nearest to its middle.
@@ -81,49 +68,37 @@ struct KindTally
 
 nlohmann::json rendered_wall_objects(const std::string& world_file, const std::string& calibration_file, int views, uint64_t seed)
 {
-  const sim::World world = sim::load_world(world_file);
-  const stereo::StereoCalibration cal = stereo::load_stereo_calibration(calibration_file);
-  sim::StereoRenderOptions ro;
-  ro.noise_seed = seed;
-  const sim::StereoRenderer renderer(world, cal, ro);
-  vision::DisparityOptions dopt;
-  dopt.num_disparities = 96;
-  const vision::DenseStereo stereo(dopt);
-  const double fx = cal.M1(0, 0), fy = cal.M1(1, 1);
-  const vision::Pinhole cam{fx, fy, cal.M1(0, 2), cal.M1(1, 2)};
-  vision::RectangleDetectorOptions o;
-  o.refine.focal_baseline = fx * cal.baseline();
-  const double camera_height = stereo::base_from_left_camera(cal, 0.0, 0.0).translation().z();
+  const RenderedViewRig rig(world_file, calibration_file, seed);
 
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   KindTally boards, posters;
   int drawn = 0, attempts = 0;
   nlohmann::json j;
-  if (world.wall_objects.empty()) return j;
+  if (rig.world.wall_objects.empty()) return j;
   while (drawn < views && attempts < 50 * views) {
     ++attempts;
     const sim::WallObject& obj =
-        world.wall_objects[static_cast<size_t>(uni(rng) * static_cast<double>(world.wall_objects.size())) % world.wall_objects.size()];
+        rig.world.wall_objects[static_cast<size_t>(uni(rng) * static_cast<double>(rig.world.wall_objects.size())) % rig.world.wall_objects.size()];
     const Eigen::Vector2d along = (obj.b - obj.a).normalized();
     const Eigen::Vector2d centre = 0.5 * (obj.a + obj.b);
     const double dist = 1.2 + 2.8 * uni(rng), off = (uni(rng) * 2 - 1) * 50.0 * M_PI / 180.0;
     // From the side it hangs on: it stands off its wall (the nearest one) toward the room.
-    const Eigen::Vector2d normal = facing(world, obj);
+    const Eigen::Vector2d normal = facing(rig.world, obj);
     const Eigen::Vector2d at = centre + dist * (std::cos(off) * normal + std::sin(off) * along);
     sim::HeadView view;
     view.robot = sim::Pose2{at.x(), at.y(), std::atan2(centre.y() - at.y(), centre.x() - at.x())};
-    view.tilt = std::atan2(0.5 * (obj.z_min + obj.z_max) - camera_height, dist);
+    view.tilt = std::atan2(0.5 * (obj.z_min + obj.z_max) - rig.camera_height, dist);
     view.frame = static_cast<uint64_t>(attempts);
-    const Eigen::Isometry3d world_from_cam = renderer.world_from_left_camera(view);
+    const Eigen::Isometry3d world_from_cam = rig.renderer.world_from_left_camera(view);
     const Eigen::Isometry3d cam_from_world = world_from_cam.inverse();
-    const WallCorners truth = wall_object_corners(obj);
+    const Corners truth = wall_object_corners(obj);
     // Every corner in view and the object the nearest thing there (not hidden, not behind its wall).
-    const sim::CameraRender probe = renderer.render_camera(world_from_cam, cal.M1);
+    const sim::CameraRender probe = rig.renderer.render_camera(world_from_cam, rig.cal.M1);
     bool visible = true;
     for (const auto& c : truth) {
       const Eigen::Vector3d p = cam_from_world * c;
-      const Eigen::Vector2d px = cam.project(p);
+      const Eigen::Vector2d px = rig.cam.project(p);
       const int u = static_cast<int>(px.x()), v = static_cast<int>(px.y());
       if (p.z() < 0.3 || u < 3 || v < 3 || u >= probe.depth.cols - 3 || v >= probe.depth.rows - 3) {
         visible = false;
@@ -136,17 +111,17 @@ nlohmann::json rendered_wall_objects(const std::string& world_file, const std::s
     const bool board = obj.kind == sim::WallObject::Kind::kWhiteboard;
     KindTally& tally = board ? boards : posters;
     ++tally.views;
-    const sim::StereoRender r = renderer.render(view);
+    const sim::StereoRender r = rig.renderer.render(view);
     cv::Mat left, right;
     cv::cvtColor(r.left.image, left, cv::COLOR_BGR2GRAY);
     cv::cvtColor(r.right.image, right, cv::COLOR_BGR2GRAY);
-    const auto detected = vision::detect_rectangles(left, stereo.disparity(left, right), 1, cam, o);
+    const auto detected = vision::detect_rectangles(left, rig.stereo.disparity(left, right), 1, rig.cam, rig.detector);
     double best = 1e9;
     const vision::DetectedRectangle* match = nullptr;
     for (const auto& d : detected) {
-      WallCorners w;
+      Corners w;
       for (int i = 0; i < 4; ++i) w[i] = world_from_cam * d.camera.corners[i];
-      const double e = worst_corner_distance(w, truth);
+      const double e = max_corner_distance(w, truth);
       if (e < best) {
         best = e;
         match = &d;
@@ -155,7 +130,7 @@ nlohmann::json rendered_wall_objects(const std::string& world_file, const std::s
     if (!match || best >= 0.10) continue;
     ++tally.found;
     tally.corner_err.push_back(best);
-    // The world frame is a base frame on the floor: the kind as the vision gives it.
+    // The rig.world frame is a base frame on the floor: the kind as the vision gives it.
     const vision::ObjectRectangle as_object = vision::to_object(match->camera, world_from_cam, {}, match->grey_inside);
     if (as_object.kind == 2) ++tally.called_whiteboard;   // rectangle3d_t::KIND_WHITEBOARD
     tally.height_err.push_back(std::fabs(as_object.height - (obj.z_max - obj.z_min)));
