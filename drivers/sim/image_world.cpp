@@ -97,7 +97,7 @@ Pose2 add_occupancy_image(const OccupancyImage& image, World* world)
   }
   cv::Mat dist;
   cv::distanceTransform(mask, dist, cv::DIST_L2, 5);
-  // Furniture can wall off a pocket of wide free space (lab_ipa_furnitures, office_g_furnitures):
+  // Furniture can wall off a pocket of wide free space (furnished building maps):
   // a start there reaches no room. Start in the largest area a robot can drive around in.
   const cv::Mat drivable = dist > static_cast<float>(kStartAreaClearanceM / image.resolution);
   cv::Mat areas, stats, centroids;

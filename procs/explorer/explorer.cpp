@@ -152,10 +152,7 @@ std::optional<ExploreGoal> Explorer::frontier_goal(int64_t region_id, int64_t ut
   const rgmap::Region* r = map_->region(region_id);
   const planner::RegionPlanner* rp = r ? grids_.region_planner(region_id) : nullptr;
   if (!rp) return std::nullopt;
-  const planner::RegionGrid& grid = rp->grid();
-  const std::vector<int32_t> pieces = reachable_pieces(region_id, grid);
-  std::vector<std::pair<Vector2d, Vector2d>> walls;
-  for (const auto& seg : r->segments) walls.emplace_back(seg.a, seg.b);
+  const std::vector<int32_t> pieces = reachable_pieces(region_id, rp->grid());
   const double wanted = options_.grid.robot_radius + options_.grid.clearance_margin;
   const Vector2d robot = pose_->map_from_base.translation();
   std::optional<ExploreGoal> best;
@@ -179,7 +176,7 @@ std::optional<ExploreGoal> Explorer::frontier_goal(int64_t region_id, int64_t ut
     // itself is still a goal, after every one with a view point (the planner tries the region's
     // other pieces and beyond; its NO_PATH counts as an attempt): skipping it would end
     // exploring while a region may be unexplored behind it.
-    const auto view = view_point(grid, pieces, f.goal, f.outward, walls, wanted, options_.view);
+    const auto view = view_point(*rp, pieces, f.goal, f.outward, wanted, options_.view);
     const Vector2d view_at = r->map_from_region * (view ? view->point : f.goal);
     const double d = (view_at - robot).norm() + (view ? 0.0 : kNoViewAfter);
     if (d >= best_d) continue;

@@ -3,17 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/segment2.h"
-
 namespace rgnav::explorer {
 
 using Eigen::Vector2d;
 
-std::optional<ViewPoint> view_point(const planner::RegionGrid& grid, const std::vector<int32_t>& pieces,
-                                    const Vector2d& target, const Vector2d& outward,
-                                    const std::vector<std::pair<Vector2d, Vector2d>>& walls, double wanted_clearance,
+std::optional<ViewPoint> view_point(const planner::RegionPlanner& region, const std::vector<int32_t>& pieces,
+                                    const Vector2d& target, const Vector2d& outward, double wanted_clearance,
                                     const ViewOptions& options)
 {
+  const planner::RegionGrid& grid = region.grid();
   struct Candidate
   {
     double score;
@@ -35,10 +33,7 @@ std::optional<ViewPoint> view_point(const planner::RegionGrid& grid, const std::
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.score < b.score; });
   // The nearest with a clear line of sight (tested in order: most candidates are never looked at).
   for (const Candidate& c : candidates) {
-    const bool seen = std::none_of(walls.begin(), walls.end(), [&](const auto& w) {
-      return geometry::segments_cross(c.point, target, w.first, w.second);
-    });
-    if (!seen) continue;
+    if (region.crosses_line(c.point, target)) continue;
     const Vector2d to = target - c.point;
     const Vector2d dir = to.norm() > grid.resolution() ? to : outward;
     return ViewPoint{c.point, std::atan2(dir.y(), dir.x())};

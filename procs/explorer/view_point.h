@@ -15,11 +15,10 @@
 
 #include <cstdint>
 #include <optional>
-#include <utility>
 #include <vector>
 
 #include "explorer/explorer_options.h"
-#include "planner/region_grid.h"
+#include "planner/region_planner.h"
 
 namespace rgnav::explorer {
 

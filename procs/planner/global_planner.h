@@ -16,7 +16,7 @@
 //   the cheapest of every region whose     | overlapping regions without a gateway: out | GlobalPlanner.AStartInOverlapping...
 //   grid holds the place in its main piece | one's gateway and back in (to and fro)     |
 //   (no gateway joins it to the start's),  |                                            |
-//   its first leg across no line of the    | a thin region's grid free where the robot's| (lab_ipa: stuck at a wall end, 6 goals)
+//   its first leg across no line of the    | a thin region's grid free where the robot's| GlobalPlanner.AStartInOverlapping...
 //   robot's own region                     | own region has a wall                      |
 #pragma once
 
