@@ -1,9 +1,9 @@
 #include "rgmap/freespace_bitmap.h"
 
-#include <Eigen/Eigenvalues>
-
 #include <cmath>
 #include <stdexcept>
+
+#include "geometry/symmetric_eigen2.h"
 
 namespace rgnav::rgmap {
 
@@ -97,8 +97,7 @@ FreespaceFeatures FreespaceBitmap::features() const
   f.area = n * cell_area;
   f.centroid = sum / n;
   f.second_moments = sum_sq / n - f.centroid * f.centroid.transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(f.second_moments);
-  const Eigen::Vector2d ev = es.eigenvalues().cwiseMax(0.0);  // ascending
+  const Eigen::Vector2d ev = geometry::symmetric_eigen(f.second_moments).values.cwiseMax(0.0);  // ascending
   f.main_axes = Eigen::Vector2d(2 * std::sqrt(ev(1)), 2 * std::sqrt(ev(0)));
   return f;
 }

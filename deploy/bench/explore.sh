@@ -67,24 +67,18 @@
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"
-SHARED="${RGNAV_DATA:-$ROOT/../shared/data}"
-IPA="$SHARED/maps/ipa"
 JSON="$ROOT/logs/bench/explore.json"
 WORK="$ROOT/logs/bench/explore"
 ONLY="${EXPLORE_ONLY:-}"
-wanted() { [ -z "$ONLY" ] || [[ " $ONLY " == *" $1 "* ]]; }
+# shellcheck source=lib/nav_worlds.sh
+source "$ROOT/deploy/bench/lib/nav_worlds.sh"
 bin="$BUILD/bin/rgnav_explore_bench"
 [ -x "$bin" ] || { echo "bench explore: $bin is not built" >&2; exit 1; }
-specs=("office=$ROOT/config/worlds/office.yaml" "lab_ipa=$IPA/lab_ipa.png" "Freiburg52=$IPA/Freiburg52_scan.png"
-       "lab_c_furnished=$IPA/lab_c_scan_furnitures.png" "office_e=$IPA/office_e.png")
-args=()
-for spec in "${specs[@]}"; do
-  wanted "${spec%%=*}" && args+=(--sim "$spec")
-done
-[ ${#args[@]} -gt 0 ] || { echo "bench explore: no world left by EXPLORE_ONLY='$ONLY'" >&2; exit 2; }
+nav_world_args
+[ ${#world_args[@]} -gt 0 ] || { echo "bench explore: no world left by EXPLORE_ONLY='$ONLY'" >&2; exit 2; }
 methods=()
 for m in ${EXPLORE_METHODS:-rgnav frontier}; do methods+=(--methods "$m"); done
 mkdir -p "$WORK"
 # shellcheck disable=SC2086
-exec "$bin" --json "$JSON" --out "$WORK" "${args[@]}" "${methods[@]}" --starts "${EXPLORE_STARTS:-1}" \
+exec "$bin" --json "$JSON" --out "$WORK" "${world_args[@]}" "${methods[@]}" --starts "${EXPLORE_STARTS:-1}" \
   --spin-at-start "${EXPLORE_SPIN:-0}" --jobs "${EXPLORE_JOBS:-2}" ${EXPLORE_ARGS:-}

@@ -45,25 +45,17 @@
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"
-SHARED="${RGNAV_DATA:-$ROOT/../shared/data}"
-IPA="$SHARED/maps/ipa"
 JSON="$ROOT/logs/bench/localize.json"
 WORK="$ROOT/logs/bench/localize"
 ONLY="${LOCALIZE_ONLY:-}"
-wanted() { [ -z "$ONLY" ] || [[ " $ONLY " == *" $1 "* ]]; }
+# shellcheck source=lib/nav_worlds.sh
+source "$ROOT/deploy/bench/lib/nav_worlds.sh"
 bin="$BUILD/bin/rgnav_localize_bench"
 [ -x "$bin" ] || { echo "bench localize: $bin is not built" >&2; exit 1; }
-# The office world and four IPA building maps of different kinds (a lab, an institute floor,
-# a furnished lab, an office floor).
-specs=("office=$ROOT/config/worlds/office.yaml" "lab_ipa=$IPA/lab_ipa.png" "Freiburg52=$IPA/Freiburg52_scan.png"
-       "lab_c_furnished=$IPA/lab_c_scan_furnitures.png" "office_e=$IPA/office_e.png")
-sims=()
-for spec in "${specs[@]}"; do
-  wanted "${spec%%=*}" && sims+=(--sim "$spec")
-done
+nav_world_args
 mkdir -p "$WORK"
 # shellcheck disable=SC2086
-"$bin" --json "$JSON.rgnav" --out "$WORK" "${sims[@]}" ${LOCALIZE_ARGS:-}
+"$bin" --json "$JSON.rgnav" --out "$WORK" "${world_args[@]}" ${LOCALIZE_ARGS:-}
 mrpt_ok=0
 if [ "${LOCALIZE_MRPT:-1}" != 0 ] && command -v pf-localization >/dev/null; then
   # The MRPT pipeline checked first on a synthetic world with exact truth (frames, laser mount,

@@ -81,22 +81,16 @@
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BUILD="${RGNAV_BUILD:-$ROOT/build}"
-SHARED="${RGNAV_DATA:-$ROOT/../shared/data}"
-IPA="$SHARED/maps/ipa"
 JSON="$ROOT/logs/bench/plan.json"
 WORK="$ROOT/logs/bench/plan"
 ONLY="${PLAN_ONLY:-}"
-wanted() { [ -z "$ONLY" ] || [[ " $ONLY " == *" $1 "* ]]; }
+# shellcheck source=lib/nav_worlds.sh
+source "$ROOT/deploy/bench/lib/nav_worlds.sh"
 bin="$BUILD/bin/rgnav_plan_bench"
 [ -x "$bin" ] || { echo "bench plan: $bin is not built" >&2; exit 1; }
-# The localization benchmark's worlds: the office world and four IPA building maps of different
-# kinds (a lab, an institute floor, a furnished lab, an office floor).
-specs=("office=$ROOT/config/worlds/office.yaml" "lab_ipa=$IPA/lab_ipa.png" "Freiburg52=$IPA/Freiburg52_scan.png"
-       "lab_c_furnished=$IPA/lab_c_scan_furnitures.png" "office_e=$IPA/office_e.png")
-args=()
-for spec in "${specs[@]}"; do
-  wanted "${spec%%=*}" && args+=(--sim "$spec")
-done
+# The localization benchmark's worlds.
+nav_world_args
+args=("${world_args[@]}")
 for name in ${PLAN_CLOSED_LOOP-office lab_ipa office_e}; do
   wanted "$name" && args+=(--closed-loop "$name")
 done

@@ -37,6 +37,18 @@
 #     segment end points), mean_region_bytes (freespace bitmap + segments), consistency_problems,
 #     overlapping_regions (pairs of regions, the smaller with half its freespace in the other's:
 #     one place mapped twice, or a small room seen whole through a wide opening).
+#   ghost_segments / ghost_segment_m: line-map segments (of live regions) with nothing static of the
+#     world within 0.1 m — more than half of the segment's length farther than that from every wall,
+#     door leaf (open or closed), box and table leg at the laser's height, in the world frame after
+#     the rigid fit (tests/eval/rgmap/ghost_segments.h): what moved, left in the map; and their length.
+#     Walls the map holds more than 0.1 m off after the fit (SLAM drift) count too: the figure of a
+#     world without people, and of the true-pose runs, tells them apart.
+#   people: walking people kept in the world (0: left out).
+# worlds.office_people — office.yaml driven with its walking people (the same tour: they and the
+#   robot pass through each other, as the tour follower has no obstacle avoidance); the same keys.
+# ghost_segments — issue 33's figure: ghost segments summed over the worlds driven with people
+#   (scan mapper poses; ghost_segments_segments: all their segments, for scale;
+#   ghost_segment_worlds: per world).
 # worlds.rand_<seed>, rand_<seed>_furnished — generated buildings (issue 33; tests/eval/buildings,
 #   rgnav_building_gen: hallways straight, L, T, crossing or a ring, 1.2-3.5 m wide, offices to
 #   open halls, doors 0.8-1.6 m and openings 2-3 m, rooms behind rooms, walls 1-4 px with scan
@@ -103,6 +115,8 @@ sims=()
 for spec in "${specs[@]}"; do
   wanted "${spec%%=*}" && sims+=(--sim "$spec")
 done
+# The office world again with its walking people (ghost_segments).
+wanted office_people && sims+=(--sim-people "office_people=$ROOT/config/worlds/office.yaml")
 # Generated buildings (tests/eval/buildings): no rule was fitted to them.
 source "$ROOT/tests/eval/buildings/random_building_specs.sh"
 random=$(random_building_specs "$BUILD/bin/rgnav_building_gen" "$WORK/random" "${RANDOM_BUILDINGS:-50}" "${RANDOM_SEED:-1}" \

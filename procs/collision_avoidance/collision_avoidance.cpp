@@ -181,6 +181,9 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   // Out of a person's way sideways, until they have passed (yielding.cpp): nothing else decides
   // meanwhile, but a new goal ends it.
   if (auto yielding = yield_under_way(now)) return *yielding;
+  // Someone coming through a doorway or a narrow hallway the robot is not yet in (or both are):
+  // out of their way before it, not after meeting them in it.
+  if (auto before = yield_before_one_lane(now)) return *before;
 
   // A back-off manoeuvre runs to its end: re-deciding every 100 ms on a clearance that
   // flickers around the threshold (scan noise) made the robot twitch between turning away

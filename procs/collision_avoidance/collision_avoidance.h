@@ -142,8 +142,16 @@ class CollisionAvoidance
   {
     PersonPath path;
     bool walking = false;  // walking now (else: walked up and stopped)
+    Eigen::Vector2d at = Eigen::Vector2d::Zero();  // where they are (odom frame)
+    double speed = 0.0;    // [m/s] walking (0: stopped)
   };
   std::optional<PersonInTheWay> person_in_the_way() const;
+  // Before either is in it: someone walking toward the robot, with a stretch between them too
+  // narrow to pass each other (one_lane_between) that they would enter before the robot is
+  // out of it (or they are in it already). The robot does not go in: it leaves their path now
+  // (start_yield): what to send (maybe nothing). nullopt: no reason, or not for
+  // yield_head_on_after yet; decide normally.
+  std::optional<std::optional<trajectory::Trajectory>> yield_before_one_lane(time::Time now);
   // [s] a yield manoeuvre takes the drive.
   double manoeuvre_time(const trajectory::Chain& c) const;
   // Where the robot's way leads (unit, odom frame): toward its first target at least a metre off.
@@ -248,6 +256,8 @@ class CollisionAvoidance
   };
   Yield yield_;
   time::Time yield_retry_after_{};  // no new yield before (after one that found no way out)
+  bool one_lane_meeting_ = false;   // yield_before_one_lane's reason holds since ...
+  time::Time one_lane_since_{};
   Mode mode_ = Mode::kIdle;
   std::string status_ = "idle";
 };

@@ -240,6 +240,62 @@ ToPass someone_to_pass(const LocalMap& map, const PersonPath& path, const Eigen:
   return ToPass::kNobody;
 }
 
+std::optional<OneLane> one_lane_between(const LocalMap& map, const Eigen::Vector2d& robot, const Eigen::Vector2d& person,
+                                        double width, double person_radius)
+{
+  const Eigen::Vector2d d = person - robot;
+  const double length = d.norm() - person_radius;
+  if (length <= 0.0) return std::nullopt;
+  return one_lane_along(map, robot, robot + d.normalized() * length, width, person, person_radius + 0.15);
+}
+
+std::optional<OneLane> one_lane_along(const LocalMap& map, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                                      double width, const Eigen::Vector2d& exclude, double exclude_radius)
+{
+  constexpr double kStep = 0.1;  // [m] places along the line
+  const Eigen::Vector2d d = to - from;
+  const double length = d.norm();
+  if (length <= 1e-9) return std::nullopt;
+  const Eigen::Vector2d u = d.normalized(), n(-u.y(), u.x());
+  const int samples = static_cast<int>(std::floor(length / kStep)) + 1;
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> left(static_cast<size_t>(samples), inf), right(static_cast<size_t>(samples), inf);
+  for (size_t k = 0; k < map.points().size(); ++k) {
+    const Eigen::Vector2d& p = map.points()[k];
+    if (map.predicted_only(k) || (p - exclude).norm() < exclude_radius) continue;
+    const Eigen::Vector2d r = p - from;
+    const double along = r.dot(u), lateral = r.dot(n);
+    if (std::fabs(lateral) >= width || along < -kOneLaneSlab || along > length + kOneLaneSlab) continue;
+    const int lo = std::max(0, static_cast<int>(std::ceil((along - kOneLaneSlab) / kStep - 1e-9)));
+    const int hi = std::min(samples - 1, static_cast<int>(std::floor((along + kOneLaneSlab) / kStep + 1e-9)));
+    for (int i = lo; i <= hi; ++i) {
+      auto& side = lateral >= 0.0 ? left[static_cast<size_t>(i)] : right[static_cast<size_t>(i)];
+      side = std::min(side, std::fabs(lateral));
+    }
+  }
+  // A wall seen at a grazing angle: its points lie farther apart than the slabs are wide. Where
+  // a side has none, what it has within kOneLaneBridge either way (the wider) bridges the gap.
+  for (auto* side : {&left, &right}) {
+    const int reach = static_cast<int>(std::round(kOneLaneBridge / kStep));
+    const std::vector<double> seen = *side;
+    for (int i = 0; i < samples; ++i) {
+      if (std::isfinite(seen[static_cast<size_t>(i)])) continue;
+      double before = inf, after = inf;
+      for (int k = i - 1; k >= std::max(0, i - reach) && !std::isfinite(before); --k) before = seen[static_cast<size_t>(k)];
+      for (int k = i + 1; k <= std::min(samples - 1, i + reach) && !std::isfinite(after); ++k) after = seen[static_cast<size_t>(k)];
+      if (std::isfinite(before) && std::isfinite(after)) (*side)[static_cast<size_t>(i)] = std::max(before, after);
+    }
+  }
+  std::optional<OneLane> lane;
+  for (int i = 0; i < samples; ++i) {
+    if (left[static_cast<size_t>(i)] + right[static_cast<size_t>(i)] >= width) continue;
+    const double s = std::min(length, i * kStep);
+    if (!lane) lane = OneLane{s, s, length};
+    lane->end = s;
+  }
+  return lane;
+}
+
 std::optional<GiveWay> choose_give_way(const LocalMap& map, const Eigen::Vector2d& from, double away, double clearance,
                                        double step, const GiveWayOptions& o)
 {

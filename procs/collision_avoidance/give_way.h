@@ -11,6 +11,10 @@
 // and waits until nobody is left to pass (someone_to_pass) before it goes on. In a hallway
 // that place lies beyond its mouth, into the room behind the robot.
 //
+// Better not to meet in there at all (one_lane_between): someone coming toward the robot
+// through a stretch too narrow for both, who would be in it before the robot is out, gets the
+// way before the robot goes in; the robot already in it while they are not yet goes on through.
+//
 // Where no such place can be found (boxed in, or nothing known around), the old way is the
 // last resort: drive back along the freest line away from the target (choose_give_way).
 #pragma once
@@ -91,6 +95,29 @@ enum class ToPass
 };
 ToPass someone_to_pass(const LocalMap& map, const PersonPath& path, const Eigen::Vector2d& robot,
                        const YieldOptions& options);
+
+// Where the robot at `robot` and a person at `person` coming toward it cannot pass each other: the
+// stretch of the straight line between them (up to `person_radius` short of the person) where the
+// space across it is narrower than `width` (a doorway, a narrow hallway). Across it: the nearest
+// obstacle points to either side within kOneLaneSlab along the line; the laser's points on a
+// wall seen at a grazing angle lie farther apart, so a side without any there takes the wider
+// of what it has within kOneLaneBridge either way. The person's own points (within
+// person_radius + 0.15 m of them) and where movers are only predicted to be are left out.
+// Nothing known to one side: room to pass. Nothing: they can pass each other all the way.
+struct OneLane
+{
+  double begin = 0.0;   // [m] along the line from the robot (0: the robot is in it)
+  double end = 0.0;     // [m] (of the last, where there are several)
+  double length = 0.0;  // [m] of the line looked along (to person_radius short of the person)
+};
+constexpr double kOneLaneSlab = 0.15;  // [m] either side of a place along the line
+constexpr double kOneLaneBridge = 1.0; // [m] a side with no point there takes what it has this near either way
+std::optional<OneLane> one_lane_between(const LocalMap& map, const Eigen::Vector2d& robot, const Eigen::Vector2d& person,
+                                        double width, double person_radius);
+// The same measure along the straight line from `from` to `to`, leaving out the points within
+// `exclude_radius` of `exclude` (someone's own).
+std::optional<OneLane> one_lane_along(const LocalMap& map, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                                      double width, const Eigen::Vector2d& exclude, double exclude_radius);
 
 // The last resort. Among headings within `spread` of straight back (`away`: odom frame, from
 // the target), the straight line from the robot that stays free (the planner's footprint

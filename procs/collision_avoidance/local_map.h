@@ -108,6 +108,8 @@ class LocalMap
   double clearance_observed(const Eigen::Vector2d& p, double radius) const;
   size_t size() const { return points_.size(); }
   const std::vector<Eigen::Vector2d>& points() const { return points_; }
+  // points()[i] is only where a tracked mover is predicted to be (not seen there).
+  bool predicted_only(size_t i) const { return i >= predicted_begin_ && i < predicted_end_; }
   // Distance from p to the nearest possibly moving point within `radius` (infinity if none).
   double clearance_moving(const Eigen::Vector2d& p, double radius) const;
   size_t moving_size() const { return moving_.size(); }

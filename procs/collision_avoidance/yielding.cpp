@@ -45,6 +45,7 @@ constexpr double kOffTheWay = 0.5;  // [m] ... and this much farther from it tha
 constexpr double kWayAhead = 1.0;   // [m] the robot's way: toward its first target at least this far
 constexpr double kPersonRadius = 0.3;  // [m] a person's points lie this close to their track's centroid
 constexpr double kApart = 0.3;         // [m] beams beside a person reach this much farther
+constexpr double kOneLaneStep = 0.15;  // [m] a one-lane stretch this near the robot (the person) along the line: in it
 
 // Turns on the spot and straight legs through `corners`, then a turn to `final_heading`: a
 // synchro drive can always do this from standing, and the legs are the search's free lines.
@@ -117,7 +118,8 @@ std::optional<CollisionAvoidance::PersonInTheWay> CollisionAvoidance::person_in_
   // Only someone coming the other way along the robot's way: in a doorway or a hallway they
   // cannot pass each other. Someone crossing it passes by (the robot waits a moment, as it
   // always did), and who else stops in front of it is left to the older fallbacks.
-  auto consider = [&](const Eigen::Vector2d& at, Eigen::Vector2d dir, bool walking) {
+  // speed: walking at it now (0: walked up and stopped).
+  auto consider = [&](const Eigen::Vector2d& at, Eigen::Vector2d dir, double speed) {
     const Eigen::Vector2d to_robot = here - at;
     const double d = to_robot.norm();
     if (d < 1e-6 || -to_robot.dot(to_target) < std::cos(kAhead) * d * to_target.norm()) return;
@@ -131,7 +133,9 @@ std::optional<CollisionAvoidance::PersonInTheWay> CollisionAvoidance::person_in_
     PersonInTheWay p;
     p.path.from = here + *way * way->dot(-to_robot);
     p.path.direction = -*way;
-    p.walking = walking;
+    p.walking = speed > 0.0;
+    p.at = at;
+    p.speed = speed;
     best = p;
     best_d = d;
   };
@@ -143,7 +147,7 @@ std::optional<CollisionAvoidance::PersonInTheWay> CollisionAvoidance::person_in_
     // Where the newest scan sees it, apart from what is behind it: a piece of wall that seems
     // to slide along the wall as the robot turns or drives (the part in view changes) is not.
     if (map_.seen_now(at) == SeenNow::kStillThere && !map_.stands_apart(at, kPersonRadius, kApart)) continue;
-    consider(at, walking_direction(t.velocity, at - t.first), true);
+    consider(at, walking_direction(t.velocity, at - t.first), t.velocity.norm());
   }
   // Someone who walked up and stopped (their cells turned static, the track ended), and still
   // stands there: they were walking the way they last moved.
@@ -155,9 +159,53 @@ std::optional<CollisionAvoidance::PersonInTheWay> CollisionAvoidance::person_in_
     if (map_.seen_now(m.position) != SeenNow::kStillThere || !map_.stands_apart(m.position, kPersonRadius, kApart))
       continue;
     if (m.walking.norm() < min_speed) continue;
-    consider(m.position, walking_direction(m.walking, m.position - m.first), false);
+    consider(m.position, walking_direction(m.walking, m.position - m.first), 0.0);
   }
   return best;
+}
+
+std::optional<std::optional<trajectory::Trajectory>> CollisionAvoidance::yield_before_one_lane(time::Time now)
+{
+  const Eigen::Vector2d here = pose_.translation();
+  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
+  bool meeting = false;
+  std::optional<PersonInTheWay> person;
+  if (now >= yield_retry_after_) person = person_in_the_way();
+  if (person && person->walking) {
+    // Too narrow to pass each other: less than the robot's clearance either side beside a
+    // person passing (the width of their predicted path).
+    const double width = 2.0 * (clearance + options_.give_way.yield.path_half_width);
+    if (const auto lane = one_lane_between(map_, here, person->at, width, kPersonRadius)) {
+      const bool robot_in = lane->begin < kOneLaneStep;
+      const bool person_in = lane->length - lane->end < kOneLaneStep;
+      if (person_in) {
+        meeting = true;  // they were there first (or both are in it: they meet there)
+      } else if (!robot_in) {
+        // Neither is in it yet: does the robot get out of it before they get in? It drives the
+        // open space before it at the targets' speed, between walls that close at the planner's
+        // slow speed, until its clearance is beyond the far end.
+        const double robot_out = lane->begin / std::max(0.05, targets_.max_speed) +
+                                 (lane->end - lane->begin + clearance) / options_.planner.slow_speed;
+        const double person_there = (lane->length - lane->end) / person->speed;
+        meeting = person_there < robot_out;
+      }
+      // The robot in it and they not yet: it was there first, and goes on through.
+    }
+  }
+  if (!meeting) {
+    one_lane_meeting_ = false;
+    return std::nullopt;
+  }
+  if (!one_lane_meeting_) {
+    one_lane_meeting_ = true;
+    one_lane_since_ = now;
+  }
+  // As in the fallback: the reason holds a moment (not one scan's glimpse of a track).
+  if (time::to_seconds(now - one_lane_since_) < options_.yield_head_on_after) return std::nullopt;
+  one_lane_meeting_ = false;
+  auto out = start_yield(now, person->path);
+  if (yield_.phase == YieldPhase::kNone) return std::nullopt;  // no place out of their way: as before
+  return std::optional<std::optional<trajectory::Trajectory>>(std::move(out));
 }
 
 double CollisionAvoidance::manoeuvre_time(const trajectory::Chain& c) const

@@ -290,8 +290,10 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
       const StackEntry* e = stack_.entry(goal_->entry_id);
       if (e && e->state != StackEntry::State::kDone) stack_.done(goal_->entry_id, reason);
     } else {
-      stack_.failed(goal_->entry_id, reason, utime + static_cast<int64_t>(options_.retry_after_s * 1e6),
-                    options_.max_attempts, static_cast<int64_t>(map_ ? map_->regions().size() : 0), counts);
+      const StackEntry* e = stack_.entry(goal_->entry_id);
+      const PlaceView view = e && map_ ? view_of_place(*map_, e->crossing, options_.changed) : PlaceView{};
+      stack_.failed(goal_->entry_id, reason, utime, utime + static_cast<int64_t>(options_.retry_after_s * 1e6),
+                    options_.max_attempts, static_cast<int64_t>(map_ ? map_->regions().size() : 0), view, counts);
     }
   } else if (reached) {
     visited_.push_back(goal_->frontier_point);
@@ -299,9 +301,15 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
     auto it = std::find_if(failed_.begin(), failed_.end(), [&](const FailedPlace& f) {
       return (f.map_point - goal_->frontier_point).norm() < options_.visited_radius;
     });
-    if (it == failed_.end()) it = failed_.insert(failed_.end(), FailedPlace{goal_->frontier_point, 0, 0});
+    if (it == failed_.end()) {
+      FailedPlace place;
+      place.map_point = goal_->frontier_point;
+      it = failed_.insert(failed_.end(), place);
+    }
     if (counts) ++it->attempts;
     it->retry_utime = utime + static_cast<int64_t>(options_.retry_after_s * 1e6);
+    it->failed_utime = utime;
+    if (map_) it->view_at_failure = view_of_place(*map_, it->map_point, options_.changed);
   }
   goal_.reset();
   decide_now_ = true;
@@ -355,6 +363,19 @@ bool Explorer::waiting_to_retry(int64_t utime) const
   return std::any_of(failed_.begin(), failed_.end(), [&](const FailedPlace& f) {
     return f.attempts < options_.max_attempts && utime < f.retry_utime;
   });
+}
+
+void Explorer::release_changed(int64_t utime)
+{
+  const auto min_age = static_cast<int64_t>(options_.retry_after_s * 1e6);
+  stack_.release_changed(*map_, options_.changed, utime, min_age, options_.max_attempts);
+  for (auto& f : failed_) {
+    if (f.attempts < options_.max_attempts || utime - f.failed_utime < min_age) continue;
+    if (!place_changed(f.view_at_failure, view_of_place(*map_, f.map_point, options_.changed), options_.changed))
+      continue;
+    f.attempts = options_.max_attempts - 1;
+    f.retry_utime = utime;
+  }
 }
 
 Command Explorer::step(int64_t utime)
@@ -419,6 +440,7 @@ Command Explorer::step(int64_t utime)
     }
   }
 
+  release_changed(utime);
   std::optional<ExploreGoal> next = choose(utime);
   if (goal_) {
     // A gateway goal runs until it ends; a frontier goal gives way to a better choice: a region
@@ -510,7 +532,11 @@ nlohmann::json Explorer::save() const
   nlohmann::json visited = nlohmann::json::array(), failed = nlohmann::json::array();
   for (const auto& v : visited_) visited.push_back(point_json(v));
   for (const auto& f : failed_)
-    failed.push_back({{"at", point_json(f.map_point)}, {"retry_utime", f.retry_utime}, {"attempts", f.attempts}});
+    failed.push_back({{"at", point_json(f.map_point)},
+                      {"retry_utime", f.retry_utime},
+                      {"attempts", f.attempts},
+                      {"failed_utime", f.failed_utime},
+                      {"view_at_failure", place_view_json(f.view_at_failure)}});
   return {{"phase", to_string(phase_)},
           {"start_region", start_region_},
           {"next_goal_id", next_goal_id_},
@@ -535,8 +561,16 @@ void Explorer::restore(const nlohmann::json& j)
   std::vector<Vector2d> visited;
   for (const auto& v : j.at("visited")) visited.push_back(point_from(v));
   std::vector<FailedPlace> failed;
-  for (const auto& f : j.at("failed"))
-    failed.push_back({point_from(f.at("at")), f.at("retry_utime").get<int64_t>(), f.at("attempts").get<int>()});
+  for (const auto& f : j.at("failed")) {
+    FailedPlace place;
+    place.map_point = point_from(f.at("at"));
+    place.retry_utime = f.at("retry_utime").get<int64_t>();
+    place.attempts = f.at("attempts").get<int>();
+    // Absent in state files written before places were tried again when the map near them changed.
+    place.failed_utime = f.value("failed_utime", int64_t{0});
+    if (f.contains("view_at_failure")) place.view_at_failure = place_view_from_json(f.at("view_at_failure"));
+    failed.push_back(place);
+  }
   const auto offered = j.at("offered_regions").get<std::set<int64_t>>();
   const auto goals = j.at("goals").get<std::vector<int>>();
   if (goals.size() != 3) throw std::invalid_argument("goals is not [sent, reached, failed]");

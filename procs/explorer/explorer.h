@@ -31,6 +31,7 @@
 #include "explorer/explorer_options.h"
 #include "explorer/frontiers.h"
 #include "explorer/gateway_stack.h"
+#include "explorer/place_view.h"
 #include "geometry/pose2.h"
 #include "planner/global_planner.h"
 #include "rgmap/rg_map.h"
@@ -152,6 +153,8 @@ class Explorer
   bool failed_here(const Eigen::Vector2d& map_point, int64_t utime) const;
   // Something set aside will be due again: not done yet.
   bool waiting_to_retry(int64_t utime) const;
+  // Goals set aside for good whose surroundings changed since they failed are due again.
+  void release_changed(int64_t utime);
 
   ExplorerOptions options_;
   std::shared_ptr<const rgmap::RgMap> map_;
@@ -170,7 +173,14 @@ class Explorer
   int64_t last_decision_utime_ = 0;
   bool decide_now_ = true;
   std::vector<Eigen::Vector2d> visited_;        // map frame: frontier goals reached
-  struct FailedPlace { Eigen::Vector2d map_point; int64_t retry_utime; int attempts; };
+  struct FailedPlace
+  {
+    Eigen::Vector2d map_point;
+    int64_t retry_utime = 0;
+    int attempts = 0;
+    int64_t failed_utime = 0;       // the last failure ...
+    PlaceView view_at_failure;      // ... and the map around the place then
+  };
   std::vector<FailedPlace> failed_;             // frontier goals the planner could not reach
   std::optional<std::pair<Eigen::Vector2d, int64_t>> last_failure_;   // robot position and map version then
   std::vector<Eigen::Vector2d> track_;          // map frame: where the robot was, newest last

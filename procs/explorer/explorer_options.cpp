@@ -51,6 +51,16 @@ ViewOptions load_view(const config::Config& c)
   return v;
 }
 
+PlaceViewOptions load_changed(const config::Config& c)
+{
+  PlaceViewOptions p;
+  p.radius_m = c.number("radius_m", p.radius_m, 0.2, 20.0);
+  p.sample_m = c.number("sample_m", p.sample_m, 0.01, p.radius_m);
+  p.changed_area_m2 = c.number("area_m2", p.changed_area_m2, 0.0, 100.0);
+  p.changed_wall_m = c.number("wall_m", p.changed_wall_m, 0.0, 100.0);
+  return p;
+}
+
 }  // namespace
 
 ExplorerOptions load_explorer_options(const config::Config& cfg, const config::RobotDescription& robot)
@@ -63,6 +73,7 @@ ExplorerOptions load_explorer_options(const config::Config& cfg, const config::R
   o.stack = load_stack(cfg.section("stack"));
   o.recovery = load_recovery(cfg.section("recovery"));
   o.view = load_view(cfg.section("view"));
+  o.changed = load_changed(cfg.section("map_changed_near"));
   const auto g = cfg.section("goals");
   o.goal_tolerance = g.number("tolerance_m", o.goal_tolerance, 0.05, 5.0);
   o.gateway_goal_tolerance = g.number("gateway_tolerance_m", o.gateway_goal_tolerance, 0.05, 5.0);

@@ -54,12 +54,22 @@ struct RecoveryOptions
   double timeout_s = 30.0;         // [s] a look or a step not done in this long has failed
 };
 
+// A goal set aside for good is tried again once the map near it changed by this much (place_view.h).
+struct PlaceViewOptions
+{
+  double radius_m = 2.0;           // [m] the neighbourhood of the place
+  double sample_m = 0.1;           // [m] free space is sampled on a lattice this fine
+  double changed_area_m2 = 0.1;    // [m^2] free area gained or lost that counts as a change
+  double changed_wall_m = 0.15;    // [m] wall length gained or lost that counts as a change
+};
+
 struct ExplorerOptions
 {
   FrontierOptions frontier;
   StackOptions stack;
   RecoveryOptions recovery;
   ViewOptions view;
+  PlaceViewOptions changed;
   // The planner's grid (its config's grid section): view points are cells the planner can reach.
   planner::GridOptions grid;
   double robot_radius = 0.26;      // [m] from the robot description
@@ -69,7 +79,8 @@ struct ExplorerOptions
   double retry_after_s = 60.0;     // [s] a goal the planner found no path for is tried again after this (and
                                    // whenever the map gained a region since)
   int max_attempts = 3;            // ... at most this many times (a failure counts only if the robot moved or the map
-                                   // changed since the last one); then it is set aside for good (with its reason)
+                                   // changed since the last one); then it is set aside for good (with its reason) until
+                                   // the map near it changes (`changed`), at least retry_after_s after its last failure
   double goal_timeout_s = 180.0;   // [s] a goal not reached in this long counts as failed
   double progress_timeout_s = 60.0;// [s] a goal the robot got no nearer to (by progress_m) in this long counts as failed
   double progress_m = 0.3;         // [m] (explore_lite's progress rule: a robot held by something it cannot see)

@@ -157,8 +157,8 @@ void GatewayStack::done(int64_t id, const std::string& reason)
     }
 }
 
-void GatewayStack::failed(int64_t id, const std::string& reason, int64_t retry_utime, int max_attempts,
-                          int64_t map_regions, bool counts)
+void GatewayStack::failed(int64_t id, const std::string& reason, int64_t utime, int64_t retry_utime, int max_attempts,
+                          int64_t map_regions, const PlaceView& view, bool counts)
 {
   for (auto& e : entries_) {
     if (e.id != id) continue;
@@ -166,9 +166,26 @@ void GatewayStack::failed(int64_t id, const std::string& reason, int64_t retry_u
     e.state = StackEntry::State::kSetAside;
     e.reason = reason;
     e.map_regions_at_failure = map_regions;
-    // For good after max_attempts: retry_utime 0 is never due.
+    e.failed_utime = utime;
+    e.view_at_failure = view;
+    // For good after max_attempts: retry_utime 0 is never due (until release_changed).
     e.retry_utime = e.attempts >= max_attempts ? 0 : retry_utime;
   }
+}
+
+int GatewayStack::release_changed(const rgmap::RgMap& map, const PlaceViewOptions& o, int64_t utime,
+                                  int64_t min_age_us, int max_attempts)
+{
+  int released = 0;
+  for (auto& e : entries_) {
+    if (e.state != StackEntry::State::kSetAside || e.retry_utime != 0 || utime - e.failed_utime < min_age_us) continue;
+    if (!place_changed(e.view_at_failure, view_of_place(map, e.crossing, o), o)) continue;
+    e.attempts = std::max(0, max_attempts - 1);
+    e.retry_utime = utime;
+    e.reason += " (the map near it changed: trying again)";
+    ++released;
+  }
+  return released;
 }
 
 const StackEntry* GatewayStack::entry(int64_t id) const
@@ -197,6 +214,8 @@ nlohmann::json GatewayStack::to_json() const
                     {"attempts", e.attempts},
                     {"retry_utime", e.retry_utime},
                     {"map_regions_at_failure", e.map_regions_at_failure},
+                    {"failed_utime", e.failed_utime},
+                    {"view_at_failure", place_view_json(e.view_at_failure)},
                     {"reason", e.reason}});
   return {{"next_id", next_id_}, {"entries", list}};
 }
@@ -223,6 +242,9 @@ void GatewayStack::from_json(const nlohmann::json& j)
     e.attempts = x.at("attempts").get<int>();
     e.retry_utime = x.at("retry_utime").get<int64_t>();
     e.map_regions_at_failure = x.at("map_regions_at_failure").get<int64_t>();
+    // Absent in state files written before entries were released when the map near them changed.
+    e.failed_utime = x.value("failed_utime", int64_t{0});
+    if (x.contains("view_at_failure")) e.view_at_failure = place_view_from_json(x.at("view_at_failure"));
     e.reason = x.at("reason").get<std::string>();
     entries.push_back(e);
   }

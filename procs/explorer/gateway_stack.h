@@ -6,7 +6,8 @@
 // own), in the map frame, with the region it was seen from. An entry is done once the robot has
 // been past it, or once the place beyond it is free in some region of the map (seen from
 // elsewhere); an entry the planner could not reach is set aside with the reason and tried
-// again later (ExplorerOptions::retry_after_s, max_attempts).
+// again later (ExplorerOptions::retry_after_s, max_attempts); one set aside for good is tried
+// again once the map near it changed (place_view.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "explorer/explorer_options.h"
+#include "explorer/place_view.h"
 #include "rgmap/rg_map.h"
 
 namespace rgnav::explorer {
@@ -43,6 +45,8 @@ struct StackEntry
   int attempts = 0;                     // goals for it that failed
   int64_t retry_utime = 0;              // set aside: not before this
   int64_t map_regions_at_failure = 0;   // regions in the map when it last failed (a new one: retry)
+  int64_t failed_utime = 0;             // when it last failed
+  PlaceView view_at_failure;            // the map around its crossing then
   std::string reason;                   // why done or set aside
   // The goal beyond it (map frame).
   Eigen::Vector2d beyond(double distance) const;
@@ -67,8 +71,13 @@ class GatewayStack
   void done(int64_t id, const std::string& reason);
   // A goal for entry `id` failed: set aside until `retry_utime` (and for good after max attempts;
   // `counts` false: not an attempt, the same failure again from the same place on the same map).
-  void failed(int64_t id, const std::string& reason, int64_t retry_utime, int max_attempts, int64_t map_regions,
-              bool counts = true);
+  // `view`: the map around its crossing now (place_view.h).
+  void failed(int64_t id, const std::string& reason, int64_t utime, int64_t retry_utime, int max_attempts,
+              int64_t map_regions, const PlaceView& view, bool counts = true);
+  // Entries set aside for good whose surroundings changed since they last failed (and that failed
+  // at least `min_age_us` before `utime`) are due again, with one attempt left; returns how many.
+  int release_changed(const rgmap::RgMap& map, const PlaceViewOptions& o, int64_t utime, int64_t min_age_us,
+                      int max_attempts);
 
   const StackEntry* entry(int64_t id) const;
   const std::vector<StackEntry>& entries() const { return entries_; }

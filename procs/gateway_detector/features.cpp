@@ -1,11 +1,13 @@
 #include "gateway_detector/features.h"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
-#include <Eigen/Eigenvalues>
+#include "geometry/symmetric_eigen2.h"
 
 namespace rgnav::gateway_detector {
 
@@ -17,8 +19,7 @@ Line fit_line(const std::vector<Vec2>& points)
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
   for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
   // The normal is the eigenvector of the smallest eigenvalue (orthogonal regression).
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
-  Vec2 n = es.eigenvectors().col(0);
+  Vec2 n = geometry::symmetric_eigen(cov).vectors.col(0);
   double rho = mean.dot(n);
   if (rho < 0) {
     n = -n;

@@ -15,7 +15,9 @@ using Eigen::Vector2d;
 namespace {
 
 constexpr uint32_t kKernelMagic = 0x4b475231;   // "1RGK"
-constexpr uint32_t kFormat = 1;
+// 2: each builder also keeps its points seen through (seen_through.h). Format 1 still loads: they
+// are found afresh at the builder's next rebuild.
+constexpr uint32_t kFormat = 2;
 
 void put_segments(persist::ByteWriter& w, const std::vector<rgmap::LineSegment>& segs)
 {
@@ -215,9 +217,21 @@ void RegionBuilder::save(persist::ByteWriter& w, const SharedPoints& shared_poin
       w.put(o.radius);
     }
   }
+  w.put(static_cast<uint8_t>(seen_through_valid_));
+  w.put(static_cast<uint8_t>(holds_seen_through_));
+  w.put(scans_at_rebuild_);
+  using Flags = std::map<int64_t, std::vector<char>>;
+  for (const Flags* seen : {static_cast<const Flags*>(&seen_through_), &seen_elsewhere_}) {
+    w.put(static_cast<uint64_t>(seen->size()));
+    for (const auto& [id, flags] : *seen) {
+      w.put(id);
+      w.put(static_cast<uint64_t>(flags.size()));
+      for (const char f : flags) w.put(static_cast<uint8_t>(f));
+    }
+  }
 }
 
-void RegionBuilder::load(persist::ByteReader& r, const SharedPoints& shared_points)
+void RegionBuilder::load(persist::ByteReader& r, const SharedPoints& shared_points, uint32_t format)
 {
   scans_.clear();
   const uint64_t nscans = r.count(45);
@@ -261,6 +275,29 @@ void RegionBuilder::load(persist::ByteReader& r, const SharedPoints& shared_poin
       o.radius = r.get<double>();
     }
     circle_observations_[id] = std::move(obs);
+  }
+  seen_through_.clear();
+  seen_elsewhere_.clear();
+  seen_scans_.clear();
+  if (format < 2) {
+    // Found afresh from all the scans at the next rebuild (a stale line map is rebuilt anyway).
+    seen_through_valid_ = false;
+    holds_seen_through_ = !scans_.empty();
+    scans_at_rebuild_ = 0;
+    return;
+  }
+  seen_through_valid_ = r.get<uint8_t>() != 0;
+  holds_seen_through_ = r.get<uint8_t>() != 0;
+  scans_at_rebuild_ = r.get<uint64_t>();
+  using Flags = std::map<int64_t, std::vector<char>>;
+  for (Flags* seen : {&seen_through_, &seen_elsewhere_}) {
+    const uint64_t nseen = r.count(16);
+    for (uint64_t k = 0; k < nseen; ++k) {
+      const int64_t id = r.get<int64_t>();
+      std::vector<char> flags(r.count(1));
+      for (auto& f : flags) f = static_cast<char>(r.get<uint8_t>() != 0);
+      (*seen)[id] = std::move(flags);
+    }
   }
 }
 
@@ -313,8 +350,9 @@ std::string RgKernel::snapshot() const
 void RgKernel::restore_state(persist::ByteReader& r)
 {
   if (r.get<uint32_t>() != kKernelMagic) throw persist::CorruptBytes("not an RG kernel state");
-  if (const uint32_t f = r.get<uint32_t>(); f != kFormat)
-    throw persist::CorruptBytes("RG kernel state format " + std::to_string(f) + ", this build reads " +
+  const uint32_t format = r.get<uint32_t>();
+  if (format < 1 || format > kFormat)
+    throw persist::CorruptBytes("RG kernel state format " + std::to_string(format) + ", this build reads 1 to " +
                                 std::to_string(kFormat));
   rgmap::RgMap map;
   try {
@@ -345,7 +383,7 @@ void RgKernel::restore_state(persist::ByteReader& r)
     const int64_t id = r.get<int64_t>();
     if (!map.region(id)) throw persist::CorruptBytes("builder for unknown region " + std::to_string(id));
     RegionBuilder b(options_.build);
-    b.load(r, shared);
+    b.load(r, shared, format);
     builders.emplace(id, std::move(b));
   }
   std::map<int64_t, int64_t> region_of_scan;

@@ -1,10 +1,10 @@
 #include "procs/rg_kernel/line_map.h"
 
-#include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "geometry/symmetric_eigen2.h"
 
 namespace rgnav::rg_kernel {
 namespace {
@@ -32,9 +32,9 @@ Fit fit_line(const std::vector<Vector2d>& pts, size_t first, size_t last)
     const Vector2d d = pts[i] - f.centroid;
     cov += d * d.transpose();
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov / n);
-  f.direction = es.eigenvectors().col(1);
-  f.sigma = std::sqrt(std::max(0.0, es.eigenvalues()(0)));
+  const geometry::SymmetricEigen2 es = geometry::symmetric_eigen(cov / n);
+  f.direction = es.vectors.col(1);
+  f.sigma = std::sqrt(std::max(0.0, es.values(0)));
   return f;
 }
 
@@ -136,8 +136,8 @@ struct CommonLine
 CommonLine common_line(const LineSegment& a, const LineSegment& b)
 {
   const Moments m = combined(moments_of(a), moments_of(b));
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(m.scatter / m.n);
-  return {m.mean, es.eigenvectors().col(1), std::sqrt(std::max(0.0, es.eigenvalues()(0)))};
+  const geometry::SymmetricEigen2 es = geometry::symmetric_eigen(m.scatter / m.n);
+  return {m.mean, es.vectors.col(1), std::sqrt(std::max(0.0, es.values(0)))};
 }
 
 // The angle two segments may differ by: alpha_max, or for a short segment the angle its end

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "geometry/segment2.h"
+#include "geometry/symmetric_eigen2.h"
 #include "procs/rg_kernel/line_map.h"
 
 namespace rgnav::rg_kernel {
@@ -299,7 +300,7 @@ std::vector<CircleObservation> circles_in_scan(const ScanPoints& scan, const Obj
     const double m = static_cast<double>(last - first + 1);
     const double rms = std::sqrt(ss / m);
     // A line must fit clearly worse (a flat piece is not an arc).
-    const double line_sigma = std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov / m).eigenvalues()(0)));
+    const double line_sigma = std::sqrt(std::max(0.0, geometry::symmetric_eigen(cov / m).values(0)));
     if (rms > o.circle_max_rms || line_sigma < 2 * rms || line_sigma < 0.003) continue;
     const Vector2d center = c0 + c;
     // Convex towards the laser: the centre lies behind the arc.

@@ -15,6 +15,13 @@ namespace {
 // [m] neighbouring end points farther apart than this are a depth jump: the free wedge between
 // them reaches only as far as the nearer one.
 constexpr double kMaxWedgeGap = 0.5;
+// Seen-through test (seen_through.h): surfaces seen at a flatter incidence than 70 degrees are not
+// tested (as the scan mapper's moving points); an open region's line map holding points seen
+// through is rebuilt once it has grown by a quarter (and at least kRebuildMinScans scans) since
+// its last rebuild: the rebuilds' cost is then a geometric series, a few builds of the region.
+const double kMinCosIncidence = std::cos(70.0 * M_PI / 180.0);
+constexpr double kRebuildGrowth = 0.25;
+constexpr uint64_t kRebuildMinScans = 8;
 
 uint64_t cell_key(int32_t x, int32_t y) { return (static_cast<uint64_t>(static_cast<uint32_t>(x)) << 32) | static_cast<uint32_t>(y); }
 int32_t key_x(uint64_t k) { return static_cast<int32_t>(static_cast<uint32_t>(k >> 32)); }
@@ -95,9 +102,12 @@ void RegionBuilder::add_scan(StoredScan scan)
   if (it != scans_.end()) {
     if (scan.revision <= it->second.revision) return;  // old news (a duplicate or reordered message)
     it->second = std::move(scan);
+    seen_scans_.erase(it->first);
     stale_ = true;
+    seen_through_valid_ = false;
     return;
   }
+  if (seen_through_valid_) see_through(scan);   // else all afresh at the rebuild
   if (!stale_) add_incrementally(scan);
   scans_.emplace(scan.scan_id, std::move(scan));
 }
@@ -106,7 +116,110 @@ void RegionBuilder::remove_scan(int64_t scan_id)
 {
   if (scans_.erase(scan_id) == 0) return;
   circle_observations_.erase(scan_id);
+  seen_elsewhere_.erase(scan_id);
   stale_ = true;
+  seen_through_valid_ = false;
+}
+
+const RegionBuilder::SeenScan& RegionBuilder::seen_scan(const StoredScan& scan) const
+{
+  auto it = seen_scans_.find(scan.scan_id);
+  if (it != seen_scans_.end()) return it->second;
+  std::vector<Vector2d> pts;
+  pts.reserve(scan.laser_points.size());
+  for (const auto& lp : scan.laser_points) pts.push_back(scan.region_from_laser * lp);
+  auto normals = point_normals(pts, options_.extract.max_point_gap);
+  Vector2d lo = scan.region_from_laser.translation(), hi = lo;
+  for (const auto& p : pts) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  BeamView view(scan.region_from_laser, scan.laser_points, options_.freespace_max_range);
+  const double reach = view.reach();
+  return seen_scans_.emplace(scan.scan_id, SeenScan{std::move(view), std::move(pts), std::move(normals), reach, lo, hi})
+      .first->second;
+}
+
+bool RegionBuilder::may_meet(const SeenScan& points, const SeenScan& beams)
+{
+  // The nearest place of the points' box to the beams' origin, within the beams' reach.
+  const Vector2d o = beams.view.origin();
+  return (o.cwiseMax(points.lo).cwiseMin(points.hi) - o).squaredNorm() <= beams.reach * beams.reach;
+}
+
+bool RegionBuilder::see_through_by(const geometry::Pose2& region_from_laser, const std::vector<Vector2d>& laser_points)
+{
+  if (options_.seen_through_margin <= 0 || scans_.empty()) return false;
+  const BeamView view(region_from_laser, laser_points, options_.freespace_max_range);
+  const SeenScan theirs{view, {}, {}, view.reach()};
+  bool any = false;
+  for (const auto& [id, s] : scans_) {
+    const SeenScan& mine = seen_scan(s);
+    if (!may_meet(mine, theirs)) continue;   // none of its points within the other scan's reach
+    const auto own = seen_through_.find(id);
+    auto& flags = seen_elsewhere_[id];
+    flags.resize(mine.points.size(), 0);
+    for (size_t i = 0; i < mine.points.size(); ++i) {
+      if (flags[i] || (own != seen_through_.end() && i < own->second.size() && own->second[i])) continue;
+      if (!theirs.view.sees_through(mine.points[i], mine.normals[i], options_.seen_through_margin, kMinCosIncidence)) continue;
+      flags[i] = 1;
+      any = true;
+    }
+  }
+  if (any) holds_seen_through_ = true;
+  return any;
+}
+
+void RegionBuilder::see_through(const StoredScan& scan) const
+{
+  if (options_.seen_through_margin <= 0) return;
+  const double margin = options_.seen_through_margin;
+  const SeenScan& mine = seen_scan(scan);
+  auto& flags = seen_through_[scan.scan_id];
+  flags.assign(mine.points.size(), 0);
+  for (const auto& [id, s] : scans_) {
+    if (id == scan.scan_id) continue;
+    const SeenScan& theirs = seen_scan(s);
+    if (may_meet(mine, theirs))
+      for (size_t i = 0; i < mine.points.size(); ++i)
+        if (!flags[i] && theirs.view.sees_through(mine.points[i], mine.normals[i], margin, kMinCosIncidence)) flags[i] = 1;
+    auto& their_flags = seen_through_[id];
+    their_flags.resize(theirs.points.size(), 0);
+    if (!may_meet(theirs, mine)) continue;
+    for (size_t i = 0; i < theirs.points.size(); ++i)
+      if (!their_flags[i] && mine.view.sees_through(theirs.points[i], theirs.normals[i], margin, kMinCosIncidence)) {
+        their_flags[i] = 1;
+        holds_seen_through_ = true;   // perhaps merged already (unless it was in free space then)
+      }
+  }
+}
+
+void RegionBuilder::see_through_all() const
+{
+  seen_through_.clear();
+  seen_scans_.clear();
+  seen_through_valid_ = true;
+  if (options_.seen_through_margin <= 0) return;
+  const double margin = options_.seen_through_margin;
+  for (const auto& [id, s] : scans_) {
+    const SeenScan& mine = seen_scan(s);
+    auto& flags = seen_through_[id];
+    flags.assign(mine.points.size(), 0);
+    for (const auto& [other, t] : scans_) {
+      if (other == id || !may_meet(mine, seen_scan(t))) continue;
+      const BeamView& v = seen_scan(t).view;
+      for (size_t i = 0; i < mine.points.size(); ++i)
+        if (!flags[i] && v.sees_through(mine.points[i], mine.normals[i], margin, kMinCosIncidence)) flags[i] = 1;
+    }
+  }
+}
+
+void RegionBuilder::rebuild_if_seen_through(bool exact) const
+{
+  if (!holds_seen_through_ || stale_) return;
+  const uint64_t n = scans_.size();
+  const double due = static_cast<double>(scans_at_rebuild_) * (1.0 + kRebuildGrowth);
+  if (exact || (n >= scans_at_rebuild_ + kRebuildMinScans && static_cast<double>(n) >= due)) stale_ = true;
 }
 
 void RegionBuilder::add_incrementally(const StoredScan& scan) const
@@ -130,8 +243,12 @@ void RegionBuilder::add_lines(const StoredScan& scan) const
   const Vector2d o = scan.region_from_laser.translation();
   std::vector<Vector2d> pts;
   pts.reserve(scan.laser_points.size());
-  for (const auto& lp : scan.laser_points) {
-    const Vector2d p = scan.region_from_laser * lp;
+  const auto seen = seen_through_.find(scan.scan_id);
+  const auto elsewhere = seen_elsewhere_.find(scan.scan_id);
+  for (size_t i = 0; i < scan.laser_points.size(); ++i) {
+    if (seen != seen_through_.end() && i < seen->second.size() && seen->second[i]) continue;
+    if (elsewhere != seen_elsewhere_.end() && i < elsewhere->second.size() && elsewhere->second[i]) continue;
+    const Vector2d p = scan.region_from_laser * scan.laser_points[i];
     if (!options_.drop_points_in_free_space || !in_free_space(p)) pts.push_back(p);
   }
   // Tolerances follow the scan's own range noise (line_map.h): coarse logs keep walls whole.
@@ -172,14 +289,19 @@ void RegionBuilder::refresh() const
   circle_observations_.clear();
   lo_ = Vector2d::Constant(std::numeric_limits<double>::max());
   hi_ = -lo_;
-  // All the free space first, so that what moved is known wherever it was seen empty, at any time.
+  // All the free space first, so that what moved is known wherever it was seen empty, at any time;
+  // and every point any other scan saw through.
   for (const auto& [id, s] : scans_) carve(s);
+  if (!seen_through_valid_) see_through_all();
   for (const auto& [id, s] : scans_) add_lines(s);
   stale_ = false;
+  holds_seen_through_ = false;
+  scans_at_rebuild_ = scans_.size();
 }
 
 const std::vector<rgmap::LineSegment>& RegionBuilder::segments() const
 {
+  rebuild_if_seen_through(false);
   refresh();
   return segments_;
 }
@@ -221,6 +343,7 @@ std::vector<Vector2d> RegionBuilder::laser_origins() const
 void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_lines, bool exact,
                              const std::vector<ForeignSide>& foreign) const
 {
+  rebuild_if_seen_through(exact);
   refresh();
   region->segments = segments_;
   region->nscans = static_cast<int>(scans_.size());

@@ -23,6 +23,7 @@
 #include "procs/rg_kernel/line_map.h"
 #include "procs/rg_kernel/line_map_fidelity.h"
 #include "procs/rg_kernel/object_grouping.h"
+#include "procs/rg_kernel/seen_through.h"
 #include "rgmap/rg_map.h"
 
 namespace rgnav::rg_kernel {
@@ -52,6 +53,15 @@ struct RegionBuildOptions
   // part of the line map or its 2D objects (the map is of the static structure; collision
   // avoidance sees what moves). A wall's point always has unseen cells behind it.
   bool drop_points_in_free_space = true;
+  // [m] Scan points another scan of the region saw through — beams on both sides of the point
+  // reaching this much past it (seen_through.h), earlier or later, up to freespace_max_range — are
+  // something that moved and no part of the line map or its 2D objects either; so are those a
+  // later scan of another region saw through (see_through_by). A point found so after it was merged makes
+  // the line map stale: it is rebuilt from all the scans (as after a loop-closure correction) when
+  // the region is described exactly, and while it is open each time it has grown by a quarter
+  // (the rebuilds together cost a few builds of the whole region). The margin covers the pose
+  // error between the two scans and the range noise, as the scan mapper's. 0: off.
+  double seen_through_margin = 0.3;
   ObjectOptions objects;               // 2D objects (rectangles, circles), diss. 3.1-3.2
   DoorwayOptions doorways;             // the exact freespace also ends at doorways of the line map never crossed
 };
@@ -98,6 +108,11 @@ class RegionBuilder
                 const std::vector<ForeignSide>& foreign = {}) const;
   // Gateways of the region known when later scans are carved (beams crossing them are skipped).
   void set_gateway_lines(GatewayLines lines) { gateway_lines_ = std::move(lines); }
+  // Another region's scan (its laser pose in this region's frame, points in its laser frame): the
+  // points of this region it sees through are left out of the line map too (seen_through_margin),
+  // as a walker seen last before a gateway is seen through from beyond it. True if any was not
+  // already (the line map is then stale: describe the region again).
+  bool see_through_by(const geometry::Pose2& region_from_laser, const std::vector<Eigen::Vector2d>& laser_points);
 
   // The region's scan ids, oldest first (by time, then id).
   std::vector<int64_t> scan_ids_by_time() const;
@@ -109,8 +124,9 @@ class RegionBuilder
   // them already (they are then written once, by the caller), else nullptr.
   using SharedPoints = std::function<const std::vector<Eigen::Vector2d>*(int64_t scan_id)>;
   void save(persist::ByteWriter& w, const SharedPoints& shared_points) const;
-  // Into a freshly constructed builder; throws persist::CorruptBytes on malformed bytes.
-  void load(persist::ByteReader& r, const SharedPoints& shared_points);
+  // Into a freshly constructed builder; throws persist::CorruptBytes on malformed bytes. `format`:
+  // the kernel snapshot's (kernel_snapshot.cpp).
+  void load(persist::ByteReader& r, const SharedPoints& shared_points, uint32_t format);
 
  private:
   void add_incrementally(const StoredScan& scan) const;
@@ -120,6 +136,13 @@ class RegionBuilder
   void carve(const StoredScan& scan) const;
   // True if the 5 x 5 freespace cells about p (region frame) are all free.
   bool in_free_space(const Eigen::Vector2d& p) const;
+  // The new scan's points that a stored scan sees through, and the stored scans' points the new
+  // scan sees through (seen_through_); marks the line map stale_ when it may hold one of the latter.
+  void see_through(const StoredScan& scan) const;
+  // Every scan's seen_through_ afresh (after corrections: their poses changed).
+  void see_through_all() const;
+  // A stale line map (seen_through_margin) is rebuilt now if `exact` or the region grew enough.
+  void rebuild_if_seen_through(bool exact) const;
   void refresh() const;
   void fill_objects(rgmap::Region* region) const;
   void fill_region(rgmap::Region* region, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
@@ -133,6 +156,26 @@ class RegionBuilder
   mutable std::vector<rgmap::LineSegment> segments_;
   mutable std::unordered_set<uint64_t> free_cells_;   // cell (x, y) of the region frame grid
   mutable std::map<int64_t, std::vector<CircleObservation>> circle_observations_;   // by scan id
+  // Per scan id, per laser point: another scan of the region saw through it (seen_through_margin).
+  mutable std::map<int64_t, std::vector<char>> seen_through_;
+  // ... by another region's scan (see_through_by); kept through rebuilds and corrections.
+  std::map<int64_t, std::vector<char>> seen_elsewhere_;
+  mutable bool seen_through_valid_ = true;   // false after corrections and removals, until refresh
+  // Derived from scans_ (not saved): each scan's beams, points and their normals in the region.
+  struct SeenScan
+  {
+    BeamView view;
+    std::vector<Eigen::Vector2d> points, normals;
+    double reach = 0;   // [m] farthest point from the laser
+    Eigen::Vector2d lo{0, 0}, hi{0, 0};   // the points' bounding box
+  };
+  // Whether any of one scan's points lies within the reach of another's beams (by its box).
+  static bool may_meet(const SeenScan& points, const SeenScan& beams);
+  const SeenScan& seen_scan(const StoredScan& scan) const;
+  mutable std::map<int64_t, SeenScan> seen_scans_;
+  // The line map may hold points seen through since they were merged; scans at its last rebuild.
+  mutable bool holds_seen_through_ = false;
+  mutable uint64_t scans_at_rebuild_ = 0;
   mutable Eigen::Vector2d lo_{std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
   mutable Eigen::Vector2d hi_{-std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
 };

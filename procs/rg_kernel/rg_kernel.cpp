@@ -74,6 +74,13 @@ bool RgKernel::add_scan(const ScanInput& s)
   const int64_t rid = map_.current_region;
   const std::vector<Vector2d> before = builders_.at(rid).laser_origins();
   builders_.at(rid).add_scan(to_stored(s, rid));
+  // What moved is seen through from beyond a gateway too: the other regions' points this scan
+  // sees through leave their line maps (region_builder.h, seen_through_margin).
+  for (auto& [q, b] : builders_) {
+    if (q == rid) continue;
+    const StoredScan in_q = to_stored(s, q);
+    if (b.see_through_by(in_q.region_from_laser, in_q.laser_points)) dirty_.insert(q);
+  }
   region_of_scan_[s.scan_id] = rid;
   scan_inputs_[s.scan_id] = s;
   map_.last_scan_id = std::max(map_.last_scan_id, s.scan_id);

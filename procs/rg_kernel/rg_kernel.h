@@ -21,7 +21,9 @@
 // region's own doors, or inside such a junction, carve no freespace into it (region_builder.h,
 // ForeignSide).
 // A new line gateway, whoever reports it, splits the region only where it narrows the free space
-// (narrowing.h): a cut across a hallway as narrow as a door is ignored. The rules, what each fixes
+// (narrowing.h): a cut across a hallway as narrow as a door is ignored. Scan points another scan
+// saw through (something that moved) are no part of any line map (region_builder.h,
+// seen_through.h). The rules, what each fixes
 // and what switching it off changes: procs/rg_kernel/README.md.
 // Inputs are applied in the order given; with the same inputs the map is the same.
 #pragma once

@@ -80,6 +80,7 @@ KernelOptions load_kernel_options(const config::Config& cfg, const config::Robot
   c.build.extract.min_points = static_cast<int>(lines.integer("min_points", c.build.extract.min_points, 2, 1000));
   c.build.extract.min_length = lines.number("min_length_m", c.build.extract.min_length, 0.0, 10.0);
   c.build.drop_points_in_free_space = lines.boolean("drop_points_in_free_space", c.build.drop_points_in_free_space);
+  c.build.seen_through_margin = lines.number("seen_through_margin_m", c.build.seen_through_margin, 0.0, 2.0);
   const auto fs = cfg.section("freespace");
   c.build.freespace_resolution = fs.number("resolution_m", c.build.freespace_resolution, 0.02, 1.0);
   c.build.freespace_max_range = fs.number("max_range_m", c.build.freespace_max_range, 1.0, 80.0);

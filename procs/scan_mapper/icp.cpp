@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/symmetric_eigen2.h"
+
 namespace rgnav::scan_mapper {
 namespace {
 
@@ -117,9 +119,9 @@ IcpResult register_scan(const ScanSide& scan, const PointMap& model, const Pose2
   for (size_t i = 0; i < scan.points.size(); ++i)
     if (scan.pair(model, i, T * scan.points[i], c, s, o.inlier_distance_m) >= 0) ++inliers;
   res.inlier_ratio = static_cast<double>(inliers) / static_cast<double>(scan.points.size());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> et(fin.H.topLeftCorner<2, 2>());
-  res.weakest_translation_points = et.eigenvalues()(0);
-  res.weakest_direction = et.eigenvectors().col(0);
+  const geometry::SymmetricEigen2 et = geometry::symmetric_eigen(fin.H.topLeftCorner<2, 2>());
+  res.weakest_translation_points = et.values(0);
+  res.weakest_direction = et.vectors.col(0);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(fin.H);
   if (fin.n >= 10 && es.eigenvalues()(0) > 1e-9) {
     const double sigma = std::max(o.point_sigma_m, res.rms_m);

@@ -1,10 +1,10 @@
 #include "scan_mapper/point_map.h"
 
-#include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "geometry/symmetric_eigen2.h"
 
 namespace rgnav::scan_mapper {
 
@@ -36,10 +36,10 @@ PointMap::PointMap(Points points, double normal_radius, double cell_size)
       const Eigen::Vector2d d = points_[static_cast<size_t>(j)] - mean;
       cov += d * d.transpose();
     });
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
-    const double l0 = es.eigenvalues()(0), l1 = es.eigenvalues()(1);
+    const geometry::SymmetricEigen2 es = geometry::symmetric_eigen(cov);
+    const double l0 = es.values(0), l1 = es.values(1);
     if (l1 <= 0.0 || l0 > 0.1 * l1) continue;  // not a line
-    normals_[i] = es.eigenvectors().col(0);
+    normals_[i] = es.vectors.col(0);
     has_normal_[i] = 1;
   }
 }

@@ -148,7 +148,9 @@ TEST(RgGraph, NodesPerSideAndShortestPath)
   EXPECT_EQ(path.size(), 4u);
   // Crossing point of the door seen from region 2: (4, 1.5) in region 1 -> region 2 frame.
   for (const auto& n : g.nodes)
-    if (n.id == door_in_2) EXPECT_TRUE(n.point.isApprox(geometry::Pose2(5, 0, M_PI / 2).inverse() * Vector2d(4, 1.5)));
+    if (n.id == door_in_2) {
+      EXPECT_TRUE(n.point.isApprox(geometry::Pose2(5, 0, M_PI / 2).inverse() * Vector2d(4, 1.5)));
+    }
 }
 
 TEST(RgMapConversions, LcmRoundTripValidatesAndPreserves)

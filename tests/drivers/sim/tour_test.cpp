@@ -20,7 +20,9 @@ TEST(Tour, OfficeTourEntersEveryReachableRoomWithoutCollision)
   EXPECT_EQ(tour.unreachable, std::vector<std::string>{"office_e4"});
   const std::set<std::string> visited(tour.visited.begin(), tour.visited.end());
   for (const auto& r : world.regions)
-    if (r.name != "office_e4") EXPECT_TRUE(visited.count(r.name)) << r.name << " not visited";
+    if (r.name != "office_e4") {
+      EXPECT_TRUE(visited.count(r.name)) << r.name << " not visited";
+    }
   // A closed loop.
   EXPECT_LT((tour.waypoints.front() - tour.waypoints.back()).norm(), 1e-9);
 
@@ -45,7 +47,9 @@ TEST(Tour, OfficeTourEntersEveryReachableRoomWithoutCollision)
   const auto driven = regions_along(world, path);
   const std::set<std::string> entered(driven.begin(), driven.end());
   for (const auto& r : world.regions)
-    if (r.kind == RegionKind::kRoom && r.name != "office_e4") EXPECT_TRUE(entered.count(r.name)) << r.name;
+    if (r.kind == RegionKind::kRoom && r.name != "office_e4") {
+      EXPECT_TRUE(entered.count(r.name)) << r.name;
+    }
 }
 
 TEST(Tour, HallwayWorldTourIsCollisionFree)

@@ -69,8 +69,9 @@ TEST(WorldLoading, OfficeWorldHasWhatTheIssueAsksFor)
   EXPECT_TRUE(classes.count(GatewayClass::kTJunction));
   // The X-crossing joins the four hallways around it (written and read back as `joins`).
   for (const auto& g : w.gateways)
-    if (g.cls == GatewayClass::kXCrossing)
+    if (g.cls == GatewayClass::kXCrossing) {
       EXPECT_EQ(g.regions, (std::vector<std::string>{"hall_b_south", "hall_b_north", "hall_a_west", "hall_a_east"}));
+    }
   EXPECT_TRUE(classes.count(GatewayClass::kRTurn));
   EXPECT_FALSE(w.tables.empty());
   EXPECT_FALSE(w.people.empty());
@@ -94,8 +95,12 @@ TEST(WorldLoading, HallwayWorldsCoverEveryCrossingClassAndClutterLevel)
                        GatewayClass::kRTJunction, GatewayClass::kLTurn, GatewayClass::kRTurn, GatewayClass::kDeadEnd})
         EXPECT_TRUE(classes.count(cls)) << w.name << " lacks " << to_string(cls);
       const size_t n = w.boxes.size() + w.tables.size();
-      if (c == Clutter::kNone) EXPECT_EQ(n, 0u);
-      if (c == Clutter::kSlight) EXPECT_GT(n, 0u);
+      if (c == Clutter::kNone) {
+        EXPECT_EQ(n, 0u);
+      }
+      if (c == Clutter::kSlight) {
+        EXPECT_GT(n, 0u);
+      }
       obstacles[w.name] = n;
     }
     char s[64], m[64];

@@ -83,7 +83,7 @@ int main(int argc, char** argv)
   rp::PipelineConfigPaths paths{cfg_dir + "/scan_mapper.yaml", cfg_dir + "/gateway_detector_aligned.yaml", cfg_dir + "/rg_kernel.yaml",
                                 cfg_dir + "/robot.yaml"};
   std::string sim_config = cfg_dir + "/sim.yaml", json_path, out_dir;
-  std::vector<std::string> sims, random_sims, reals;
+  std::vector<std::string> sims, random_sims, people_sims, reals;
   rp::SimTourOptions tour;
   double match_m = 1.0;
   app.add_option("--config", paths.scan_mapper, "scan mapper config")->check(CLI::ExistingFile);
@@ -97,7 +97,10 @@ int main(int argc, char** argv)
   app.add_option("--real", reals, "NAME=LOG.lcmlog with corrected poses as odometry (taken as given), repeatable");
   app.add_option("--laps", tour.laps, "tour laps per world")->check(CLI::Range(1, 10));
   app.add_option("--max-sim-s", tour.max_sim_s, "cap on simulated seconds per world")->check(CLI::Range(10.0, 36000.0));
-  app.add_flag("--people", tour.people, "keep the worlds' walking people (the tour follower does not avoid them)");
+  app.add_flag("--people", tour.people, "keep every world's walking people (seen by the laser; they and the robot pass through each other)");
+  app.add_option("--sim-people", people_sims,
+                 "NAME=WORLD: a world driven with its walking people kept (as --people), as --sim; its ghost_segments "
+                 "add up to the top-level ghost_segments, repeatable");
   app.add_option("--gateway-match-m", match_m, "gateway positions closer than this match ground truth [m]")->check(CLI::Range(0.1, 5.0));
   app.add_option("--json", json_path, "output JSON")->required();
   app.add_option("--out", out_dir, "folder for the maps and pictures of every run")->required();
@@ -124,10 +127,20 @@ int main(int argc, char** argv)
     j["worlds"] = nlohmann::json::object();
     if (true_poses) j["worlds_true_poses"] = nlohmann::json::object();
     j["logs"] = nlohmann::json::object();
-    // Every simulated world with whether it is a generated building.
-    std::vector<std::pair<std::string, bool>> worlds;
-    for (const auto& spec : sims) worlds.emplace_back(spec, false);
-    for (const auto& spec : random_sims) worlds.emplace_back(spec, true);
+    // Every simulated world with whether it is a generated building and whether its people walk.
+    struct SimWorld
+    {
+      std::string spec;
+      bool random_building = false;
+      bool people = false;
+    };
+    std::vector<SimWorld> worlds;
+    for (const auto& spec : sims) worlds.push_back({spec, false, tour.people});
+    for (const auto& spec : random_sims) worlds.push_back({spec, true, tour.people});
+    for (const auto& spec : people_sims) worlds.push_back({spec, false, true});
+    // Ghost segments of the worlds driven with walking people (scan mapper poses): name -> count.
+    nlohmann::json ghosts = nlohmann::json::object();
+    int ghost_total = 0, ghost_segments_of = 0;
     {
       std::vector<std::string> maps;
       for (const auto& spec : random_sims) maps.push_back(rp::split_spec(spec).second);
@@ -137,7 +150,7 @@ int main(int argc, char** argv)
       const auto sim_cfg = rgnav::config::Config::load(sim_config);
       const auto sim_options = rgnav::sim::load_simulator_options(sim_cfg, loaded.robot);
       rgnav::config::finish_except(sim_cfg, {"node", "channels", "sim", "protocol"});  // the process's own run settings
-      for (const auto& [spec, random_building] : worlds) {
+      for (const auto& [spec, random_building, people] : worlds) {
         const auto [name, path] = rp::split_spec(spec);
         // The headline on the scan mapper's poses; on request again on the true poses.
         for (const bool on_truth : {false, true}) {
@@ -147,14 +160,22 @@ int main(int argc, char** argv)
           try {
             const auto world = rgnav::sim::load_world(path);
             const auto truth = rp::ground_truth_of(world);
+            const rp::StaticSurfaces statics(world, sim_options.laser.mount_height);
             auto options = tour;
             options.true_poses = on_truth;
+            options.people = people;
             const auto run = rp::run_sim_rgmap(world, sim_options, loaded, options);
-            const auto score = rp::score_world(run, truth, match_m);
+            const auto score = rp::score_world(run, truth, match_m, &statics);
             auto w = rp::to_json(run, score);
             w["world"] = path;
             w["poses"] = on_truth ? "true" : "scan_mapper";
+            w["people"] = people ? static_cast<int>(world.people.size()) : 0;
             if (random_building) w["random_building"] = true;
+            if (people && !on_truth && !world.people.empty()) {
+              ghosts[name] = score.ghosts.ghosts;
+              ghost_total += score.ghosts.ghosts;
+              ghost_segments_of += score.ghosts.segments;
+            }
             const std::string dir = out_dir + "/" + name + (on_truth ? "/true_poses" : "");
             rp::write_run_outputs(run.run, loaded.options, dir);
             rgnav::scan_mapper::write_truth_pairs(dir + "/truth_pairs.txt", run.run.nodes, run.truth_at_node);
@@ -163,10 +184,13 @@ int main(int argc, char** argv)
             if (diagnose) {
               std::cerr << label << ":\n" << rp::to_text(score.segmentation_diagnosis, truth.room_names);
               print_gateway_diagnosis(score, truth, run.run.map);
+              for (const auto& [a, b] : score.ghosts.ghost_list)
+                std::cerr << "  ghost segment (" << a.x() << ", " << a.y() << ") - (" << b.x() << ", " << b.y() << ")\n";
             }
             std::cerr << label << ": precision " << w["seg_precision"] << " recall " << w["seg_recall"] << " gateways "
                       << w["gateways_matched"] << "/" << w["gateways_truth"] << " false " << w["gateways_false"]
-                      << " isomorphic " << w["graph_isomorphic"] << "\n";
+                      << " isomorphic " << w["graph_isomorphic"] << " ghost segments " << w["ghost_segments"] << "/"
+                      << w["segments"] << "\n";
           } catch (const std::exception& e) {
             // One world that cannot be run (no tour through it, unreadable) does not sink the rest.
             j[section][name] = {{"world", path}, {"error", e.what()}};
@@ -183,6 +207,10 @@ int main(int argc, char** argv)
     // worlds and generated buildings alike; the true-pose runs have no SLAM to break.
     j["broken_map_list"] = rp::broken_maps(j["worlds"]);
     j["broken_maps"] = j["broken_map_list"].size();
+    // Issue 33: only the static structure in the map, counted where people walk.
+    j["ghost_segments"] = ghost_total;
+    j["ghost_segments_segments"] = ghost_segments_of;
+    j["ghost_segment_worlds"] = ghosts;
     for (const auto& spec : reals) {
       const auto [name, path] = rp::split_spec(spec);
       auto given = loaded;

@@ -64,7 +64,9 @@ SimRgMapRun run_sim_rgmap(sim::World world, const sim::SimulatorOptions& sim_opt
   if (options.true_poses) loaded.options.poses_as_given = true;
   const double cpu0 = thread_cpu_seconds();
   RgMapPipeline pipeline(loaded.options, loaded.classifier);
-  sim::Simulator simulator(world, sim_options);
+  sim::SimulatorOptions simulated = sim_options;
+  if (options.people) simulated.people_block_robot = false;   // seen, not met (SimTourOptions::people)
+  sim::Simulator simulator(world, simulated);
   sim::WaypointFollower follower(route, [&simulator] { return simulator.truth(); });
   simulator.set_command_source(&follower);
 
@@ -112,7 +114,8 @@ SimRgMapRun run_sim_rgmap(sim::World world, const sim::SimulatorOptions& sim_opt
   return res;
 }
 
-WorldScore score_world(const SimRgMapRun& run, const GroundTruth& truth, double gateway_match_distance)
+WorldScore score_world(const SimRgMapRun& run, const GroundTruth& truth, double gateway_match_distance,
+                       const StaticSurfaces* statics)
 {
   WorldScore s;
   std::vector<Vector2d> est, tru;
@@ -127,6 +130,7 @@ WorldScore score_world(const SimRgMapRun& run, const GroundTruth& truth, double 
   s.alignment_rmse_m = est.empty() ? 0.0 : std::sqrt(se / static_cast<double>(est.size()));
 
   s.counts = count_map(run.run.map, run.run.kernel_stats.raw_points);
+  if (statics) s.ghosts = count_ghost_segments(run.run.map, s.world_from_map, *statics);
   // As Bormann et al.'s evaluation: segments and rooms of <= 0.25 m^2 left out (rgmap_metrics.h).
   const int64_t min_cells = min_segment_cells(truth.rooms);
   const LabelGrid room_grid = without_small_rooms(truth.rooms, min_cells);
@@ -209,6 +213,8 @@ nlohmann::json to_json(const SimRgMapRun& r, const WorldScore& s)
   j["doors"] = c.doors;
   j["neutralized"] = c.neutralized;
   j["segments"] = c.segments;
+  j["ghost_segments"] = s.ghosts.ghosts;
+  j["ghost_segment_m"] = s.ghosts.ghost_length_m;
   j["compression"] = c.compression;
   add_fidelity_json(r.run.fidelity, &j);
   j["mean_region_bytes"] = c.mean_region_bytes;

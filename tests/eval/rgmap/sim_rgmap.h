@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "ghost_segments.h"
 #include "ground_truth.h"
 #include "offline_run.h"
 #include "segmentation_diagnosis.h"
@@ -21,8 +22,11 @@ struct SimTourOptions
 {
   int laps = 1;
   double max_sim_s = 1800.0;   // cap on simulated time (a benchmark must end)
-  // The tour follower has no obstacle avoidance: a walking person in its way stops the tour
-  // for good. People are left out unless asked for (they are no part of the ground truth).
+  // The world's walking people: left out unless asked for (they are no part of the ground truth).
+  // Kept, they are seen by the laser but neither they nor the robot make way and the robot's body
+  // passes through them (SimulatorOptions::people_block_robot): the tour follower has no obstacle
+  // avoidance, and a person in its way would stop the tour for good. The tour is then the same
+  // as without them: what they change is what the map makes of them.
   bool people = false;
   // The scans go to the RG kernel at the simulator's true poses (the scan mapper is not used):
   // separates segmentation errors from SLAM errors. Not the headline: the robot has no true poses.
@@ -63,9 +67,12 @@ struct WorldScore
   GatewayMatch gateways_crossed;    // against the gateways the robot went through
   GraphComparison graph;            // against the room graph of the explored rooms
   MapCounts counts;
+  GhostSegments ghosts;             // line-map segments with nothing static of the world behind them
 };
 
-WorldScore score_world(const SimRgMapRun& run, const GroundTruth& truth, double gateway_match_distance);
+// statics: the world's static surfaces for the ghost-segment count (left at 0 without).
+WorldScore score_world(const SimRgMapRun& run, const GroundTruth& truth, double gateway_match_distance,
+                       const StaticSurfaces* statics = nullptr);
 
 nlohmann::json to_json(const SimRgMapRun& run, const WorldScore& score);
 

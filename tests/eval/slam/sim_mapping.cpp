@@ -1,11 +1,12 @@
 #include "sim_mapping.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include <ctime>
 #include <stdexcept>
 
 #include "geometry/pose_track.h"
+#include "geometry/symmetric_eigen2.h"
 #include "offline_mapping.h"
 #include "sim/tour_planner.h"
 #include "sim/waypoint_follower.h"
@@ -120,7 +121,7 @@ SimMappingResult run_sim_mapping(const std::string& world_path, const sim::Simul
     const double chi2 = r.dot(e.information * r);
     if (chi2 > mapper_options.loop.max_residual_chi2) ++res.loop_closures_inconsistent;
     const Eigen::Matrix2d cov = e.information.inverse().topLeftCorner<2, 2>();
-    res.closures.push_back({e.from, e.to, r, chi2, std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov).eigenvalues().maxCoeff())});
+    res.closures.push_back({e.from, e.to, r, chi2, std::sqrt(geometry::symmetric_eigen(cov).values.maxCoeff())});
   }
   return res;
 }

@@ -93,7 +93,9 @@ TEST(BackOff, RunsOnWhileTheSameGoalIsReSent)
     ca.on_scan(time::from_utime(us), person_front_left(), 8.0);
     ca.on_drive_feedback({turn->id, 1, 0.1, 0.0, 0.0});
     const auto out = ca.update(time::from_utime(us));
-    if (out) EXPECT_EQ(out->id, turn->id) << "at " << i << ": " << ca.status();
+    if (out) {
+      EXPECT_EQ(out->id, turn->id) << "at " << i << ": " << ca.status();
+    }
   }
   // A new goal ends it: the robot decides anew toward it.
   us += 100'000;
@@ -230,7 +232,9 @@ TEST(BackOff, ATurnTowardTheTargetRunsToItsEnd)
     ca.on_drive_feedback({turn->id, 1, progress * std::fabs(angle), 0.0, 0.0});
     if (i % 5 == 0) ca.set_targets(t);
     const auto out = ca.update(time::from_utime(us));
-    if (out) EXPECT_EQ(out->id, turn->id) << "at " << i << ": " << ca.status();
+    if (out) {
+      EXPECT_EQ(out->id, turn->id) << "at " << i << ": " << ca.status();
+    }
   }
   // Done: the robot faces the target's side and decides anew.
   us += 100'000;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "collision_avoidance/chain_planner.h"
+#include "collision_avoidance/collision_avoidance.h"
 #include "collision_avoidance/give_way.h"
 #include "scan_fixture.h"
 
@@ -106,7 +107,9 @@ TEST(YieldPoint, BeyondTheMouthOfAHallwayOnceTheRobotLookedBehind)
     EXPECT_LE(y->travel, o.max_travel) << x;
     EXPECT_FALSE(first_collision(polyline(Pose2(robot, M_PI), y->corners), map, kClearance, 0.05).has_value()) << x;
     // Near the mouth the room beside it is in view: the place is right beside the mouth.
-    if (x < -2.0) EXPECT_GT(y->point.x(), -3.0 - kClearance - 1.0) << x;
+    if (x < -2.0) {
+      EXPECT_GT(y->point.x(), -3.0 - kClearance - 1.0) << x;
+    }
   }
 }
 
@@ -166,6 +169,121 @@ TEST(SomeoneToPass, WhileTheyComeNotOnceTheyPassedOrTurnedBack)
   // Nobody there at all.
   EXPECT_EQ(someone_to_pass(seen_from(robot, {0.0}, {}), path, robot, o), ToPass::kNobody);
 }
+
+
+// A room (x < 1.5, |y| < 3), a hallway `width` wide from x = 1.5 to 5.5, a room beyond (x > 5.5).
+std::vector<Wall> room_hallway_room(double width)
+{
+  const double h = width / 2;
+  return {{{1.5, -3.0}, {1.5, -h}}, {{1.5, h}, {1.5, 3.0}},  // the near room's far wall, the mouth
+          {{1.5, -h}, {5.5, -h}},   {{1.5, h}, {5.5, h}},    // the hallway
+          {{5.5, -3.0}, {5.5, -h}}, {{5.5, h}, {5.5, 3.0}},  // the far room's wall
+          {{-3.0, -3.0}, {1.5, -3.0}}, {{-3.0, 3.0}, {1.5, 3.0}}, {{-3.0, -3.0}, {-3.0, 3.0}}};
+}
+
+std::vector<Wall> with_person(std::vector<Wall> w, const Eigen::Vector2d& at)
+{
+  for (const auto& side : testing::box(at.x() - 0.2, at.y() - 0.2, at.x() + 0.2, at.y() + 0.2)) w.push_back(side);
+  return w;
+}
+
+constexpr double kOneLaneWidth = 2.0 * (kClearance + 0.45);  // the robot beside a person passing (YieldOptions)
+
+TEST(OneLane, TheHallwayBetweenThemNotAWideCorridorNorThePersonThemselves)
+{
+  // The robot drove up to the hallway, seeing it ahead; the person is in the room beyond.
+  auto map_at = [](const std::vector<Wall>& w, double x) {
+    LocalMap map(LocalMapOptions{});
+    int64_t us = 1'000'000;
+    for (double from = x - 1.0; from <= x + 1e-9; from += 0.25) {
+      us += 100'000;
+      map.add_scan(testing::scan_points(Pose2(from, 0.0, 0.0), w, time::from_utime(us), map.max_range()));
+    }
+    map.rebuild(time::from_utime(us));
+    return map;
+  };
+  const Eigen::Vector2d robot(0.0, 0.0), beyond(6.5, 0.0);
+  const auto lane = one_lane_between(map_at(with_person(room_hallway_room(1.1), beyond), 0.0), robot, beyond,
+                                     kOneLaneWidth, 0.3);
+  ASSERT_TRUE(lane.has_value());
+  EXPECT_NEAR(lane->length, 6.2, 1e-9);
+  EXPECT_NEAR(lane->begin, 1.5 - kOneLaneSlab, 0.11) << "from the mouth";
+  // To the far mouth (the last points on walls seen at a grazing angle from 5 m lie up to half a
+  // metre short of it, with the laser's 1 degree), short of the person.
+  EXPECT_GT(lane->end, 5.5 - 0.5);
+  EXPECT_LT(lane->end, 5.5 + kOneLaneSlab + 0.11);
+  EXPECT_GT(lane->length - lane->end, 0.5);
+
+  // The robot in the hallway: the stretch begins where it is. The person in it: it reaches them.
+  const Eigen::Vector2d inside(2.5, 0.0), person_in(4.5, 0.0);
+  const auto from_inside = one_lane_between(map_at(with_person(room_hallway_room(1.1), beyond), 2.5), inside, beyond,
+                                            kOneLaneWidth, 0.3);
+  ASSERT_TRUE(from_inside.has_value());
+  EXPECT_DOUBLE_EQ(from_inside->begin, 0.0);
+  const auto to_them = one_lane_between(map_at(with_person(room_hallway_room(1.1), person_in), 0.0), robot, person_in,
+                                        kOneLaneWidth, 0.3);
+  ASSERT_TRUE(to_them.has_value());
+  EXPECT_NEAR(to_them->end, to_them->length, 0.1);
+
+  // A corridor where a robot and a person pass each other (2.4 m), the person in it: the
+  // person's own points do not make it narrow. Nothing around at all: room everywhere.
+  EXPECT_FALSE(one_lane_between(map_at(with_person(room_hallway_room(2.4), person_in), 0.0), robot, person_in,
+                                kOneLaneWidth, 0.3)
+                   .has_value());
+  EXPECT_FALSE(one_lane_between(map_at(with_person({}, person_in), 0.0), robot, person_in, kOneLaneWidth, 0.3).has_value());
+}
+
+// Collision avoidance standing at `robot` (facing the hallway) with targets through the hallway
+// of room_hallway_room(width), while a person walks from x0 toward it along y = 0 at 0.8 m/s:
+// the person's x when it first began to yield (NaN: it did not before they came within `until`).
+double yielded_at(double width, const Eigen::Vector2d& robot, double x0, double until)
+{
+  CaOptions o;
+  CollisionAvoidance ca(o);
+  Targets t;
+  t.goal_id = 1;
+  for (double x = robot.x() + 1.0; x <= 9.0 + 1e-9; x += 1.0) t.poses.emplace_back(x, 0.0, 0.0);
+  ca.set_targets(t);
+  const Pose2 pose(robot, 0.0);
+  int64_t us = 1'000'000;
+  // Standing there a while first: the walls count as static (they have been seen for a second),
+  // and nobody is in view yet; then the person walks in.
+  for (int i = 0; i < 20; ++i) {
+    us += 100'000;
+    ca.on_odometry(time::from_utime(us), pose, 0.0);
+    ca.on_scan(time::from_utime(us), testing::cast(pose * o.base_from_laser, room_hallway_room(width)), 8.0);
+    ca.on_drive_feedback({0, 0, 0.0, 0.0, 0.0});
+    ca.update(time::from_utime(us));
+  }
+  for (double x = x0; x > until; x -= 0.08) {
+    us += 100'000;
+    const auto w = with_person(room_hallway_room(width), {x, 0.0});
+    ca.on_odometry(time::from_utime(us), pose, 0.0);
+    ca.on_scan(time::from_utime(us), testing::cast(pose * o.base_from_laser, w), 8.0);
+    ca.on_drive_feedback({0, 0, 0.0, 0.0, 0.0});
+    ca.update(time::from_utime(us));
+    if (ca.mode() == Mode::kYielding) return x;
+  }
+  return std::nan("");
+}
+
+TEST(YieldBeforeOneLane, OutOfTheirWayBeforeTheHallwayNotInIt)
+{
+  // Before the hallway, someone coming through it: it yields while a chain into the hallway is
+  // still free (they are farther than the targets it plans to), not once they block it.
+  const double x = yielded_at(1.1, {0.5, 0.0}, 5.0, 2.5);
+  EXPECT_FALSE(std::isnan(x)) << "it waited to meet them in the hallway";
+  EXPECT_GT(x, 3.5);
+  // A corridor wide enough to pass each other (their predicted places left out of its width).
+  // No reason to yield while they are far (nearer, no chain gets past them standing there: the
+  // fallback's own yield, as before).
+  EXPECT_TRUE(std::isnan(yielded_at(2.4, {0.5, 0.0}, 5.0, 3.4)));
+  // Nearly through the hallway, someone in the room beyond walking up to it: it was in there
+  // first and goes on (backing out through the whole hallway would cost both far more).
+  // (Until they come so near that no chain gets past them: the fallback's yield, as before.)
+  EXPECT_TRUE(std::isnan(yielded_at(1.1, {4.7, 0.0}, 8.5, 7.6)));
+}
+
 
 }  // namespace
 }  // namespace rgnav::collision_avoidance

@@ -12,6 +12,8 @@
 #include "explorer/explorer.h"
 #include "explorer/frontiers.h"
 #include "explorer/gateway_stack.h"
+#include "explorer/place_view.h"
+#include "box_region.h"
 
 namespace rgnav::explorer {
 namespace {
@@ -28,22 +30,7 @@ constexpr int64_t kSecond = 1'000'000;
 // freespace at 0.15 m over the box [lo, hi] (map frame).
 rgmap::Region& add_region(rgmap::RgMap* map, const V& lo, const V& hi, const std::vector<Wall>& walls)
 {
-  const Pose2 map_from_region(lo, 0.0);
-  rgmap::Region& r = map->add_region(map_from_region, kUtime);
-  for (const auto& [a, b] : walls) {
-    rgmap::LineSegment s;
-    s.a = map_from_region.inverse() * a;
-    s.b = map_from_region.inverse() * b;
-    r.segments.push_back(s);
-  }
-  constexpr double res = 0.15;
-  const V size = hi - lo;
-  const int w = static_cast<int>(std::lround(size.x() / res)), h = static_cast<int>(std::lround(size.y() / res));
-  r.freespace = rgmap::FreespaceBitmap(res, Pose2(0, 0, 0), w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) r.freespace.set_free(x, y, true);
-  r.bbox_max = size;
-  return r;
+  return testing::add_box_region(map, lo, hi, walls, 0.15, kUtime);
 }
 
 // A hallway [0, 6] x [0, 1.8]: walls along both sides and the left end; the right end open
@@ -155,10 +142,10 @@ TEST(GatewayStack, BreadthFirstThenNearestAndDoneWhenPassed)
 
   // Failed: set aside until the retry time or a new region, for good after max attempts.
   const int64_t near_id = stack.order(*map, r1, robot, kUtime)[0]->id;
-  stack.failed(near_id, "no path", kUtime + 60 * kSecond, 2, 2);
+  stack.failed(near_id, "no path", kUtime, kUtime + 60 * kSecond, 2, 2, {});
   EXPECT_TRUE(stack.order(*map, r1, robot, kUtime + kSecond).empty());
   EXPECT_EQ(stack.order(*map, r1, robot, kUtime + 61 * kSecond).size(), 1u);
-  stack.failed(near_id, "no path", kUtime + 120 * kSecond, 2, 2);
+  stack.failed(near_id, "no path", kUtime + 60 * kSecond, kUtime + 120 * kSecond, 2, 2, {});
   EXPECT_TRUE(stack.order(*map, r1, robot, kUtime + 1000 * kSecond).empty());
   EXPECT_EQ(stack.entry(near_id)->reason, "no path");
 
@@ -168,6 +155,55 @@ TEST(GatewayStack, BreadthFirstThenNearestAndDoneWhenPassed)
   nlohmann::json bad = stack.to_json();
   bad["entries"][0]["state"] = "maybe";
   EXPECT_THROW(copy.from_json(bad), std::invalid_argument);
+}
+
+TEST(PlaceView, CountsFreeSpaceAndWallNearThePlace)
+{
+  const auto map = hallway(true);
+  const PlaceViewOptions o;
+  // 2 m round (3, 0.9): the hallway's free space is 1.8 m wide across, the walls pass at 0.9 m.
+  const PlaceView v = view_of_place(*map, V(3, 0.9), o);
+  EXPECT_NEAR(v.free_samples * o.sample_m * o.sample_m, 2 * (2 * std::sqrt(4 - 0.81) * 0.9), 0.6);
+  EXPECT_NEAR(v.wall_m, 2 * 2 * std::sqrt(4 - 0.81), 0.01);
+  EXPECT_FALSE(place_changed(v, view_of_place(*map, V(3, 0.9), o), o));
+  EXPECT_FALSE(place_changed(PlaceView{}, v, o)) << "a place never looked at has not changed";
+  EXPECT_EQ(view_of_place(*map, V(30, 30), o).free_samples, 0);
+  EXPECT_EQ(place_view_from_json(place_view_json(v)).free_samples, v.free_samples);
+  EXPECT_THROW(place_view_from_json(nlohmann::json::array({1})), std::invalid_argument);
+}
+
+// A gateway set aside for good comes back when the map near it changes — a fragment of wall
+// across it dropped (a person who stood there walked on) — and not while nothing there changed.
+TEST(GatewayStack, SetAsideForGoodIsTriedAgainOnceTheMapNearItChanged)
+{
+  auto map = hallway(true);
+  const int64_t r1 = map->current_region;
+  rgmap::Region& region = *map->region(r1);
+  // Something standing across the hallway's east part: a short line that was not there before.
+  rgmap::LineSegment person;
+  person.a = V(4.8, 0.7);
+  person.b = V(4.8, 1.1);
+  region.segments.push_back(person);
+  GatewayStack stack;
+  stack.add(sighting(V(5, 0.9), 0.0), r1, kUtime, *map);
+  ASSERT_EQ(stack.entries().size(), 1u);
+  const int64_t id = stack.entries()[0].id;
+  const PlaceViewOptions o;
+  stack.failed(id, "no path", kUtime, kUtime + 60 * kSecond, 1, 1, view_of_place(*map, V(5, 0.9), o));
+  const V robot(1, 0.9);
+  EXPECT_TRUE(stack.order(*map, r1, robot, kUtime + 1000 * kSecond).empty()) << "for good after one attempt";
+  EXPECT_EQ(stack.release_changed(*map, o, kUtime + 1000 * kSecond, 60 * kSecond, 1), 0) << "nothing changed near it";
+
+  region.segments.pop_back();   // the person walked on
+  EXPECT_EQ(stack.release_changed(*map, o, kUtime + 10 * kSecond, 60 * kSecond, 1), 0) << "too soon after it failed";
+  EXPECT_EQ(stack.release_changed(*map, o, kUtime + 61 * kSecond, 60 * kSecond, 1), 1);
+  EXPECT_EQ(stack.order(*map, r1, robot, kUtime + 61 * kSecond).size(), 1u);
+  // Failing again on the same map: for good again, and released no more.
+  stack.failed(id, "no path", kUtime + 70 * kSecond, kUtime + 130 * kSecond, 1, 1, view_of_place(*map, V(5, 0.9), o));
+  EXPECT_EQ(stack.release_changed(*map, o, kUtime + 1000 * kSecond, 60 * kSecond, 1), 0);
+  GatewayStack copy;
+  copy.from_json(stack.to_json());
+  EXPECT_EQ(copy.to_json(), stack.to_json());
 }
 
 // Options of the tests that follow the goals of exploring: no look behind first.
@@ -295,19 +331,32 @@ std::optional<ExploreGoal> next_goal(Explorer& ex, int64_t t, int* recoveries = 
   return std::nullopt;
 }
 
-TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
+// The robot in the open hallway at (x, 0.9) at `t`: its first goal, which the planner finds no
+// path to.
+void first_goal_fails(Explorer& ex, const std::shared_ptr<rgmap::RgMap>& map, int64_t t, double x)
 {
-  ExplorerOptions o = no_look();
-  o.max_attempts = 2;
-  o.retry_after_s = 30;
-  Explorer ex(o);
-  int64_t t = kUtime;
-  auto map = hallway(false);
   ex.set_map(map);
-  ex.set_pose({t, Pose2(1, 0.9, 0)});
-  auto g = next_goal(ex, t);
+  ex.set_pose({t, Pose2(x, 0.9, 0)});
+  const auto g = next_goal(ex, t);
   ASSERT_TRUE(g);
   ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "blocked", t);
+}
+
+// Failed goals tried again after 30 s, at most `max_attempts` times; no look behind first.
+ExplorerOptions retrying(int max_attempts)
+{
+  ExplorerOptions o = no_look();
+  o.max_attempts = max_attempts;
+  o.retry_after_s = 30;
+  return o;
+}
+
+TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
+{
+  Explorer ex(retrying(2));
+  int64_t t = kUtime;
+  ASSERT_NO_FATAL_FAILURE(first_goal_fails(ex, hallway(false), t, 1.0));
+  std::optional<ExploreGoal> g;
   // Nothing else left, and it failed from here: the robot looks behind (no track to step back
   // along yet), then waits.
   int recoveries = 0;
@@ -331,6 +380,32 @@ TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
   EXPECT_FALSE(next_goal(ex, t += 100 * kSecond));
   EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
   EXPECT_EQ(ex.status().goals_failed, 5);
+}
+
+// A frontier set aside for good is tried once more when the map near it changes (here a short
+// line appears 1 m from it: a person stepping in), and exploring ends only once it failed again
+// on that map.
+TEST(Explorer, AFrontierSetAsideForGoodIsTriedAgainWhenTheMapNearItChanges)
+{
+  // (Set aside for good with nothing changed near it, exploring ends: the test above.)
+  Explorer again(retrying(1));
+  int64_t t = kUtime;
+  const auto map = hallway(false);
+  ASSERT_NO_FATAL_FAILURE(first_goal_fails(again, map, t, 2.0));
+  auto changed = std::make_shared<rgmap::RgMap>(*map);
+  rgmap::LineSegment person;
+  person.a = V(4.9, 0.7);
+  person.b = V(4.9, 1.1);
+  changed->region(changed->current_region)->segments.push_back(person);
+  ++changed->version;
+  again.set_map(changed);
+  again.set_pose({t, Pose2(2.5, 0.9, 0)});
+  const auto g = next_goal(again, t += 31 * kSecond);
+  ASSERT_TRUE(g) << "the map near it changed: tried again (" << again.status().activity << ")";
+  again.goal_report(g->goal_id, GoalOutcome::kNoPath, "blocked", t);
+  again.set_pose({t, Pose2(3, 0.9, 0)});
+  EXPECT_FALSE(next_goal(again, t += 100 * kSecond));
+  EXPECT_EQ(again.phase(), Phase::kDone) << again.status().activity;
 }
 
 // What the robot saw lies ahead of it: before it chooses, it turns to look behind (a goal where

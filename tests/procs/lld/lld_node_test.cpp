@@ -146,7 +146,9 @@ TEST(LldNode, TheFirstCycleAfterTheLoopWasHeldUpCommandsZero)
     const auto cmds = fake->published_on("BASE_CMD");
     velocity_cmd_t cmd{};
     std::string why;
-    if (!cmds.empty()) EXPECT_TRUE(bus::decode(cmds.back().data.data(), cmds.back().data.size(), &cmd, &why)) << why;
+    if (!cmds.empty()) {
+      EXPECT_TRUE(bus::decode(cmds.back().data.data(), cmds.back().data.size(), &cmd, &why)) << why;
+    }
     return cmd;
   };
   send_odometry(t0);

@@ -41,7 +41,7 @@ struct Drive
   Pose2 odom_from_map{1.0, -2.0, 0.3};
   int64_t utime = 1'000'000;
   int64_t scan_id = 1;
-  Pose2 truth;
+  Pose2 truth{};
   bool updated = false;   // the last scan updated the filter
 
   void to(const Pose2& goal, const std::function<void()>& after_scan = nullptr)

@@ -16,6 +16,7 @@
 #include "planner/region_planner.h"
 #include "planner/route.h"
 #include "planner/route_time.h"
+#include "box_region.h"
 
 namespace rgnav::planner {
 namespace {
@@ -27,32 +28,14 @@ using Wall = std::pair<V, V>;
 
 constexpr int64_t kUtime = 1'700'000'000'000'000;
 
-// A region in the map frame offset by `origin`: walls (map frame) as its line map, and freespace
+// A region in the map frame offset by `lo`: walls (map frame) as its line map, and freespace
 // at 0.1 m over the box [lo, hi] (map frame), less what `blocked` says.
 rgmap::Region& add_region(rgmap::RgMap* map, const std::string& name, const V& lo, const V& hi,
                           const std::vector<Wall>& walls, std::function<bool(const V&)> blocked = {})
 {
-  const Pose2 map_from_region(lo, 0.0);
-  rgmap::Region& r = map->add_region(map_from_region, kUtime);
+  rgmap::Region& r = testing::add_box_region(map, lo, hi, walls, 0.1, kUtime, blocked);
   r.name = name;
   r.state = rgmap::Region::State::kFinalised;
-  for (const auto& [a, b] : walls) {
-    rgmap::LineSegment s;
-    s.a = map_from_region.inverse() * a;
-    s.b = map_from_region.inverse() * b;
-    r.segments.push_back(s);
-  }
-  constexpr double res = 0.1;
-  const V size = hi - lo;
-  const int w = static_cast<int>(std::lround(size.x() / res)), h = static_cast<int>(std::lround(size.y() / res));
-  r.freespace = rgmap::FreespaceBitmap(res, Pose2(0, 0, 0), w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const V c = lo + V((x + 0.5) * res, (y + 0.5) * res);
-      r.freespace.set_free(x, y, !blocked || !blocked(c));
-    }
-  r.bbox_min = V::Zero();
-  r.bbox_max = size;
   return r;
 }
 

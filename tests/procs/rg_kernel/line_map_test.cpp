@@ -1,9 +1,8 @@
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
-
 #include <random>
 
+#include "geometry/symmetric_eigen2.h"
 #include "procs/rg_kernel/line_map.h"
 #include "procs/rg_kernel/line_map_fidelity.h"
 #include "synthetic_world.h"
@@ -144,8 +143,7 @@ TEST(MergeSegments, MergedSegmentIsTheTotalLeastSquaresLineOfTheirPoints)
   c /= static_cast<double>(pts.size());
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
   for (const auto& p : pts) cov += (p - c) * (p - c).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
-  const Vector2d normal = es.eigenvectors().col(0);
+  const Vector2d normal = geometry::symmetric_eigen(cov).vectors.col(0);
   // Evenly spaced points vs the model's uniform spread: agreement to a fraction of a mm.
   EXPECT_LT(std::fabs(normal.dot(m[0].a - c)), 0.0005);
   EXPECT_LT(std::fabs(normal.dot(m[0].b - c)), 0.0005);
