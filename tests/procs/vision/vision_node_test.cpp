@@ -362,10 +362,16 @@ TEST(VisionProcess, RefusesABadCalibrationChecksItsConfigAndStopsCleanly)
     EXPECT_NE(err.find(bad.path), std::string::npos) << err;
   }
 
-  // Running on an in-process bus: SIGTERM ends it with 0.
+  // Running on an in-process bus: SIGTERM ends it with 0. Sent once its node runs (it says so): a
+  // signal that comes while the calibration is still loading, before the node watches for it,
+  // ends the process as the default action does — a loaded machine took longer than a fixed wait.
   testing::ChildProcess child({RGNAV_VISION_BIN, "--config", kConfig, "--lcm-url", "memq://"}, o);
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (child.running() && child.stderr_text().find("running on") == std::string::npos &&
+         std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_TRUE(child.running()) << child.stderr_text();
+  ASSERT_NE(child.stderr_text().find("running on"), std::string::npos) << child.stderr_text();
   testing::expect_clean_stop(child);
 }
 
