@@ -68,20 +68,18 @@ nlohmann::json rendered_doors(const std::string& world_file, const std::string& 
     const sim::CameraRender probe = rig.renderer.render_camera(world_from_cam, rig.cal.M1);
     bool visible = true;
     for (const auto& c : door_outline(door, kFrameWidth, door.height + kFrameWidth, at)) {
-      const Eigen::Vector3d p = cam_from_world * c;
-      const Eigen::Vector2d px = rig.cam.project(p);
-      const int u = static_cast<int>(px.x()), v = static_cast<int>(px.y());
-      if (p.z() < 0.3 || u < 3 || v < 3 || u >= probe.depth.cols - 3 || v >= probe.depth.rows - 3) {
+      const auto px = pixel_in_view(rig.cam, probe.depth, cam_from_world * c);
+      if (!px) {
         visible = false;
         break;
       }
       float nearest = 1e9f;
       for (int dv = -3; dv <= 3; ++dv)
         for (int du = -3; du <= 3; ++du) {
-          const float z = probe.depth.at<float>(v + dv, u + du);
+          const float z = probe.depth.at<float>(px->v + dv, px->u + du);
           if (z > 0.0f) nearest = std::min(nearest, z);
         }
-      if (std::fabs(nearest - p.z()) > 0.25) visible = false;
+      if (std::fabs(nearest - px->depth) > 0.25) visible = false;
     }
     if (!visible) continue;
     ++drawn;

@@ -9,7 +9,10 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+
+#include <opencv2/core.hpp>
 
 #include "drivers/stereo/stereo_calibration.h"
 #include "sim/stereo_renderer.h"
@@ -33,6 +36,22 @@ inline double max_corner_distance(const Corners& a, const Corners& b)
       best = std::min(best, worst);
     }
   return best;
+}
+
+// Where a world point falls in a rendered camera view (pixel and depth), if in front of the camera
+// by at least 0.3 m and at least 3 pixels inside the image (room for a 7 x 7 window about it).
+struct PixelInView
+{
+  int u = 0, v = 0;
+  double depth = 0;   // [m] along the optical axis
+};
+template <class Pinhole>
+std::optional<PixelInView> pixel_in_view(const Pinhole& cam, const cv::Mat& depth_image, const Eigen::Vector3d& in_camera)
+{
+  const Eigen::Vector2d px = cam.project(in_camera);
+  const int u = static_cast<int>(px.x()), v = static_cast<int>(px.y());
+  if (in_camera.z() < 0.3 || u < 3 || v < 3 || u >= depth_image.cols - 3 || v >= depth_image.rows - 3) return std::nullopt;
+  return PixelInView{u, v, in_camera.z()};
 }
 
 struct RenderedViewRig

@@ -97,14 +97,12 @@ nlohmann::json rendered_wall_objects(const std::string& world_file, const std::s
     const sim::CameraRender probe = rig.renderer.render_camera(world_from_cam, rig.cal.M1);
     bool visible = true;
     for (const auto& c : truth) {
-      const Eigen::Vector3d p = cam_from_world * c;
-      const Eigen::Vector2d px = rig.cam.project(p);
-      const int u = static_cast<int>(px.x()), v = static_cast<int>(px.y());
-      if (p.z() < 0.3 || u < 3 || v < 3 || u >= probe.depth.cols - 3 || v >= probe.depth.rows - 3) {
+      const auto px = pixel_in_view(rig.cam, probe.depth, cam_from_world * c);
+      if (!px) {
         visible = false;
         break;
       }
-      if (std::fabs(probe.depth.at<float>(v, u) - p.z()) > 0.1) visible = false;
+      if (std::fabs(probe.depth.at<float>(px->v, px->u) - px->depth) > 0.1) visible = false;
     }
     if (!visible) continue;
     ++drawn;

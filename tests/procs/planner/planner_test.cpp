@@ -472,23 +472,38 @@ TEST(GlobalPlanner, ARobotCutOffGoesBackAlongItsOwnTrack)
   EXPECT_EQ(no_path_cause(why), NoPathCause::kStartCutOff) << why;
 }
 
+// The hall of the test below: L, R and the hallway; `l_extra`: lines only L has mapped.
+struct OverlappingHall
+{
+  rgmap::RgMap map;
+  int64_t l = 0, r = 0, hallway = 0;
+};
+OverlappingHall overlapping_hall(const std::vector<Wall>& l_extra = {})
+{
+  OverlappingHall o;
+  const std::vector<Wall> hall = {{V(0, 4), V(8, 4)}, {V(0, 0), V(0, 4)}, {V(8, 0), V(8, 4)},
+                                  {V(0, 0), V(1, 0)}, {V(2.2, 0), V(5.8, 0)}, {V(7, 0), V(8, 0)}};
+  std::vector<Wall> l_lines = hall;
+  l_lines.insert(l_lines.end(), l_extra.begin(), l_extra.end());
+  o.l = add_region(&o.map, "L", V(0, 0), V(5, 4), l_lines).id;
+  o.r = add_region(&o.map, "R", V(3, 0), V(8, 4), hall).id;
+  o.hallway = add_region(&o.map, "hallway", V(0, -2), V(8, 0), {{V(0, -2), V(8, -2)}, {V(0, -2), V(0, 0)}, {V(8, -2), V(8, 0)}}).id;
+  add_gateway(&o.map, rgmap::GatewayClass::kOpening, o.hallway, o.l, V(1.6, 0));
+  add_gateway(&o.map, rgmap::GatewayClass::kOpening, o.hallway, o.r, V(6.4, 0));
+  o.map.version = 1;
+  return o;
+}
+
 // A hall's floor split between two overlapping regions, L [0,5]x[0,4] and R [3,8]x[0,4], with no
 // gateway between them; each opens onto a hallway below. The robot stands in L where R's free
 // space holds it too: the route starts in R and goes straight to a goal in R, not out through
 // L's opening, along the hallway and in through R's (to and fro).
 TEST(GlobalPlanner, AStartInOverlappingRegionsTakesTheCheapestOfThem)
 {
-  rgmap::RgMap map;
-  const std::vector<Wall> hall = {{V(0, 4), V(8, 4)}, {V(0, 0), V(0, 4)}, {V(8, 0), V(8, 4)},
-                                  {V(0, 0), V(1, 0)}, {V(2.2, 0), V(5.8, 0)}, {V(7, 0), V(8, 0)}};
-  const int64_t l = add_region(&map, "L", V(0, 0), V(5, 4), hall).id;
-  const int64_t r = add_region(&map, "R", V(3, 0), V(8, 4), hall).id;
-  const int64_t h = add_region(&map, "hallway", V(0, -2), V(8, 0), {{V(0, -2), V(8, -2)}, {V(0, -2), V(0, 0)}, {V(8, -2), V(8, 0)}}).id;
-  add_gateway(&map, rgmap::GatewayClass::kOpening, h, l, V(1.6, 0));
-  add_gateway(&map, rgmap::GatewayClass::kOpening, h, r, V(6.4, 0));
-  map.version = 1;
+  const OverlappingHall hall = overlapping_hall();
+  const int64_t l = hall.l, r = hall.r;
   GlobalPlanner gp(options());
-  gp.set_map(map);
+  gp.set_map(hall.map);
   std::string why;
   const auto route = gp.plan({l, V(4.5, 2.0), r, V(4.0, 2.0)}, &why);
   ASSERT_TRUE(route) << why;
@@ -503,20 +518,12 @@ TEST(GlobalPlanner, AStartInOverlappingRegionsTakesTheCheapestOfThem)
 
   // L has mapped a wall at x = 4 that R has not (each grid draws its own lines): R's straight
   // way from the robot would cross it, so the route does not start in R.
-  rgmap::RgMap walled;
-  std::vector<Wall> l_lines = hall;
-  l_lines.push_back({V(4.0, 0.0), V(4.0, 3.0)});
-  const int64_t wl = add_region(&walled, "L", V(0, 0), V(5, 4), l_lines).id;
-  const int64_t wr = add_region(&walled, "R", V(3, 0), V(8, 4), hall).id;
-  const int64_t wh = add_region(&walled, "hallway", V(0, -2), V(8, 0), {{V(0, -2), V(8, -2)}, {V(0, -2), V(0, 0)}, {V(8, -2), V(8, 0)}}).id;
-  add_gateway(&walled, rgmap::GatewayClass::kOpening, wh, wl, V(1.6, 0));
-  add_gateway(&walled, rgmap::GatewayClass::kOpening, wh, wr, V(6.4, 0));
-  walled.version = 1;
+  const OverlappingHall walled = overlapping_hall({{V(4.0, 0.0), V(4.0, 3.0)}});
   GlobalPlanner gw(options());
-  gw.set_map(walled);
-  const auto own = gw.plan({wl, V(3.6, 1.5), wr, V(4.0, 1.5)}, &why);
+  gw.set_map(walled.map);
+  const auto own = gw.plan({walled.l, V(3.6, 1.5), walled.r, V(4.0, 1.5)}, &why);
   ASSERT_TRUE(own) << why;
-  EXPECT_EQ(own->legs.front().region_id, wl) << "not through L's wall in R's grid";
+  EXPECT_EQ(own->legs.front().region_id, walled.l) << "not through L's wall in R's grid";
 }
 
 // NO_PATH's reason begins with its cause: the goal out of reach, or only gateways taken for
