@@ -55,6 +55,20 @@ class Writer
   int64_t eventnum_ = 0;
 };
 
+// An odometry_t at a pose record: its time, the pose (heading wrapped into [-pi, pi]), status OK;
+// no velocities or distance.
+odometry_t pose_message(const PoseRecord& p, int64_t seq)
+{
+  odometry_t m{};
+  m.utime = p.utime;
+  m.seq = seq;
+  m.odom_from_base.x = p.x;
+  m.odom_from_base.y = p.y;
+  m.odom_from_base.theta = std::remainder(p.theta, 2.0 * M_PI);
+  m.status = odometry_t::STATUS_OK;
+  return m;
+}
+
 }  // namespace
 
 WriteSummary write_lcm_log(const ImportedLog& log, const std::string& path, const LogChannels& ch)
@@ -76,12 +90,7 @@ WriteSummary write_lcm_log(const ImportedLog& log, const std::string& path, cons
         break;
       case LogEvent::Kind::kOdometry: {
         const PoseRecord& p = log.odometry[e.index];
-        odometry_t m{};
-        m.utime = p.utime;
-        m.seq = ++odom_seq;
-        m.odom_from_base.x = p.x;
-        m.odom_from_base.y = p.y;
-        m.odom_from_base.theta = std::remainder(p.theta, 2.0 * M_PI);
+        odometry_t m = pose_message(p, ++odom_seq);
         if (prev) {
           const double step = std::hypot(p.x - prev->x, p.y - prev->y);
           distance += step;
@@ -92,22 +101,14 @@ WriteSummary write_lcm_log(const ImportedLog& log, const std::string& path, cons
           }
         }
         m.distance = distance;
-        m.status = odometry_t::STATUS_OK;
         prev = &p;
         w.write(ch.odometry, m);
         ++sum.odometry;
         break;
       }
       case LogEvent::Kind::kReference: {
-        const PoseRecord& p = log.reference[e.index];
-        odometry_t m{};
-        m.utime = p.utime;
-        m.seq = scan_id;  // the scan this reference pose belongs to
-        m.odom_from_base.x = p.x;
-        m.odom_from_base.y = p.y;
-        m.odom_from_base.theta = std::remainder(p.theta, 2.0 * M_PI);
-        m.status = odometry_t::STATUS_OK;
-        w.write(ch.reference, m);
+        // seq: the scan this reference pose belongs to.
+        w.write(ch.reference, pose_message(log.reference[e.index], scan_id));
         ++sum.reference;
         break;
       }

@@ -1,7 +1,6 @@
 #include "persist/journal.h"
 
 #include <fcntl.h>
-#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -9,10 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
-#include <thread>
-#include <chrono>
 
 #include "persist/atomic_file.h"
+#include "persist/exclusive_file.h"
 
 namespace rgnav::persist {
 namespace {
@@ -38,18 +36,9 @@ Journal::Journal(std::string path, bool fsync_each) : path_(std::move(path)), fs
 {
   const auto p = std::filesystem::path(path_);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error(path_ + ": cannot open journal: " + std::strerror(errno));
   // One writer only: a previous instance that is still dying (SIGSTOP, then SIGTERM/SIGKILL
   // from the supervisor) must not append while this one reads and truncates.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
-  while (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-    if (errno != EWOULDBLOCK || std::chrono::steady_clock::now() > deadline) {
-      ::close(fd_);
-      throw std::runtime_error(path_ + ": journal is locked by another live instance");
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  fd_ = open_exclusive(path_, " journal", path_ + ": journal is locked by another live instance");
   std::string data;
   {
     char buf[65536];

@@ -78,16 +78,14 @@
 #   closed loop to stderr.
 #   Quick run: PLAN_ONLY=office PLAN_PAIRS=50 PLAN_GOALS=5 ./rgnav bench plan
 # The benchmark itself: tests/eval/plan (rgnav_plan_bench).
-set -euo pipefail
-ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
-BUILD="${RGNAV_BUILD:-$ROOT/build}"
+# shellcheck source=lib/bench_env.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib/bench_env.sh"
 JSON="$ROOT/logs/bench/plan.json"
 WORK="$ROOT/logs/bench/plan"
 ONLY="${PLAN_ONLY:-}"
 # shellcheck source=lib/nav_worlds.sh
 source "$ROOT/deploy/bench/lib/nav_worlds.sh"
-bin="$BUILD/bin/rgnav_plan_bench"
-[ -x "$bin" ] || { echo "bench plan: $bin is not built" >&2; exit 1; }
+bench_binary rgnav_plan_bench plan
 # The localization benchmark's worlds.
 nav_world_args
 args=("${world_args[@]}")

@@ -79,20 +79,14 @@
 #   RGMAP_RG_CONFIG runs another RG kernel config (default config/rg_kernel.yaml), e.g. one with a
 #   rule switched off: build/bin/config_overlay config/rg_kernel.yaml OFF.yaml kernel.door_exits=false.
 # The benchmark itself: tests/eval/rgmap (rgnav_rgmap_bench).
-set -euo pipefail
-ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
-BUILD="${RGNAV_BUILD:-$ROOT/build}"
-SHARED="${RGNAV_DATA:-$ROOT/../shared/data}"
+# shellcheck source=lib/bench_env.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib/bench_env.sh"
 IPA="$SHARED/maps/ipa"
 JSON="${RGMAP_JSON:-$ROOT/logs/bench/rgmap.json}"
 WORK="${RGMAP_WORK:-$ROOT/logs/bench/rgmap}"
 ONLY="${RGMAP_ONLY:-}"
 wanted() { [ -z "$ONLY" ] || [[ " $ONLY " == *" $1 "* ]]; }
-bin="$BUILD/bin/rgnav_rgmap_bench"
-if [ ! -x "$bin" ]; then
-  echo "bench rgmap: $bin is not built (it needs drivers/sim, scan_mapper, gateway_detector)" >&2
-  exit 1
-fi
+bench_binary rgnav_rgmap_bench rgmap "it needs drivers/sim, scan_mapper, gateway_detector"
 mkdir -p "$WORK"
 reals=()
 for name in intel freiburg-079 belgioioso aces; do
@@ -118,10 +112,7 @@ done
 # The office world again with its walking people (ghost_segments).
 wanted office_people && sims+=(--sim-people "office_people=$ROOT/config/worlds/office.yaml")
 # Generated buildings (tests/eval/buildings): no rule was fitted to them.
-source "$ROOT/tests/eval/buildings/random_building_specs.sh"
-random=$(random_building_specs "$BUILD/bin/rgnav_building_gen" "$WORK/random" "${RANDOM_BUILDINGS:-50}" "${RANDOM_SEED:-1}" \
-  "${RANDOM_VARIANTS:-plain furnished}" "$ONLY")
-while read -r spec; do [ -z "$spec" ] || sims+=(--sim-random "$spec"); done <<< "$random"
+add_random_buildings sims "$WORK/random" "${RANDOM_VARIANTS:-plain furnished}" "$ONLY"
 flags=()
 [ "${RGMAP_TRUE_POSES:-1}" = 0 ] || flags+=(--true-poses)
 exec "$bin" --config "$ROOT/config/scan_mapper.yaml" --gateway-config "$ROOT/config/gateway_detector_aligned.yaml" \

@@ -38,10 +38,8 @@
 # SLAM_ONLY (space-separated names of logs and worlds, "random" for every generated building)
 # runs only those; SLAM_JSON writes the JSON elsewhere (default logs/bench/slam.json).
 # The benchmark itself: tests/eval/slam (rgnav_slam_bench).
-set -euo pipefail
-ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
-BUILD="${RGNAV_BUILD:-$ROOT/build}"
-SHARED="${RGNAV_DATA:-$ROOT/../shared/data}"
+# shellcheck source=lib/bench_env.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib/bench_env.sh"
 DATA="$SHARED/laser"
 IPA="$SHARED/maps/ipa"
 OUT="$ROOT/logs/bench"
@@ -81,10 +79,7 @@ for spec in "Freiburg79_scan=$IPA/Freiburg79_scan.png" "lab_intel=$IPA/lab_intel
 done
 wanted office_people && args+=(--sim-people "office_people=$ROOT/config/worlds/office.yaml")
 # Generated buildings (tests/eval/buildings): no rule was fitted to them.
-source "$ROOT/tests/eval/buildings/random_building_specs.sh"
-random=$(random_building_specs "$BUILD/bin/rgnav_building_gen" "$WORK/random" "${RANDOM_BUILDINGS:-50}" "${RANDOM_SEED:-1}" \
-  "${SLAM_RANDOM_VARIANTS:-plain}" "$ONLY")
-while read -r spec; do [ -z "$spec" ] || args+=(--sim-random "$spec"); done <<< "$random"
+add_random_buildings args "$WORK/random" "${SLAM_RANDOM_VARIANTS:-plain}" "$ONLY"
 "$BUILD/bin/rgnav_slam_bench" --config "$ROOT/config/scan_mapper.yaml" --json "${SLAM_JSON:-$OUT/slam.json}" --maps "$WORK" \
   --sim-config "$ROOT/config/sim.yaml" --sim-laps 2 --sim-max-s "${SLAM_SIM_MAX_S:-1800}" \
   --sim-seeds "${SLAM_SIM_SEEDS-1,2,3}" "${args[@]}"

@@ -6,24 +6,8 @@
 # --duration 1800; rss_window_s says how long). Runs in a private network namespace
 # (tests/support/in_netns.sh). Extra arguments go to rgnav_viewer_bench (--duration S, ...).
 # The benchmark itself: tests/eval/viewer (rgnav_viewer_bench).
-set -euo pipefail
-root=${RGNAV_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}
-build=${RGNAV_BUILD:-$root/build}
-bin=$build/bin/rgnav_viewer_bench
-if [[ ! -x $bin ]]; then
-  echo "viewer bench: building rgnav_viewer_bench in $build" >&2
-  cmake --build "$build" --target rgnav_viewer_bench
-fi
-out_dir=$root/logs/bench
-mkdir -p "$out_dir"
-set +e
-bash "$root/tests/support/in_netns.sh" "$bin" --out "$out_dir/viewer.json" "$@"
-rc=$?
-set -e
-if [[ $rc -eq 77 ]]; then
-  echo "viewer bench: needs a private network namespace (root or user namespaces) so that multicast" \
-       "stays on this machine; none could be made here" >&2
-  exit 1
-fi
-[[ $rc -eq 0 ]] && echo "wrote $out_dir/viewer.json" >&2
-exit $rc
+# shellcheck source=lib/bench_env.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib/bench_env.sh"
+bench_binary_or_build rgnav_viewer_bench viewer
+mkdir -p "$ROOT/logs/bench"
+run_in_netns viewer "$ROOT/logs/bench/viewer.json" "$bin" --out "$ROOT/logs/bench/viewer.json" "$@"

@@ -3,16 +3,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "config/duration_fields.h"
+
 namespace rgnav::drivers::sick {
-
-namespace {
-
-std::chrono::milliseconds ms(const config::Config& c, const std::string& key, int64_t def, int64_t min, int64_t max)
-{
-  return std::chrono::milliseconds(c.integer(key, def, min, max));
-}
-
-}  // namespace
 
 LaserDriverOptions load_laser_driver_options(const config::Config& c, const config::Config& channels,
                                              const config::RobotDescription& robot)
@@ -37,12 +30,12 @@ LaserDriverOptions load_laser_driver_options(const config::Config& c, const conf
   d.units = c.choice("units", "mm", {"mm", "cm"}) == "mm" ? Units::kMillimetres : Units::kCentimetres;
   d.password = c.string("password", d.password);
   if (d.password.size() != 8) c.fail("password", "must have exactly 8 characters");
-  d.reply_timeout = ms(c, "reply_timeout_ms", d.reply_timeout.count(), 10, 60000);
-  d.detect_timeout = ms(c, "detect_timeout_ms", d.detect_timeout.count(), 10, 60000);
-  d.config_timeout = ms(c, "config_timeout_ms", d.config_timeout.count(), 10, 60000);
+  d.reply_timeout = config::milliseconds(c, "reply_timeout_ms", d.reply_timeout, 10, 60000);
+  d.detect_timeout = config::milliseconds(c, "detect_timeout_ms", d.detect_timeout, 10, 60000);
+  d.config_timeout = config::milliseconds(c, "config_timeout_ms", d.config_timeout, 10, 60000);
   d.request_tries = static_cast<int>(c.integer("request_tries", d.request_tries, 1, 10));
-  d.silence_timeout = ms(c, "silence_timeout_ms", d.silence_timeout.count(), 10, 60000);
-  d.reconnect_interval = ms(c, "reconnect_interval_ms", d.reconnect_interval.count(), 10, 600000);
+  d.silence_timeout = config::milliseconds(c, "silence_timeout_ms", d.silence_timeout, 10, 60000);
+  d.reconnect_interval = config::milliseconds(c, "reconnect_interval_ms", d.reconnect_interval, 10, 600000);
   d.transmit_delay = std::chrono::microseconds(c.integer("transmit_delay_us", 0, 0, 100000));
   const auto& mount = robot.laser_front;
   o.mounting.x_m = mount.base_from_laser.x();

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "config/duration_fields.h"
+
 namespace rgnav::sim {
 
 SimulatorOptions load_simulator_options(const config::Config& cfg, const config::RobotDescription& described)
@@ -60,7 +62,7 @@ ProcessOptions load_process_options(const config::Config& sim)
   p.clock = sim.choice("clock", "realtime", {"realtime", "fast"}) == "realtime" ? ClockMode::kRealtime : ClockMode::kFast;
   p.time_scale = sim.number("time_scale", p.time_scale, 0.01, 100.0);
   p.fast_chunk = std::chrono::microseconds(sim.integer("fast_chunk_us", p.fast_chunk.count(), 100, 1'000'000));
-  p.tick = std::chrono::milliseconds(sim.integer("tick_ms", p.tick.count(), 1, 100));
+  p.tick = config::milliseconds(sim, "tick_ms", p.tick, 1, 100);
   p.realtime_priority = static_cast<int>(sim.integer("realtime_priority", p.realtime_priority, 0, 99));
   return p;
 }

@@ -149,6 +149,14 @@ struct Planner
 
 }  // namespace
 
+std::vector<Vec2> laps_route(const Tour& tour, int laps)
+{
+  std::vector<Vec2> route;
+  for (int lap = 0; lap < laps; ++lap)
+    route.insert(route.end(), tour.waypoints.begin() + (lap == 0 ? 0 : 1), tour.waypoints.end());
+  return route;
+}
+
 double polyline_clearance(const World& world, const RobotOptions& robot, const std::vector<Vec2>& polyline)
 {
   const Scene scene(world);

@@ -33,6 +33,10 @@ struct Tour
 
 Tour plan_tour(const World& world, const RobotOptions& robot, const TourOptions& options = {});
 
+// The waypoints of `laps` times round the tour: each lap after the first starts from the
+// previous lap's last waypoint (the start), which is not repeated.
+std::vector<Vec2> laps_route(const Tour& tour, int laps);
+
 // Minimum clearance of the polyline to obstacles the body could hit (static geometry and
 // doors at time 0; people are not obstacles for planning).
 double polyline_clearance(const World& world, const RobotOptions& robot, const std::vector<Vec2>& polyline);

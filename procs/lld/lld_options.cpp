@@ -1,15 +1,17 @@
 #include "lld/lld_options.h"
 
+#include "config/string_fields.h"
+
 namespace rgnav::lld {
 
 LldOptions load_lld_options(const config::Config& root, const config::RobotDescription& robot)
 {
   LldOptions o;
-  const auto ch = root.section("channels");
-  o.channels.trajectory = ch.string("trajectory", o.channels.trajectory);
-  o.channels.odometry = ch.string("odometry", o.channels.odometry);
-  o.channels.command = ch.string("command", o.channels.command);
-  o.channels.status = ch.string("status", o.channels.status);
+  auto& ch = o.channels;
+  config::read_strings(root.section("channels"), {{"trajectory", &ch.trajectory},
+                                                  {"odometry", &ch.odometry},
+                                                  {"command", &ch.command},
+                                                  {"status", &ch.status}});
 
   const auto loop = root.section("loop");
   o.loop.rate_hz = loop.number("rate_hz", o.loop.rate_hz, 1.0, 200.0);

@@ -1,7 +1,6 @@
 #include "procs/rg_kernel/state_store.h"
 
 #include <fcntl.h>
-#include <sys/file.h>
 #include <unistd.h>
 
 #include <spdlog/spdlog.h>
@@ -14,6 +13,7 @@
 #include <stdexcept>
 
 #include "persist/atomic_file.h"
+#include "persist/exclusive_file.h"
 
 namespace rgnav::rg_kernel {
 
@@ -54,18 +54,9 @@ StateStore::StateStore(StoreOptions options) : options_(std::move(options))
 {
   fs::create_directories(options_.dir);
   const std::string lock = options_.dir + "/state.lock";
-  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_fd_ < 0) throw std::runtime_error(lock + ": cannot open: " + std::strerror(errno));
   // One kernel per folder: a previous instance that is still dying must not write while this
   // one reads, rotates or deletes.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
-  while (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-    if (errno != EWOULDBLOCK || std::chrono::steady_clock::now() > deadline) {
-      ::close(lock_fd_);
-      throw std::runtime_error(options_.dir + ": state folder is locked by another live rg_kernel");
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  lock_fd_ = persist::open_exclusive(lock, "", options_.dir + ": state folder is locked by another live rg_kernel");
   // A snapshot whose writer was killed before its rename is only a temp file: never valid.
   for (const auto& e : fs::directory_iterator(options_.dir))
     if (e.path().extension() == ".tmp") fs::remove(e.path());

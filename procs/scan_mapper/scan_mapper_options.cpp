@@ -5,7 +5,19 @@
 namespace rgnav::scan_mapper {
 namespace {
 constexpr double kDeg = M_PI / 180.0;
+
+// A correlative search's options: the same keys for the registration's retries
+// (registration.correlative) and the loop closure's search (loop_closure.correlative), the
+// defaults each one's own.
+CorrelativeOptions load_correlative(const config::Config& cor, CorrelativeOptions c)
+{
+  c.resolution_m = cor.number("resolution_m", c.resolution_m, 0.01, 0.5);
+  c.sigma_m = cor.number("sigma_m", c.sigma_m, 0.005, 1.0);
+  c.coarse_factor = static_cast<int>(cor.integer("coarse_factor", c.coarse_factor, 1, 64));
+  c.max_angular_step_deg = cor.number("max_angular_step_deg", c.max_angular_step_deg, 0.05, 10.0);
+  return c;
 }
+}  // namespace
 
 ScanMapperOptions load_scan_mapper_options(const config::Config& c, const config::RobotDescription& robot)
 {
@@ -52,11 +64,7 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c, const config
   const auto mov = reg.section("moving_points");
   o.moving_points.margin_m = mov.number("margin_m", o.moving_points.margin_m, 0.0, 5.0);
   o.moving_points.max_incidence_deg = mov.number("max_incidence_deg", o.moving_points.max_incidence_deg, 0.0, 90.0);
-  const auto cor = reg.section("correlative");
-  o.correlative.resolution_m = cor.number("resolution_m", o.correlative.resolution_m, 0.01, 0.5);
-  o.correlative.sigma_m = cor.number("sigma_m", o.correlative.sigma_m, 0.005, 1.0);
-  o.correlative.coarse_factor = static_cast<int>(cor.integer("coarse_factor", o.correlative.coarse_factor, 1, 64));
-  o.correlative.max_angular_step_deg = cor.number("max_angular_step_deg", o.correlative.max_angular_step_deg, 0.05, 10.0);
+  o.correlative = load_correlative(reg.section("correlative"), o.correlative);
 
   const auto odo = c.section("odometry_noise");
   o.odometry_noise.trans_per_m = odo.number("trans_per_m", o.odometry_noise.trans_per_m, 0.0, 10.0);
@@ -114,11 +122,7 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c, const config
   l.degenerate_keeps_graph_axis = lc.boolean("degenerate_keeps_graph_axis", l.degenerate_keeps_graph_axis);
   l.degenerate_covariance_scale = lc.number("degenerate_covariance_scale", l.degenerate_covariance_scale, 1.0, 1e6);
   l.point_spacing_m = lc.number("point_spacing_m", l.point_spacing_m, 0.0, 1.0);
-  const auto lcor = lc.section("correlative");
-  l.correlative.resolution_m = lcor.number("resolution_m", l.correlative.resolution_m, 0.01, 0.5);
-  l.correlative.sigma_m = lcor.number("sigma_m", l.correlative.sigma_m, 0.005, 1.0);
-  l.correlative.coarse_factor = static_cast<int>(lcor.integer("coarse_factor", l.correlative.coarse_factor, 1, 64));
-  l.correlative.max_angular_step_deg = lcor.number("max_angular_step_deg", l.correlative.max_angular_step_deg, 0.05, 10.0);
+  l.correlative = load_correlative(lc.section("correlative"), l.correlative);
 
   const auto opt = c.section("optimizer");
   o.optimizer.max_iterations = static_cast<int>(opt.integer("max_iterations", o.optimizer.max_iterations, 1, 1000));

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "config/duration_fields.h"
+
 namespace rgnav::supervisor {
 
 namespace {
@@ -46,7 +48,7 @@ OrderAuthOptions load_order_auth_options(const config::Config& section)
 {
   OrderAuthOptions o;
   o.key_file = section.string("key_file", o.key_file);
-  o.max_age = std::chrono::milliseconds(section.integer("max_age_ms", o.max_age.count(), 500, 600000));
+  o.max_age = config::milliseconds(section, "max_age_ms", o.max_age, 500, 600000);
   return o;
 }
 

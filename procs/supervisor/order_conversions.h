@@ -6,34 +6,25 @@
 
 namespace rgnav::supervisor {
 
-inline OrderFields to_order_fields(const supervisor_order_t& m)
+// OrderFields holds the message's fields under the same names: one list of them, both ways.
+template <class To, class From>
+To copy_order_fields(const From& f)
 {
-  OrderFields o;
-  o.utime = m.utime;
-  o.order_id = m.order_id;
-  o.host = m.host;
-  o.order = m.order;
-  o.target = m.target;
-  o.source = m.source;
-  o.nonce = m.nonce;
-  o.key_id = m.key_id;
-  o.mac = m.mac;
-  return o;
+  To t;
+  t.utime = f.utime;
+  t.order_id = f.order_id;
+  t.host = f.host;
+  t.order = f.order;
+  t.target = f.target;
+  t.source = f.source;
+  t.nonce = f.nonce;
+  t.key_id = f.key_id;
+  t.mac = f.mac;
+  return t;
 }
 
-inline supervisor_order_t to_order_msg(const OrderFields& o)
-{
-  supervisor_order_t m;
-  m.utime = o.utime;
-  m.order_id = o.order_id;
-  m.host = o.host;
-  m.order = o.order;
-  m.target = o.target;
-  m.source = o.source;
-  m.nonce = o.nonce;
-  m.key_id = o.key_id;
-  m.mac = o.mac;
-  return m;
-}
+inline OrderFields to_order_fields(const supervisor_order_t& m) { return copy_order_fields<OrderFields>(m); }
+
+inline supervisor_order_t to_order_msg(const OrderFields& o) { return copy_order_fields<supervisor_order_t>(o); }
 
 }  // namespace rgnav::supervisor

@@ -5,40 +5,34 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "config/duration_fields.h"
 #include "config/string_fields.h"
 
 namespace rgnav::supervisor {
 
-namespace {
-std::chrono::milliseconds ms(const config::Config& c, const std::string& key, std::chrono::milliseconds def, int64_t min, int64_t max)
-{
-  return std::chrono::milliseconds(c.integer(key, def.count(), min, max));
-}
-}  // namespace
-
 SupervisorOptions load_supervisor_options(const config::Config& s)
 {
   SupervisorOptions o;
-  o.heartbeat_timeout = ms(s, "heartbeat_timeout_ms", o.heartbeat_timeout, 50, 600000);
-  o.startup_timeout = ms(s, "startup_timeout_ms", o.startup_timeout, 100, 600000);
-  o.work_timeout = ms(s, "work_timeout_ms", o.work_timeout, 50, 600000);
-  o.disk_wait_timeout = ms(s, "disk_wait_timeout_ms", o.disk_wait_timeout, 0, 600000);
-  o.stall_threshold = ms(s, "stall_threshold_ms", o.stall_threshold, 5, 60000);
-  o.hung_grace = ms(s, "hung_grace_ms", o.hung_grace, 0, 60000);
-  o.tick = ms(s, "tick_ms", o.tick, 1, 1000);
-  o.status_period = ms(s, "status_period_ms", o.status_period, 50, 60000);
-  o.status_min_gap = ms(s, "status_min_gap_ms", o.status_min_gap, 0, 60000);
-  o.remote_fresh = ms(s, "remote_fresh_ms", o.remote_fresh, 100, 600000);
-  o.orphan_grace = ms(s, "orphan_grace_ms", o.orphan_grace, 0, 600000);
+  o.heartbeat_timeout = config::milliseconds(s, "heartbeat_timeout_ms", o.heartbeat_timeout, 50, 600000);
+  o.startup_timeout = config::milliseconds(s, "startup_timeout_ms", o.startup_timeout, 100, 600000);
+  o.work_timeout = config::milliseconds(s, "work_timeout_ms", o.work_timeout, 50, 600000);
+  o.disk_wait_timeout = config::milliseconds(s, "disk_wait_timeout_ms", o.disk_wait_timeout, 0, 600000);
+  o.stall_threshold = config::milliseconds(s, "stall_threshold_ms", o.stall_threshold, 5, 60000);
+  o.hung_grace = config::milliseconds(s, "hung_grace_ms", o.hung_grace, 0, 60000);
+  o.tick = config::milliseconds(s, "tick_ms", o.tick, 1, 1000);
+  o.status_period = config::milliseconds(s, "status_period_ms", o.status_period, 50, 60000);
+  o.status_min_gap = config::milliseconds(s, "status_min_gap_ms", o.status_min_gap, 0, 60000);
+  o.remote_fresh = config::milliseconds(s, "remote_fresh_ms", o.remote_fresh, 100, 600000);
+  o.orphan_grace = config::milliseconds(s, "orphan_grace_ms", o.orphan_grace, 0, 600000);
   o.default_auto_respawn = s.boolean("default_auto_respawn", o.default_auto_respawn);
   const auto r = s.section("restart");
-  o.restart.initial_backoff = ms(r, "initial_backoff_ms", o.restart.initial_backoff, 0, 600000);
-  o.restart.max_backoff = ms(r, "max_backoff_ms", o.restart.max_backoff, 0, 3600000);
+  o.restart.initial_backoff = config::milliseconds(r, "initial_backoff_ms", o.restart.initial_backoff, 0, 600000);
+  o.restart.max_backoff = config::milliseconds(r, "max_backoff_ms", o.restart.max_backoff, 0, 3600000);
   if (o.restart.max_backoff < o.restart.initial_backoff) r.fail("max_backoff_ms", "must be >= initial_backoff_ms");
   o.restart.backoff_factor = r.number("backoff_factor", o.restart.backoff_factor, 1.0, 10.0);
   o.restart.max_restarts = static_cast<int>(r.integer("max_restarts", o.restart.max_restarts, 0, 1000));
-  o.restart.window = ms(r, "window_ms", o.restart.window, 100, 86400000);
-  o.restart.stable_after = ms(r, "stable_after_ms", o.restart.stable_after, 0, 86400000);
+  o.restart.window = config::milliseconds(r, "window_ms", o.restart.window, 100, 86400000);
+  o.restart.stable_after = config::milliseconds(r, "stable_after_ms", o.restart.stable_after, 0, 86400000);
   const auto h = s.section("hold");
   // Comma-separated process names (Config reads scalars; a list of names reads as one).
   const std::string names = h.string("safety_critical", "lld,base_driver");
@@ -50,7 +44,7 @@ SupervisorOptions load_supervisor_options(const config::Config& s)
     if (!n.empty()) o.safety_critical.push_back(n);
   }
   o.hold_hz = h.number("publish_hz", o.hold_hz, 1.0, 1000.0);
-  o.hold_deadline = ms(h, "deadline_ms", o.hold_deadline, 1, 10000);
+  o.hold_deadline = config::milliseconds(h, "deadline_ms", o.hold_deadline, 1, 10000);
   o.state_dir = s.string("state_dir", "");
   return o;
 }

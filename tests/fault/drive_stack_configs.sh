@@ -4,13 +4,7 @@
 # the run folder, and the inputs that get loss/duplication/delay moved behind the stack's
 # lcm_relays. Every result is validated by its process (--check-config) so a stale key fails
 # here, not mid-test.
-set -eu
-: "${RGNAV_ROOT:?}" "${RGNAV_BUILD:?}" "${RGNAV_FAULT_STATE:?}"
-c=$RGNAV_ROOT/config
-out=$RGNAV_FAULT_STATE/config
-s=$RGNAV_FAULT_STATE
-ov=$RGNAV_BUILD/bin/config_overlay
-mkdir -p "$out"
+. "$(dirname "$0")/stack_configs_lib.sh"
 # The hardware the drivers talk to: the simulator serves the CAN bus and the LMS pty named in
 # the driver configs it is given.
 "$ov" "$c/laser_driver_sim.yaml" "$out/laser_driver.yaml" laser_driver.port="$s/laser_front"
@@ -26,13 +20,6 @@ mkdir -p "$out"
   channels.odometry=ODOMETRY_GW classifier.models="$c/gateway_models/default.yaml"
 # Pairs at 2 Hz: the images go to every process of the namespace (udpm), 10 Hz loads two cores.
 "$ov" "$c/stereo_capture.yaml" "$out/stereo_capture.yaml" capture.rate_hz=2
-check() {
-  "$RGNAV_BUILD/bin/$1" --config "$out/$2.yaml" --check-config >/dev/null || { echo "drive_stack_configs: $2.yaml rejected" >&2; exit 2; }
-}
 # (tour_runner is checked at launch: its tour file is planned by the stack's tour_plan job.)
-for p in rgnav_sim:sim laser_driver:laser_driver base_driver:base_driver lld:lld \
-         collision_avoidance:collision_avoidance gateway_detector:gateway_detector stereo_capture:stereo_capture; do
-  bin=${p%%:*}; cfg=${p#*:}
-  [ -x "$RGNAV_BUILD/bin/$bin" ] && check "$bin" "$cfg"
-done
-exit 0
+check_configs drive_stack_configs rgnav_sim:sim laser_driver:laser_driver base_driver:base_driver lld:lld \
+  collision_avoidance:collision_avoidance gateway_detector:gateway_detector stereo_capture:stereo_capture

@@ -3,13 +3,7 @@
 # process configs with private state (map checkpoints, the CAN bus socket) and with the
 # inputs that get loss/duplication/delay moved behind the stack's lcm_relays. Every result
 # is validated by its process (--check-config) so a stale key fails here, not mid-test.
-set -eu
-: "${RGNAV_ROOT:?}" "${RGNAV_BUILD:?}" "${RGNAV_FAULT_STATE:?}"
-c=$RGNAV_ROOT/config
-out=$RGNAV_FAULT_STATE/config
-s=$RGNAV_FAULT_STATE
-ov=$RGNAV_BUILD/bin/config_overlay
-mkdir -p "$out"
+. "$(dirname "$0")/stack_configs_lib.sh"
 "$ov" "$c/sim.yaml" "$out/sim.yaml" channels.command=BASE_CMD_RELAYED sim.world="$c/worlds/office.yaml"
 "$ov" "$c/tour_runner.yaml" "$out/tour_runner.yaml" channels.odometry=ODOMETRY_RELAYED
 "$ov" "$c/scan_mapper.yaml" "$out/scan_mapper.yaml" channels.laser=LASER_FRONT_RELAYED \
@@ -38,12 +32,6 @@ fi
 # BASE_CMD (base.command_source), not lld.
 "$ov" "$c/base_driver_sim.yaml" "$out/base_driver.yaml" can.virtual_bus_path="$s/vcan.sock" \
   channels.base_cmd=BASE_CMD_RELAYED channels.odometry=DRIVE_ODOMETRY base.command_source=tour_runner
-check() {
-  "$RGNAV_BUILD/bin/$1" --config "$out/$2.yaml" --check-config >/dev/null || { echo "sim_stack_configs: $2.yaml rejected" >&2; exit 2; }
-}
 # (tour_runner is checked at launch: its tour file is planned by the stack's tour_plan job.)
-for p in rgnav_sim:sim scan_mapper:scan_mapper rg_kernel:rg_kernel base_driver:base_driver localizer:localizer planner:planner explorer:explorer; do
-  bin=${p%%:*}; cfg=${p#*:}
-  [ -x "$RGNAV_BUILD/bin/$bin" ] && check "$bin" "$cfg"
-done
-exit 0
+check_configs sim_stack_configs rgnav_sim:sim scan_mapper:scan_mapper rg_kernel:rg_kernel base_driver:base_driver \
+  localizer:localizer planner:planner explorer:explorer

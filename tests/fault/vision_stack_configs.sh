@@ -3,11 +3,7 @@
 # process configs with the vision's and the viewer's inputs moved behind the stack's lcm_relays,
 # the head at 2 Hz, the tour runner driving on its own follower. Every result is validated by its
 # process (--check-config) so a stale key fails here, not mid-test.
-set -eu
-: "${RGNAV_ROOT:?}" "${RGNAV_BUILD:?}" "${RGNAV_FAULT_STATE:?}"
-c=$RGNAV_ROOT/config
-out=$RGNAV_FAULT_STATE/config
-ov=$RGNAV_BUILD/bin/config_overlay
+. "$(dirname "$0")/stack_configs_lib.sh"
 mkdir -p "$out/stereo"
 "$ov" "$c/sim.yaml" "$out/sim.yaml" sim.world="$c/worlds/office.yaml"
 "$ov" "$c/tour_runner.yaml" "$out/tour_runner.yaml" tour.output=base_cmd channels.slam_pose='""'
@@ -17,12 +13,5 @@ cp "$c/stereo/sim_b21r_head.yml" "$out/stereo/"   # stereo_capture and the visio
 "$ov" "$c/vision.yaml" "$out/vision.yaml" channels.stereo=STEREO_IMAGES_VISION channels.odometry=ODOMETRY_VISION \
   channels.laser=LASER_FRONT_VISION
 "$ov" "$c/viewer.yaml" "$out/viewer.yaml" channels.laser=LASER_FRONT_VIEWER channels.objects3d=OBJECTS_3D_VIEWER
-check() {
-  "$RGNAV_BUILD/bin/$1" --config "$out/$2.yaml" --check-config >/dev/null || { echo "vision_stack_configs: $2.yaml rejected" >&2; exit 2; }
-}
 # (tour_runner is checked at launch: its tour file is planned by the stack's tour_plan job.)
-for p in rgnav_sim:sim stereo_capture:stereo_capture vision:vision viewer:viewer; do
-  bin=${p%%:*}; cfg=${p#*:}
-  [ -x "$RGNAV_BUILD/bin/$bin" ] && check "$bin" "$cfg"
-done
-exit 0
+check_configs vision_stack_configs rgnav_sim:sim stereo_capture:stereo_capture vision:vision viewer:viewer

@@ -83,6 +83,27 @@ std::vector<double> angles(Gen& g, int lo, int hi)
   return v;
 }
 
+// The point lists of a gateway, in a gateway_t or a gateway_hypothesis_t (the same fields).
+template <class M>
+void gateway_geometry(Gen& g, M& m)
+{
+  m.gateway_points = points(g, 0, 4);
+  m.npoints = static_cast<int32_t>(m.gateway_points.size());
+  m.crossing_points = points(g, 0, 3);
+  m.ncrossing_points = static_cast<int32_t>(m.crossing_points.size());
+  m.traversal_directions = angles(g, 0, 4);
+  m.ndirections = static_cast<int32_t>(m.traversal_directions.size());
+}
+
+// The `n` elements of a message's list: sample<T> of variants first, first + 1, ...
+template <class T>
+std::vector<T> samples(int n, uint32_t first)
+{
+  std::vector<T> v;
+  for (int i = 0; i < n; ++i) v.push_back(sample<T>(first + i));
+  return v;
+}
+
 int64_t utime(Gen& g) { return 1'700'000'000'000'000 + static_cast<int64_t>(g.next() % 1'000'000'000'000); }
 
 }  // namespace
@@ -279,7 +300,7 @@ supervisor_status_t sample<supervisor_status_t>(uint32_t variant)
   m.host = "b21r";
   m.config = "deploy/sim.yaml";
   m.nprocesses = g.count(0, 6);
-  for (int i = 0; i < m.nprocesses; ++i) m.processes.push_back(sample<process_status_t>(variant * 7 + i));
+  m.processes = samples<process_status_t>(m.nprocesses, variant * 7);
   m.robot_held = variant % 2 == 1;
   m.alert = m.robot_held ? "lld failed: robot held" : "";
   m.host_stalls = variant % 3 == 0 ? 0 : g.count(1, 500);
@@ -365,7 +386,7 @@ objects3d_t sample<objects3d_t>(uint32_t variant)
   m.scan_id = variant;
   m.odom_from_base = pose(g);
   m.nrectangles = g.count(0, 4);
-  for (int i = 0; i < m.nrectangles; ++i) m.rectangles.push_back(sample<rectangle3d_t>(variant * 5 + i));
+  m.rectangles = samples<rectangle3d_t>(m.nrectangles, variant * 5);
   return m;
 }
 
@@ -426,12 +447,7 @@ gateway_hypothesis_t sample<gateway_hypothesis_t>(uint32_t variant)
   m.track_id = 1 + variant;
   m.gateway_class = static_cast<int8_t>(g.count(0, gateway_hypothesis_t::NUM_CLASSES - 1));
   class_probabilities(g, m.class_probability);
-  m.gateway_points = points(g, 0, 4);
-  m.npoints = static_cast<int32_t>(m.gateway_points.size());
-  m.crossing_points = points(g, 0, 3);
-  m.ncrossing_points = static_cast<int32_t>(m.crossing_points.size());
-  m.traversal_directions = angles(g, 0, 4);
-  m.ndirections = static_cast<int32_t>(m.traversal_directions.size());
+  gateway_geometry(g, m);
   m.distance = static_cast<float>(g.uniform(0.2, 6));
   m.observations = g.count(1, 40);
   return m;
@@ -446,7 +462,7 @@ gateway_hypotheses_t sample<gateway_hypotheses_t>(uint32_t variant)
   m.scan_id = 1 + variant;
   m.map_from_base = pose(g);
   m.nhypotheses = g.count(0, 4);
-  for (int i = 0; i < m.nhypotheses; ++i) m.hypotheses.push_back(sample<gateway_hypothesis_t>(variant * 5 + i));
+  m.hypotheses = samples<gateway_hypothesis_t>(m.nhypotheses, variant * 5);
   return m;
 }
 
@@ -479,12 +495,7 @@ gateway_t sample<gateway_t>(uint32_t variant)
   m.region_a = g.count(1, 50);
   m.region_b = variant % 3 == 0 ? 0 : g.count(1, 50);
   m.region_a_from_region_b = pose(g);
-  m.gateway_points = points(g, 0, 4);
-  m.npoints = static_cast<int32_t>(m.gateway_points.size());
-  m.crossing_points = points(g, 0, 3);
-  m.ncrossing_points = static_cast<int32_t>(m.crossing_points.size());
-  m.traversal_directions = angles(g, 0, 4);
-  m.ndirections = static_cast<int32_t>(m.traversal_directions.size());
+  gateway_geometry(g, m);
   m.traversals = g.count(0, 20);
   m.mean_traversal_time = g.uniform(0, 30);
   m.neutralized = variant % 5 == 4;
@@ -503,11 +514,11 @@ region_t sample<region_t>(uint32_t variant)
   m.merged_into = m.state == region_t::STATE_MERGED ? g.count(1, 50) : 0;
   m.map_from_region = pose(g);
   m.nsegments = g.count(0, 5);
-  for (int i = 0; i < m.nsegments; ++i) m.segments.push_back(sample<line_segment_t>(variant * 7 + i));
+  m.segments = samples<line_segment_t>(m.nsegments, variant * 7);
   m.nobjects = g.count(0, 3);
-  for (int i = 0; i < m.nobjects; ++i) m.objects.push_back(sample<object2d_t>(variant * 7 + i));
+  m.objects = samples<object2d_t>(m.nobjects, variant * 7);
   m.nobjects3d = g.count(0, 2);
-  for (int i = 0; i < m.nobjects3d; ++i) m.objects3d.push_back(sample<rectangle3d_t>(variant * 7 + i));
+  m.objects3d = samples<rectangle3d_t>(m.nobjects3d, variant * 7);
   m.bbox_min = point(g);
   m.bbox_max.x = m.bbox_min.x + g.uniform(1, 10);
   m.bbox_max.y = m.bbox_min.y + g.uniform(1, 10);
@@ -533,9 +544,9 @@ rg_map_t sample<rg_map_t>(uint32_t variant)
   m.utime = utime(g);
   m.version = 1 + variant;
   m.nregions = g.count(0, 3);
-  for (int i = 0; i < m.nregions; ++i) m.regions.push_back(sample<region_t>(variant * 4 + i));
+  m.regions = samples<region_t>(m.nregions, variant * 4);
   m.ngateways = g.count(0, 3);
-  for (int i = 0; i < m.ngateways; ++i) m.gateways.push_back(sample<gateway_t>(variant * 4 + i));
+  m.gateways = samples<gateway_t>(m.ngateways, variant * 4);
   m.current_region = m.nregions > 0 ? m.regions[0].id : 0;
   m.last_scan_id = g.count(0, 100000);
   return m;
@@ -576,9 +587,9 @@ rg_graph_t sample<rg_graph_t>(uint32_t variant)
   m.utime = utime(g);
   m.map_version = 1 + variant;
   m.nnodes = g.count(0, 6);
-  for (int i = 0; i < m.nnodes; ++i) m.nodes.push_back(sample<rg_graph_node_t>(variant * 9 + i));
+  m.nodes = samples<rg_graph_node_t>(m.nnodes, variant * 9);
   m.nedges = g.count(0, 6);
-  for (int i = 0; i < m.nedges; ++i) m.edges.push_back(sample<rg_graph_edge_t>(variant * 9 + i));
+  m.edges = samples<rg_graph_edge_t>(m.nedges, variant * 9);
   return m;
 }
 
@@ -603,7 +614,7 @@ global_path_t sample<global_path_t>(uint32_t variant)
   m.map_version = g.count(1, 1000);
   m.cost = g.uniform(0, 300);
   m.nwaypoints = g.count(0, 6);
-  for (int i = 0; i < m.nwaypoints; ++i) m.waypoints.push_back(sample<region_waypoint_t>(variant * 9 + i));
+  m.waypoints = samples<region_waypoint_t>(m.nwaypoints, variant * 9);
   m.status = g.pick<int8_t>({global_path_t::STATUS_OK, global_path_t::STATUS_NO_PATH,
                              global_path_t::STATUS_GOAL_REACHED, global_path_t::STATUS_CANCELLED});
   m.reason = variant % 2 ? "" : g.word("through gateway");
@@ -743,7 +754,7 @@ trajectory_t sample<trajectory_t>(uint32_t variant)
   m.trajectory_id = 1 + variant;
   m.frame = trajectory_t::FRAME_ODOM;
   m.nsegments = g.count(0, 5);
-  for (int i = 0; i < m.nsegments; ++i) m.segments.push_back(sample<trajectory_segment_t>(variant * 6 + i));
+  m.segments = samples<trajectory_segment_t>(m.nsegments, variant * 6);
   m.a_max = g.uniform(0.2, 1);
   m.omega_max = g.uniform(0.5, 2);
   m.predicted_end_utime = m.utime + g.count(0, 30'000'000);

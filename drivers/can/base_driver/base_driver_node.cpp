@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "config/duration_fields.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "time/message_time.h"
 
@@ -17,7 +18,7 @@ BaseDriverNodeOptions load_base_driver_node_options(const config::Config& root)
   o.odometry_rate_hz = base.number("odometry_rate_hz", o.odometry_rate_hz, 1.0, 200.0);
   o.sources.owner = base.string("command_source", o.sources.owner);
   o.sources.hold_source = base.string("hold_source", o.sources.hold_source);
-  o.sources.foreign_quiet = std::chrono::milliseconds(base.integer("foreign_quiet_ms", o.sources.foreign_quiet.count(), 100, 60000));
+  o.sources.foreign_quiet = config::milliseconds(base, "foreign_quiet_ms", o.sources.foreign_quiet, 100, 60000);
   if (o.sources.owner.empty()) base.fail("command_source", "must name the process that drives (lld's node name)");
   if (o.sources.hold_source == o.sources.owner) base.fail("hold_source", "must differ from command_source");
   return o;

@@ -3,17 +3,11 @@
 #include <cmath>
 
 #include "canopen/protocol.h"
+#include "config/duration_fields.h"
 
 namespace rgnav::can::base {
 
 namespace {
-
-using std::chrono::milliseconds;
-
-milliseconds ms(const config::Config& c, const std::string& key, milliseconds def, int64_t min, int64_t max)
-{
-  return milliseconds(c.integer(key, def.count(), min, max));
-}
 
 uint32_t clamp_counts(double counts)
 {
@@ -68,21 +62,21 @@ BaseDriverOptions load_base_driver_options(const config::Config& root)
   o.realtime_priority = static_cast<int>(can.integer("realtime_priority", o.realtime_priority, 0, 99));
   o.lock_memory = can.boolean("lock_memory", o.lock_memory);
   o.master.node_id = static_cast<uint8_t>(can.integer("master_node_id", o.master.node_id, 1, 127));
-  o.master.sync_period = ms(can, "sync_period_ms", o.master.sync_period, 1, 100);
-  o.master.heartbeat_period = ms(can, "master_heartbeat_ms", o.master.heartbeat_period, 5, 1000);
-  o.master.sdo.timeout = ms(can, "sdo_timeout_ms", o.master.sdo.timeout, 5, 5000);
+  o.master.sync_period = config::milliseconds(can, "sync_period_ms", o.master.sync_period, 1, 100);
+  o.master.heartbeat_period = config::milliseconds(can, "master_heartbeat_ms", o.master.heartbeat_period, 5, 1000);
+  o.master.sdo.timeout = config::milliseconds(can, "sdo_timeout_ms", o.master.sdo.timeout, 5, 5000);
   o.master.sdo.retries = static_cast<int>(can.integer("sdo_retries", o.master.sdo.retries, 0, 10));
 
   const auto drives = root.section("drives");
   auto& d = o.drive_common;
   d.master_node_id = o.master.node_id;
-  d.heartbeat_period = ms(drives, "heartbeat_period_ms", d.heartbeat_period, 5, 1000);
-  d.heartbeat_timeout = ms(drives, "heartbeat_timeout_ms", d.heartbeat_timeout, 10, 5000);
-  d.master_heartbeat_timeout = ms(drives, "master_heartbeat_timeout_ms", d.master_heartbeat_timeout, 10, 5000);
-  d.pdo_timeout = ms(drives, "pdo_timeout_ms", d.pdo_timeout, 10, 5000);
-  d.fault_reset_interval = ms(drives, "fault_reset_interval_ms", d.fault_reset_interval, 50, 60000);
-  d.retry_interval = ms(drives, "retry_interval_ms", d.retry_interval, 50, 60000);
-  d.enable_timeout = ms(drives, "enable_timeout_ms", d.enable_timeout, 100, 60000);
+  d.heartbeat_period = config::milliseconds(drives, "heartbeat_period_ms", d.heartbeat_period, 5, 1000);
+  d.heartbeat_timeout = config::milliseconds(drives, "heartbeat_timeout_ms", d.heartbeat_timeout, 10, 5000);
+  d.master_heartbeat_timeout = config::milliseconds(drives, "master_heartbeat_timeout_ms", d.master_heartbeat_timeout, 10, 5000);
+  d.pdo_timeout = config::milliseconds(drives, "pdo_timeout_ms", d.pdo_timeout, 10, 5000);
+  d.fault_reset_interval = config::milliseconds(drives, "fault_reset_interval_ms", d.fault_reset_interval, 50, 60000);
+  d.retry_interval = config::milliseconds(drives, "retry_interval_ms", d.retry_interval, 50, 60000);
+  d.enable_timeout = config::milliseconds(drives, "enable_timeout_ms", d.enable_timeout, 100, 60000);
   // A consumer must wait longer than its producer's period, or a healthy node looks lost.
   if (d.heartbeat_timeout <= d.heartbeat_period)
     drives.fail("heartbeat_timeout_ms", "must exceed heartbeat_period_ms");
@@ -97,8 +91,8 @@ BaseDriverOptions load_base_driver_options(const config::Config& root)
     can.fail("master_node_id", "must differ from the drives' node ids");
 
   const auto base = root.section("base");
-  o.command_deadline = ms(base, "command_deadline_ms", o.command_deadline, 10, 2000);
-  o.stop_timeout = ms(base, "stop_timeout_ms", o.stop_timeout, 0, 10000);
+  o.command_deadline = config::milliseconds(base, "command_deadline_ms", o.command_deadline, 10, 2000);
+  o.stop_timeout = config::milliseconds(base, "stop_timeout_ms", o.stop_timeout, 0, 10000);
   return o;
 }
 

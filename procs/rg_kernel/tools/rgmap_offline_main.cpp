@@ -5,7 +5,7 @@
 
 #include <iostream>
 
-#include "importers/lcm_log_io.h"
+#include "importers/log_to_map.h"
 #include "offline_run.h"
 #include "runtime/process_main.h"
 
@@ -48,13 +48,9 @@ int main(int argc, char** argv)
     loaded.options.mapper.base_from_laser = rgnav::geometry::Pose2(mount[0], mount[1], mount[2]);
   loaded.options.poses_as_given = given;
   try {
-    const auto log = rgnav::importers::read_lcm_log(log_path);
-    for (const auto& i : log.issues) std::cerr << log_path << ": event " << i.line << ": " << i.what << "\n";
-    if (log.scans.empty()) {   // an LCM log, but nothing to map: write no empty map
-      std::cerr << "rgnav_rgmap_offline: " << log_path << ": no LASER_FRONT scans in its " << log.lines << " events, nothing to map\n";
-      return 1;
-    }
-    const auto run = rp::run_pipeline(log, loaded);
+    const auto log = rgnav::importers::read_log_to_map(log_path, "rgnav_rgmap_offline");
+    if (!log) return 1;
+    const auto run = rp::run_pipeline(*log, loaded);
     const auto s = rp::write_run_outputs(run, loaded.options, out, oo);
     std::cout << log_path << ": " << s["scans"] << " scans, " << s["accepted_scans"] << " accepted, " << s["loop_closures"]
               << " loop closures; gateway classifier: " << loaded.classifier_note << "\n"

@@ -6,7 +6,7 @@
 
 #include <iostream>
 
-#include "importers/lcm_log_io.h"
+#include "importers/log_to_map.h"
 #include "offline_mapping.h"
 #include "offline_options.h"
 #include "runtime/process_main.h"
@@ -35,13 +35,9 @@ int main(int argc, char** argv)
   }
   if (mount.size() == 3) options.base_from_laser = sm::Pose2{mount[0], mount[1], sm::normalize_angle(mount[2])};
   try {
-    const auto log = rgnav::importers::read_lcm_log(log_path);
-    for (const auto& i : log.issues) std::cerr << log_path << ": event " << i.line << ": " << i.what << "\n";
-    if (log.scans.empty()) {   // an LCM log, but nothing to map: write no empty map
-      std::cerr << "rgnav_map: " << log_path << ": no LASER_FRONT scans in its " << log.lines << " events, nothing to map\n";
-      return 1;
-    }
-    const auto r = sm::run_offline(log, options);
+    const auto log = rgnav::importers::read_log_to_map(log_path, "rgnav_map");
+    if (!log) return 1;
+    const auto r = sm::run_offline(*log, options);
     const double consistency = sm::write_outputs(r, options, out);
     const auto& s = r.stats;
     std::cout << log_path << ": " << s.scans_in << " scans, " << s.accepted << " accepted, " << s.matched

@@ -18,6 +18,50 @@ namespace {
 
 using namespace std::chrono_literals;
 
+// The base_driver node over a FakeBus, its drives those of a RealtimeRig (emulated on a virtual
+// CAN bus): what the node tests send it and read from it.
+struct BaseDriverOnBus
+{
+  explicit BaseDriverOnBus(const std::string& rig_tag) : rig(rig_tag), n(node_options()), fb(n.bus), node(*n.node) {}
+
+  static runtime::NodeOptions node_options()
+  {
+    runtime::NodeOptions no;
+    no.name = "base_driver";
+    no.input_stale_after = 0ms;
+    return no;
+  }
+  void spin() { node.spin_once(0ms); }
+  std::optional<odometry_t> last_odometry() const
+  {
+    const auto msgs = rgnav::testing::decoded<odometry_t>(*fb, "ODOMETRY");
+    return msgs.empty() ? std::optional<odometry_t>() : msgs.back();
+  }
+  heartbeat_t heartbeat()
+  {
+    node.publish_heartbeat();
+    return rgnav::testing::decoded<heartbeat_t>(*fb, "HEARTBEAT").back();
+  }
+  // A BASE_CMD from `source`: v [m/s] straight on, valid for 200 ms, numbered as lld numbers them.
+  void command(const std::string& source, double v)
+  {
+    velocity_cmd_t cmd;
+    cmd.utime = time::wall_utime();
+    cmd.seq = ++seq;
+    cmd.v = v;
+    cmd.omega = 0.0;
+    cmd.deadline_us = 200000;
+    cmd.source = source;
+    bus::publish(*fb, "BASE_CMD", cmd);
+  }
+
+  testing::RealtimeRig rig;
+  rgnav::testing::FakeBusNode n;
+  bus::FakeBus* fb;
+  runtime::Node& node;
+  int64_t seq = 0;
+};
+
 TEST(BaseDriverConversions, RoundTrip)
 {
   velocity_cmd_t cmd;
@@ -56,54 +100,25 @@ TEST(BaseDriverConversions, RoundTrip)
 
 TEST(BaseDriverNode, CommandsInOdometryOutFaultsInTheHeartbeat)
 {
-  testing::RealtimeRig rig("node");
-  runtime::NodeOptions no;
-  no.name = "base_driver";
-  no.input_stale_after = 0ms;
-  rgnav::testing::FakeBusNode n(no);
-  bus::FakeBus* fb = n.bus;
-  runtime::Node& node = *n.node;
-  BaseDriverNodeOptions opts;
-  auto driver = std::make_unique<BaseDriver>(rig.options(), make_can_interface(rig.options()));
-  BaseDriverNode adapter(node, opts, std::move(driver));
-
-  auto spin = [&] { node.spin_once(0ms); };
-  auto last_odometry = [&]() -> std::optional<odometry_t> {
-    const auto msgs = fb->published_on("ODOMETRY");
-    if (msgs.empty()) return std::nullopt;
-    odometry_t m;
-    std::string why;
-    if (!bus::decode(msgs.back().data.data(), msgs.back().data.size(), &m, &why)) return std::nullopt;
-    return m;
-  };
-  auto last_heartbeat = [&]() -> std::optional<heartbeat_t> {
-    node.publish_heartbeat();
-    const auto msgs = fb->published_on("HEARTBEAT");
-    heartbeat_t h;
-    std::string why;
-    if (msgs.empty() || !bus::decode(msgs.back().data.data(), msgs.back().data.size(), &h, &why)) return std::nullopt;
-    return h;
-  };
+  BaseDriverOnBus b("node");
+  auto& rig = b.rig;
+  bus::FakeBus* fb = b.fb;
+  BaseDriverNode adapter(b.node, BaseDriverNodeOptions{},
+                         std::make_unique<BaseDriver>(rig.options(), make_can_interface(rig.options())));
+  auto spin = [&] { b.spin(); };
+  auto last_odometry = [&] { return b.last_odometry(); };
 
   ASSERT_TRUE(rig.pump_until([&] {
     auto m = last_odometry();
-    return m && m->status == odometry_t::STATUS_STOPPED && last_heartbeat()->state == heartbeat_t::STATE_RUNNING;
+    return m && m->status == odometry_t::STATUS_STOPPED && b.heartbeat().state == heartbeat_t::STATE_RUNNING;
   }, 5000ms, spin));
 
   // BASE_CMD through the bus, refreshed like lld does.
   auto t_cmd = std::chrono::steady_clock::now() - 1s;
-  int64_t seq = 0;
   auto drive = [&] {
     spin();
     if (std::chrono::steady_clock::now() - t_cmd < 40ms) return;
-    velocity_cmd_t cmd;
-    cmd.utime = time::wall_utime();
-    cmd.seq = ++seq;
-    cmd.v = 0.3;
-    cmd.omega = 0.0;
-    cmd.deadline_us = 200000;
-    cmd.source = "lld";  // the owner of BASE_CMD (base.command_source)
-    bus::publish(*fb, "BASE_CMD", cmd);
+    b.command("lld", 0.3);  // the owner of BASE_CMD (base.command_source)
     t_cmd = std::chrono::steady_clock::now();
   };
   ASSERT_TRUE(rig.pump_until([&] {
@@ -130,13 +145,13 @@ TEST(BaseDriverNode, CommandsInOdometryOutFaultsInTheHeartbeat)
   rig.translation().inject_fault(canopen::emcy::kDriveTemperature);
   ASSERT_TRUE(rig.pump_until([&] { return last_odometry()->status == odometry_t::STATUS_FAULT; }, 1000ms, drive));
   rig.pump_for(50ms, drive);
-  auto hb = last_heartbeat();
-  EXPECT_EQ(hb->state, heartbeat_t::STATE_DEGRADED);
-  EXPECT_NE(hb->status.find("over-temperature"), std::string::npos) << hb->status;
+  const heartbeat_t hb = b.heartbeat();
+  EXPECT_EQ(hb.state, heartbeat_t::STATE_DEGRADED);
+  EXPECT_NE(hb.status.find("over-temperature"), std::string::npos) << hb.status;
   rig.translation().clear_fault_condition();
   ASSERT_TRUE(rig.pump_until([&] { return last_odometry()->status == odometry_t::STATUS_OK; }, 3000ms, drive))
-      << last_heartbeat()->status;
-  EXPECT_EQ(last_heartbeat()->state, heartbeat_t::STATE_RUNNING);
+      << b.heartbeat().status;
+  EXPECT_EQ(b.heartbeat().state, heartbeat_t::STATE_RUNNING);
 }
 
 // A second source on BASE_CMD while the owner drives: refused from its first command (the
@@ -146,38 +161,18 @@ TEST(BaseDriverNode, CommandsInOdometryOutFaultsInTheHeartbeat)
 // is silent.
 TEST(BaseDriverNode, ASecondSourceIsRefusedStopsTheDrivesAndRaisesAnAlertNamingBoth)
 {
-  testing::RealtimeRig rig("node2");
-  runtime::NodeOptions no;
-  no.name = "base_driver";
-  no.input_stale_after = 0ms;
-  rgnav::testing::FakeBusNode n(no);
-  bus::FakeBus* fb = n.bus;
-  runtime::Node& node = *n.node;
+  BaseDriverOnBus b("node2");
+  auto& rig = b.rig;
+  bus::FakeBus* fb = b.fb;
   BaseDriverNodeOptions opts;
   opts.sources.owner = "lld";
   opts.sources.foreign_quiet = 300ms;
-  BaseDriverNode adapter(node, opts, std::make_unique<BaseDriver>(rig.options(), make_can_interface(rig.options())));
+  BaseDriverNode adapter(b.node, opts, std::make_unique<BaseDriver>(rig.options(), make_can_interface(rig.options())));
 
-  auto spin = [&] { node.spin_once(0ms); };
-  auto last_odometry = [&] {
-    const auto msgs = rgnav::testing::decoded<odometry_t>(*fb, "ODOMETRY");
-    return msgs.empty() ? std::optional<odometry_t>() : msgs.back();
-  };
-  auto heartbeat = [&] {
-    node.publish_heartbeat();
-    return rgnav::testing::decoded<heartbeat_t>(*fb, "HEARTBEAT").back();
-  };
-  int64_t seq = 0;
-  auto send = [&](const std::string& source, double v) {
-    velocity_cmd_t cmd;
-    cmd.utime = time::wall_utime();
-    cmd.seq = ++seq;
-    cmd.v = v;
-    cmd.omega = 0.0;
-    cmd.deadline_us = 200000;
-    cmd.source = source;
-    bus::publish(*fb, "BASE_CMD", cmd);
-  };
+  auto spin = [&] { b.spin(); };
+  auto last_odometry = [&] { return b.last_odometry(); };
+  auto heartbeat = [&] { return b.heartbeat(); };
+  auto send = [&](const std::string& source, double v) { b.command(source, v); };
   // The owner at its 20 Hz.
   auto t_cmd = std::chrono::steady_clock::now() - 1s;
   auto lld = [&] {

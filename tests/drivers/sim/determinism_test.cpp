@@ -4,6 +4,7 @@
 #include "msg/conversions.h"
 #include "sim/sim_conversions.h"
 #include "sim/simulator.h"
+#include "sim/step_order.h"
 #include "sim/world_yaml.h"
 
 namespace rgnav::sim {
@@ -51,6 +52,26 @@ TEST(Determinism, SameWorldSeedAndCommandsGiveIdenticalBytes)
   EXPECT_TRUE(a == b) << "two runs with the same seed differ";
   const auto c = run(18, 300);
   EXPECT_FALSE(a == c) << "the seed has no effect";
+}
+
+TEST(StepOrder, EachScanComesAfterTheOdometryUpToItsTimeAndTheRestLast)
+{
+  StepOutput out;
+  for (int64_t t : {1, 5, 9, 12}) {
+    OdometrySample o;
+    o.utime = t;
+    out.odometry.push_back(o);
+  }
+  for (int64_t t : {4, 9}) {
+    sensors::LaserScan s;
+    s.utime = t;
+    out.scans.push_back(s);
+  }
+  std::string order;
+  in_time_order(
+      out, [&](const OdometrySample& o) { order += "o" + std::to_string(o.utime) + " "; },
+      [&](const sensors::LaserScan& s) { order += "s" + std::to_string(s.utime) + " "; });
+  EXPECT_EQ(order, "o1 s4 o5 o9 s9 o12 ");
 }
 
 }  // namespace

@@ -60,5 +60,17 @@ TEST(Tour, HallwayWorldTourIsCollisionFree)
   EXPECT_TRUE(tour.unreachable.empty());
 }
 
+TEST(Tour, LapsRouteGoesRoundAgainFromTheStartWithoutRepeatingIt)
+{
+  Tour tour;
+  tour.waypoints = {{0, 0}, {2, 0}, {2, 1}, {0, 0}};
+  EXPECT_TRUE(laps_route(tour, 0).empty());
+  const auto one = laps_route(tour, 1);
+  ASSERT_EQ(one.size(), 4u);
+  const auto three = laps_route(tour, 3);
+  ASSERT_EQ(three.size(), 10u);   // 4, then 3 more a lap: the start is not visited twice in a row
+  for (size_t i = 0; i < three.size(); ++i) EXPECT_EQ(three[i], tour.waypoints[i == 0 ? 0 : (i - 1) % 3 + 1]) << i;
+}
+
 }  // namespace
 }  // namespace rgnav::sim

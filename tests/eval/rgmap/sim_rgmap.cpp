@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sim/step_order.h"
 #include "sim/tour_planner.h"
 #include "sim/waypoint_follower.h"
 
@@ -55,9 +56,7 @@ SimRgMapRun run_sim_rgmap(sim::World world, const sim::SimulatorOptions& sim_opt
   res.visited = tour.visited;
   res.unreachable = tour.unreachable;
   res.tour_length_m = tour.length;
-  std::vector<sim::Vec2> route;
-  for (int lap = 0; lap < options.laps; ++lap)
-    route.insert(route.end(), tour.waypoints.begin() + (lap == 0 ? 0 : 1), tour.waypoints.end());
+  const std::vector<sim::Vec2> route = sim::laps_route(tour, options.laps);
 
   const auto& l = sim_options.laser;
   loaded.options.mapper.base_from_laser = geometry::Pose2(l.mount_x, l.mount_y, l.mount_yaw);
@@ -96,14 +95,9 @@ SimRgMapRun run_sim_rgmap(sim::World world, const sim::SimulatorOptions& sim_opt
       }
       continue;
     }
-    // Odometry before the scans of the same chunk, as a bus would deliver them by time.
-    size_t oi = 0;
-    for (const auto& s : out.scans) {
-      for (; oi < out.odometry.size() && out.odometry[oi].utime <= s.utime; ++oi)
-        pipeline.add_odometry({out.odometry[oi].utime, to_sm(out.odometry[oi].odom_from_base)});
-      pipeline.add_scan(as_laser_front(s));
-    }
-    for (; oi < out.odometry.size(); ++oi) pipeline.add_odometry({out.odometry[oi].utime, to_sm(out.odometry[oi].odom_from_base)});
+    sim::in_time_order(
+        out, [&](const sim::OdometrySample& o) { pipeline.add_odometry({o.utime, to_sm(o.odom_from_base)}); },
+        [&](const sensors::LaserScan& s) { pipeline.add_scan(as_laser_front(s)); });
   }
   res.sim_seconds = simulator.time_s();
   res.collisions = simulator.collisions();

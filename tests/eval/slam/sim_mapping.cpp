@@ -8,6 +8,7 @@
 #include "geometry/pose_track.h"
 #include "geometry/symmetric_eigen2.h"
 #include "offline_mapping.h"
+#include "sim/step_order.h"
 #include "sim/tour_planner.h"
 #include "sim/waypoint_follower.h"
 #include "sim/world_yaml.h"
@@ -47,9 +48,7 @@ SimMappingResult run_sim_mapping(const std::string& world_path, const sim::Simul
   if (tour.waypoints.size() < 2) throw std::runtime_error(world_path + ": no tour through this world");
   res.tour_length_m = tour.length;
   res.laps = options.laps;
-  std::vector<sim::Vec2> route;
-  for (int lap = 0; lap < options.laps; ++lap)
-    route.insert(route.end(), tour.waypoints.begin() + (lap == 0 ? 0 : 1), tour.waypoints.end());
+  const std::vector<sim::Vec2> route = sim::laps_route(tour, options.laps);
 
   // The laser mounting pose is the simulated robot's, as for a real robot's log.
   const auto& l = sim_options.laser;
@@ -76,23 +75,19 @@ SimMappingResult run_sim_mapping(const std::string& world_path, const sim::Simul
       truth.add(o.utime, to_pose(o.world_from_base));
       last_truth_distance = o.true_distance;
     }
-    // Odometry before the scans of the same chunk, as a bus would deliver them by time.
-    size_t oi = 0;
-    for (const auto& s : out.scans) {
-      for (; oi < out.odometry.size() && out.odometry[oi].utime <= s.utime; ++oi)
-        mapper.add_odometry({out.odometry[oi].utime, to_pose(out.odometry[oi].odom_from_base)});
-      const auto up = mapper.add_scan(to_scan(s));
-      if (up.accepted) {
-        const auto t = truth.at(s.utime);
-        if (!t) throw std::runtime_error("no ground truth at a scan");
-        truth_at_node.push_back(*t);
-        odom_at_node.push_back(mapper.nodes().back().odom_from_base);
-        res.online.push_back(mapper.nodes().back().map_from_base);
-      }
-      if (up.loop_closed) res.loop_closed_at.push_back(static_cast<int>(mapper.nodes().size()) - 1);
-    }
-    for (; oi < out.odometry.size(); ++oi)
-      mapper.add_odometry({out.odometry[oi].utime, to_pose(out.odometry[oi].odom_from_base)});
+    sim::in_time_order(
+        out, [&](const sim::OdometrySample& o) { mapper.add_odometry({o.utime, to_pose(o.odom_from_base)}); },
+        [&](const sensors::LaserScan& s) {
+          const auto up = mapper.add_scan(to_scan(s));
+          if (up.accepted) {
+            const auto t = truth.at(s.utime);
+            if (!t) throw std::runtime_error("no ground truth at a scan");
+            truth_at_node.push_back(*t);
+            odom_at_node.push_back(mapper.nodes().back().odom_from_base);
+            res.online.push_back(mapper.nodes().back().map_from_base);
+          }
+          if (up.loop_closed) res.loop_closed_at.push_back(static_cast<int>(mapper.nodes().size()) - 1);
+        });
     res.mapping_cpu_seconds += thread_cpu_seconds() - c1;
   }
   res.sim_seconds = simulator.time_s();

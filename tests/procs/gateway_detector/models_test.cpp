@@ -48,6 +48,17 @@ HmmClassifier small_classifier()
   return c;
 }
 
+// Models for a 2 m hallway around small_classifier().
+GatewayModels small_models()
+{
+  GatewayModels m;
+  m.hallway_width = 2.0;
+  m.f_vlm = 0.5;
+  m.f_gw = 1.0;
+  m.classifier = small_classifier();
+  return m;
+}
+
 std::string temp_path(const std::string& name)
 {
   return (std::filesystem::temp_directory_path() / ("gw_models_" + std::to_string(::getpid()) + "_" + name)).string();
@@ -55,12 +66,8 @@ std::string temp_path(const std::string& name)
 
 TEST(GatewayModels, SaveLoadRoundTrip)
 {
-  GatewayModels m;
+  GatewayModels m = small_models();
   m.description = "unit test";
-  m.hallway_width = 2.0;
-  m.f_vlm = 0.5;
-  m.f_gw = 1.0;
-  m.classifier = small_classifier();
   const auto path = temp_path("ok.yaml");
   save_gateway_models(m, path);
   const auto back = load_gateway_models(path);
@@ -77,11 +84,7 @@ TEST(GatewayModels, SaveLoadRoundTrip)
 
 TEST(GatewayModels, BrokenFilesAreRefusedWithTheKey)
 {
-  GatewayModels m;
-  m.hallway_width = 2.0;
-  m.f_vlm = 0.5;
-  m.f_gw = 1.0;
-  m.classifier = small_classifier();
+  const GatewayModels m = small_models();
   const auto path = temp_path("bad.yaml");
   save_gateway_models(m, path);
   std::string text;
@@ -121,11 +124,7 @@ TEST(GatewayModels, BrokenFilesAreRefusedWithTheKey)
 // list of numbers, and at a line boundary) are refused naming the file.
 TEST(GatewayModels, RandomBytesEmptyAndCutOffFilesAreRefusedNamingThem)
 {
-  GatewayModels m;
-  m.hallway_width = 2.0;
-  m.f_vlm = 0.5;
-  m.f_gw = 1.0;
-  m.classifier = small_classifier();
+  const GatewayModels m = small_models();
   testing::TempDir dir("models_bad");
   save_gateway_models(m, dir.file("valid.yaml"));
   const std::string text = testing::read_file(dir.file("valid.yaml"));

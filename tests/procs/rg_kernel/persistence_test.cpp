@@ -544,5 +544,17 @@ TEST(Journal, OneWriterAtATime)
   EXPECT_GE(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));  // it waited for the owner
 }
 
+TEST(RgKernelPersistence, OneKernelPerStateFolder)
+{
+  const std::string d = fresh_dir("folder_lock");
+  StateStore first({d});
+  try {
+    StateStore second({d});
+    ADD_FAILURE() << "a second store on " << d << " was opened";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), d + ": state folder is locked by another live rg_kernel");
+  }
+}
+
 }  // namespace
 }  // namespace rgnav::rg_kernel

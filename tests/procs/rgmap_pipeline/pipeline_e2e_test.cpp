@@ -16,6 +16,7 @@
 #include "rgmap/saved_map.h"
 #include "rgmap/rgmap_json.h"
 #include "sim/simulator.h"
+#include "sim/step_order.h"
 #include "sim/waypoint_follower.h"
 #include "sim/world_yaml.h"
 
@@ -39,19 +40,14 @@ importers::ImportedLog simulated_log()
   int64_t n = 0;
   while (!follower.done() && simulator.time_s() < 90.0) {
     const auto out = simulator.step(std::chrono::microseconds(13333));
-    size_t oi = 0;
-    auto odometry_until = [&](int64_t utime) {
-      for (; oi < out.odometry.size() && out.odometry[oi].utime <= utime; ++oi) {
-        const auto& o = out.odometry[oi];
-        log.add_odometry({o.utime, o.seq, o.odom_from_base.x, o.odom_from_base.y, o.odom_from_base.theta});
-      }
-    };
-    for (const auto& s : out.scans) {
-      odometry_until(s.utime);
-      if (n++ % kEveryNthScan != 0) continue;
-      log.add_scan(sensors::with_message_precision(s));
-    }
-    odometry_until(INT64_MAX);
+    sim::in_time_order(
+        out,
+        [&](const sim::OdometrySample& o) {
+          log.add_odometry({o.utime, o.seq, o.odom_from_base.x, o.odom_from_base.y, o.odom_from_base.theta});
+        },
+        [&](const sensors::LaserScan& s) {
+          if (n++ % kEveryNthScan == 0) log.add_scan(sensors::with_message_precision(s));
+        });
   }
   EXPECT_TRUE(follower.done()) << "the drive did not finish in 90 s of simulated time; at " << simulator.truth().x << ", "
                                << simulator.truth().y << " heading for waypoint " << follower.next_index()
