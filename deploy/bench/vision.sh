@@ -38,7 +38,8 @@
 #     25 mm squares assumed): cv::stereoCalibrate's RMS reprojection error; the file it writes is
 #     the one checked in as config/stereo/chessboard_demo.yml.
 # VISION_ARGS adds flags to rgnav_vision_bench (e.g. "--frames 40 --approaches 5 --pictures DIR"),
-# RECT_ARGS to rgnav_rect_bench, COURSES_ARGS to rgnav_vision_courses (e.g. "--courses 5");
+# RECT_ARGS to rgnav_rect_bench, COURSES_ARGS to rgnav_vision_courses (e.g. "--courses 5"; "--parts 2 --part I" drives
+# every second course, for two runs side by side whose per_course lists merge);
 # VISION_DOORS=0 skips the door evaluation (minutes), VISION_COURSES=0 the courses (~half an hour).
 # The benchmarks: tests/eval/vision (rgnav_vision_bench, rgnav_rect_bench), tests/eval/gateways.
 set -euo pipefail

@@ -48,15 +48,17 @@ bool ObstacleGrid::cell_of(const Eigen::Vector2d& odom_point, int* x, int* y) co
   return true;
 }
 
-ObstacleMap::ObstacleMap(const ObstacleMapOptions& options) : options_(options) { reset_trees(); }
+ObstacleMap::ObstacleMap(const ObstacleMapOptions& options) : options_(options), forgetting_(options.forget_in_view_after)
+{
+  reset_trees();
+}
 
 void ObstacleMap::reset_trees()
 {
   stereo_ = make_tree(options_, options_.stereo_prob_hit, options_.stereo_prob_miss);
   laser_ = make_tree(options_, options_.laser_prob_hit, options_.laser_prob_miss);
   floor_ = make_tree(options_, options_.stereo_prob_hit, options_.stereo_prob_miss);
-  stereo_hit_.clear();
-  last_forget_utime_ = 0;
+  forgetting_.clear();
 }
 
 void ObstacleMap::reset()
@@ -93,39 +95,37 @@ void ObstacleMap::trim(const Eigen::Vector2d& odom_center)
 {
   for (octomap::OcTree* tree : {stereo_.get(), laser_.get(), floor_.get()})
     trim_tree(*tree, odom_center - anchor_, options_.keep_radius);
-  for (auto it = stereo_hit_.begin(); it != stereo_hit_.end();) {
-    const octomap::point3d p = stereo_->keyToCoord(it->first);
-    if ((Eigen::Vector2d(p.x(), p.y()) - (odom_center - anchor_)).norm() > options_.keep_radius) it = stereo_hit_.erase(it);
-    else ++it;
-  }
+  forgetting_.erase_if([&](const octomap::OcTreeKey& k) {
+    const octomap::point3d p = stereo_->keyToCoord(k);
+    return (Eigen::Vector2d(p.x(), p.y()) - (odom_center - anchor_)).norm() > options_.keep_radius;
+  });
   ++trims_;
 }
 
-void ObstacleMap::stamp_and_forget(const octomap::KeySet& hit, int64_t utime)
+int64_t ObstacleMap::clear_stereo_column(const octomap::point3d& laser_cell)
 {
-  for (const auto& k : hit) stereo_hit_[k] = utime;
-  const int64_t after_us = static_cast<int64_t>(std::llround(options_.forget_after * 1e6));
-  // A sweep over the stamps at most every tenth of forget_after: forgetting is not urgent.
-  if (last_forget_utime_ != 0 && utime - last_forget_utime_ < after_us / 10) return;
-  last_forget_utime_ = utime;
-  for (auto it = stereo_hit_.begin(); it != stereo_hit_.end();) {
-    if (utime - it->second < after_us) {
-      ++it;
-      continue;
-    }
-    // Back to unknown (log-odds 0: neither an obstacle nor seen free); a cell seen free since
-    // keeps that.
-    octomap::OcTreeNode* node = stereo_->search(it->first);
-    if (node != nullptr && node->getLogOdds() > 0.f) {
-      stereo_->setNodeValue(it->first, 0.f);
-      ++forgotten_;
-    }
-    it = stereo_hit_.erase(it);
-  }
+  int64_t cleared = 0;
+  const double res = options_.resolution;
+  // The column and its eight neighbours: the two sensors place one surface a cell apart (their
+  // own discretisation, stereo's depth noise at close range).
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      for (double z = 0.5 * res; z < options_.max_point_height + res; z += res) {
+        octomap::OcTreeKey k;
+        const octomap::point3d p(static_cast<float>(laser_cell.x() + dx * res), static_cast<float>(laser_cell.y() + dy * res),
+                                 static_cast<float>(z));
+        if (!stereo_->coordToKeyChecked(p, k)) continue;
+        octomap::OcTreeNode* node = stereo_->search(k);
+        if (node == nullptr || node->getLogOdds() <= 0.f) continue;
+        stereo_->setNodeValue(k, 0.f);   // unknown: the camera may see it again
+        ++cleared;
+      }
+  return cleared;
 }
 
 InsertStats ObstacleMap::insert_stereo(const std::vector<Eigen::Vector3f>& base_points, const Eigen::Vector3d& base_camera,
-                                       const geometry::Pose2& odom_from_base, double focal_baseline, int64_t utime)
+                                       const geometry::Pose2& odom_from_base, double focal_baseline, int64_t utime,
+                                       const StereoView* view)
 {
   follow(odom_from_base);
   const Eigen::Matrix2d rot = odom_from_base.rotation();
@@ -142,7 +142,7 @@ InsertStats ObstacleMap::insert_stereo(const std::vector<Eigen::Vector3f>& base_
   octomap::Pointcloud cloud;
   cloud.reserve(base_points.size());
   octomap::KeySet floor_seen, drop_offs, hit;
-  const bool forgetting = options_.forget_after > 0 && utime > 0;
+  const bool forgetting = forgetting_.enabled() && utime > 0 && view != nullptr;
   // Height error per metre of range: a depth error of Z^2 / (f B) * sigma moves a point along its
   // ray, its height by (camera height - point height) / Z of that.
   const double height_error_per_m = focal_baseline > 0 ? options_.disparity_sigma / focal_baseline : 0.0;
@@ -184,7 +184,15 @@ InsertStats ObstacleMap::insert_stereo(const std::vector<Eigen::Vector3f>& base_
   for (const auto& k : floor_seen) floor_->updateNode(k, false);
   for (const auto& k : drop_offs)
     if (!floor_seen.count(k)) floor_->updateNode(k, true);
-  if (forgetting) stamp_and_forget(hit, utime);
+  if (forgetting) {
+    Eigen::Isometry3d tree_from_base = Eigen::Isometry3d::Identity();
+    tree_from_base.linear().topLeftCorner<2, 2>() = rot;
+    tree_from_base.translation() = Eigen::Vector3d(t.x() - anchor_.x(), t.y() - anchor_.y(), 0.0);
+    // A point hides a cell when it is nearer by more than a cell and its depth noise.
+    const double depth_sigma_per_m2 = focal_baseline > 0 ? options_.disparity_sigma / focal_baseline : 0.0;
+    const FrameView seen(*view, tree_from_base, base_points, options_.resolution, depth_sigma_per_m2);
+    forgotten_ += forgetting_.update(*stereo_, hit, seen, utime);
+  }
   return stats;
 }
 
@@ -208,7 +216,20 @@ void ObstacleMap::insert_laser(const sensors::LaserScan& scan, const geometry::P
     cloud.push_back(to_tree(Eigen::Vector3d(p.x(), p.y(), h)));
   }
   const Eigen::Vector2d o = odom_from_laser.translation();
-  laser_->insertPointCloud(cloud, to_tree(Eigen::Vector3d(o.x(), o.y(), h)), options_.laser_max_range, false, true);
+  const octomap::point3d origin = to_tree(Eigen::Vector3d(o.x(), o.y(), h));
+  // Laser cells seen occupied within reach of this scan, to tell which it now sees free.
+  std::vector<octomap::OcTreeKey> occupied;
+  if (options_.laser_clears_stereo) {
+    const float r = static_cast<float>(options_.laser_max_range);
+    const octomap::point3d lo(origin.x() - r, origin.y() - r, static_cast<float>(h)), hi(origin.x() + r, origin.y() + r, static_cast<float>(h));
+    for (auto it = laser_->begin_leafs_bbx(lo, hi), end = laser_->end_leafs_bbx(); it != end; ++it)
+      if (it->getLogOdds() > 0.f && it.getSize() <= options_.resolution * 1.5) occupied.push_back(it.getKey());
+  }
+  laser_->insertPointCloud(cloud, origin, options_.laser_max_range, false, true);
+  for (const auto& k : occupied) {
+    const octomap::OcTreeNode* node = laser_->search(k);
+    if (node != nullptr && node->getLogOdds() <= 0.f) laser_cleared_ += clear_stereo_column(laser_->keyToCoord(k));
+  }
 }
 
 ObstacleGrid ObstacleMap::project(const geometry::Pose2& odom_from_base, int64_t utime) const

@@ -17,11 +17,11 @@
 
 #include <cstdint>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 #include "geometry/pose2.h"
 #include "sensors/laser_scan.h"
+#include "vision/view_forgetting.h"
 
 namespace rgnav::vision {
 
@@ -55,9 +55,15 @@ struct ObstacleMapOptions
   double min_height = 0.10;        // [m] height band projected into the grid (floor removal) ...
   double max_height = 1.45;        // [m] ... up to the robot's top plus a margin
   double max_point_height = 2.2;   // [m] points above (ceilings) are not inserted
-  // Stereo cells hit by no point for this long go back to unknown (OctoMap's degradeOutdatedNodes
-  // idea on message time): a person who walked off out of view leaves no lasting obstacle. 0: never.
-  double forget_after = 0.0;       // [s]
+  // Forgetting by evidence (view_forgetting.h), never by age alone: stereo cells that have been
+  // in the camera's view this long (frame time) without a point on them go back to unknown
+  // (0: never; cells a ray passes through are cleared anyway) ...
+  double forget_in_view_after = 0.0;   // [s]
+  // ... and stereo cells over a laser cell the laser saw occupied and now sees free: what stood
+  // in the scan plane (a person) has gone, and what stereo saw of it above goes with it (that
+  // column and its neighbours). Things the laser never sees in their column (table tops, chair
+  // seats away from their legs) are not touched.
+  bool laser_clears_stereo = true;
   double keep_radius = 5.0;        // [m] horizontal reach of the map around the robot
   double trim_distance = 0.5;      // [m] travel between deletions beyond keep_radius
   double reanchor_distance = 400.0;  // [m] travel from the anchor that starts the map afresh
@@ -96,10 +102,12 @@ class ObstacleMap
   // Stereo points in the base frame at capture, the camera's position in it, and where the
   // robot was (odometry frame). focal_baseline: f * B [px m] of the matching camera, for the
   // depth error of a point (0: exact points). Floor points are put on the floor plane along
-  // their ray. Moves the map's bounds with the robot. utime: capture time, for forget_after
-  // (cells no point hit since utime - forget_after are forgotten here).
+  // their ray. Moves the map's bounds with the robot. utime: capture time; view: what the
+  // camera could see (both needed for forget_in_view_after; without them nothing is forgotten
+  // but what rays pass through).
   InsertStats insert_stereo(const std::vector<Eigen::Vector3f>& base_points, const Eigen::Vector3d& base_camera,
-                            const geometry::Pose2& odom_from_base, double focal_baseline = 0.0, int64_t utime = 0);
+                            const geometry::Pose2& odom_from_base, double focal_baseline = 0.0, int64_t utime = 0,
+                            const StereoView* view = nullptr);
   // A laser scan taken at odom_from_base, base_from_laser its mounting.
   void insert_laser(const sensors::LaserScan& scan, const geometry::Pose2& odom_from_base,
                     const geometry::Pose2& base_from_laser);
@@ -111,7 +119,8 @@ class ObstacleMap
   size_t leaf_count() const;
   size_t memory_bytes() const;
   int trims() const { return trims_; }
-  int64_t forgotten() const { return forgotten_; }   // stereo cells forgotten so far
+  int64_t forgotten() const { return forgotten_; }   // stereo cells forgotten after being in view unhit
+  int64_t laser_cleared() const { return laser_cleared_; }   // stereo cells cleared over what the laser saw leave
   int reanchors() const { return reanchors_; }
 
  private:
@@ -119,8 +128,8 @@ class ObstacleMap
   void follow(const geometry::Pose2& odom_from_base);
   void trim(const Eigen::Vector2d& odom_center);
   void reset_trees();
-  // Stamps the cells hit at utime and forgets the ones not hit since utime - forget_after.
-  void stamp_and_forget(const octomap::KeySet& hit, int64_t utime);
+  // Stereo cells of the columns at and around a laser cell back to unknown; returns how many.
+  int64_t clear_stereo_column(const octomap::point3d& laser_cell);
 
   const ObstacleMapOptions options_;
   std::unique_ptr<octomap::OcTree> stereo_;   // 3D
@@ -131,10 +140,9 @@ class ObstacleMap
   Eigen::Vector2d last_trim_ = Eigen::Vector2d::Zero();
   int trims_ = 0;
   int reanchors_ = 0;
-  // Stereo cells that points hit, and when last (forget_after > 0 only).
-  std::unordered_map<octomap::OcTreeKey, int64_t, octomap::OcTreeKey::KeyHash> stereo_hit_;
-  int64_t last_forget_utime_ = 0;
+  ViewForgetting forgetting_;
   int64_t forgotten_ = 0;
+  int64_t laser_cleared_ = 0;
 };
 
 }  // namespace rgnav::vision

@@ -96,7 +96,8 @@ VisionNodeOptions load_vision_options(const config::Config& root, const config::
   m.min_height = mp.number("min_height_m", m.min_height, m.floor_tolerance, 2.0);
   m.max_height = mp.number("max_height_m", robot.height + 0.1, m.min_height + m.resolution, 5.0);
   m.max_point_height = mp.number("max_point_height_m", m.max_point_height, m.max_height, 10.0);
-  m.forget_after = mp.number("forget_after_s", m.forget_after, 0.0, 3600.0);
+  m.forget_in_view_after = mp.number("forget_in_view_after_s", m.forget_in_view_after, 0.0, 3600.0);
+  m.laser_clears_stereo = mp.boolean("laser_clears_stereo", m.laser_clears_stereo);
   m.keep_radius = mp.number("keep_radius_m", m.keep_radius, 1.0, 50.0);
   m.trim_distance = mp.number("trim_distance_m", m.trim_distance, 0.05, 10.0);
   // OctoMap's keys reach 2^15 voxels either side of the anchor.

@@ -2,6 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -54,8 +55,20 @@ FrameResult VisionPipeline::process(const StereoFrame& frame, const std::functio
   r.points = points.size();
   const auto t3 = Clock::now();
 
-  r.insert = map_.insert_stereo(points, base_from_camera.translation(), frame.odom_from_base,
-                                matching_camera_.focal * matching_camera_.baseline, frame.utime);
+  // What this frame's camera could see: where a cell that no point hits is seen to be empty.
+  const double focal_baseline = matching_camera_.focal * matching_camera_.baseline;
+  StereoView view;
+  view.base_from_camera = base_from_rectified;
+  view.focal = matching_camera_.focal;
+  view.cx = matching_camera_.cx;
+  view.cy = matching_camera_.cy;
+  view.width = matching_camera_.size.width;
+  view.height = matching_camera_.size.height;
+  // Nearer than the largest disparity searched, nothing is matched.
+  view.min_depth = std::max(options_.points.min_depth,
+                            focal_baseline / std::max(1, options_.disparity.min_disparity + options_.disparity.num_disparities));
+  view.max_depth = std::min(options_.points.max_depth, options_.map.max_range);
+  r.insert = map_.insert_stereo(points, base_from_camera.translation(), frame.odom_from_base, focal_baseline, frame.utime, &view);
   const auto t4 = Clock::now();
   stage_done();
   r.grid = map_.project(frame.odom_from_base, frame.utime);

@@ -83,7 +83,7 @@ int main(int argc, char** argv)
   CLI::App app{"obstacle courses in furnished rooms, vision off and on"};
   std::string out_path, world_dir;
   std::string config_dir = runtime::default_config_dir();
-  int ncourses = 50, only = -1;
+  int ncourses = 50, only = -1, parts = 1, part = 0;
   uint64_t seed = 1;
   double latency = 0.15, time_limit = 120.0;
   app.add_option("--out", out_path, "JSON output (default: stdout)");
@@ -91,6 +91,8 @@ int main(int argc, char** argv)
   app.add_option("--courses", ncourses, "courses drawn (each driven twice)");
   app.add_option("--seed", seed);
   app.add_option("--only", only, "drive only this course (debugging; CB_DEBUG=1: a trace)");
+  app.add_option("--parts", parts, "split the courses into this many parts (course k is in part k mod parts) ...")->check(CLI::Range(1, 1000));
+  app.add_option("--part", part, "... and drive only this one (runs side by side; per_course merges)")->check(CLI::Range(0, 999));
   app.add_option("--world-out", world_dir, "write each driven course's world here (course_K.yaml)");
   app.add_option("--vision-latency", latency, "capture -> grid at collision avoidance [s]");
   app.add_option("--time-limit", time_limit, "per course and mode [s simulated]");
@@ -136,6 +138,7 @@ int main(int argc, char** argv)
       const bench::FurnishedCourse fc = bench::draw_furnished_course(rng, fo);
       redrawn += fc.redrawn;
       if (only >= 0 && k != only) continue;
+      if (k % parts != part) continue;
       ++driven;
       if (!world_dir.empty()) std::ofstream(world_dir + "/course_" + std::to_string(k) + ".yaml") << sim::world_to_yaml(fc.course.world);
       tables += fc.tables;

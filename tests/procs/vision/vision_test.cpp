@@ -164,34 +164,210 @@ TEST(ObstacleMap, TableTopIsAnObstacleAndTheFloorStaysFree)
   EXPECT_LT(cell_value(low.project(robot, 1), 1.75, 0.0), 50);
 }
 
-// A blob seen once beside the robot (someone standing there), then out of view while the camera
-// looks elsewhere: with forget_after it is no obstacle once that long passed without a point on it,
-// while a table the camera keeps seeing stays; without forget_after the blob stays for good.
-TEST(ObstacleMap, StereoCellsNoPointHitsAnyMoreAreForgotten)
+constexpr int64_t kS = 1'000'000;
+
+// The camera of the half-scale matching image (f = 250 px, 320x240) 1.25 m up, looking ahead.
+StereoView ahead_view()
 {
-  constexpr int64_t kS = 1'000'000;
+  StereoView v;
+  v.base_from_camera = optical_from_forward();
+  v.base_from_camera.translation() = Eigen::Vector3d(0, 0, 1.25);
+  v.focal = 250;
+  v.cx = 160;
+  v.cy = 120;
+  v.width = 320;
+  v.height = 240;
+  v.min_depth = 0.47;
+  v.max_depth = 2.5;
+  return v;
+}
+
+// Points of an upright body: x in [x0, x1] at y, heights z0..z1 (its side facing the camera).
+std::vector<Eigen::Vector3f> body(double x0, double x1, double y, double z0, double z1)
+{
+  std::vector<Eigen::Vector3f> pts;
+  for (double z = z0; z <= z1 + 1e-9; z += 0.02)
+    for (double x = x0; x <= x1 + 1e-9; x += 0.02) pts.emplace_back(x, y, z);
+  return pts;
+}
+
+// The points of `pts` the camera of `view` sees (in the image, within its depths).
+std::vector<Eigen::Vector3f> seen_by(const std::vector<Eigen::Vector3f>& pts, const StereoView& view)
+{
+  std::vector<Eigen::Vector3f> out;
+  const Eigen::Isometry3d camera_from_base = view.base_from_camera.inverse();
+  for (const auto& p : pts) {
+    const Eigen::Vector3d c = camera_from_base * p.cast<double>();
+    if (c.z() < view.min_depth) continue;
+    const double u = view.focal * c.x() / c.z() + view.cx, v = view.focal * c.y() / c.z() + view.cy;
+    if (u >= 0 && v >= 0 && u < view.width && v < view.height) out.push_back(p);
+  }
+  return out;
+}
+
+// Points of a level board (a chair seat) over [x0, x1] x [y0, y1] at height z.
+std::vector<Eigen::Vector3f> board(double x0, double x1, double y0, double y1, double z)
+{
+  std::vector<Eigen::Vector3f> pts;
+  for (double x = x0; x <= x1 + 1e-9; x += 0.02)
+    for (double y = y0; y <= y1 + 1e-9; y += 0.02) pts.emplace_back(x, y, z);
+  return pts;
+}
+
+// Someone seen once 1.2 m to the left, and a chair seat 0.5 m ahead (0.47 m up: below the level
+// camera's view from 1.25 m), then 40 s of frames looking ahead at a table: neither is in view
+// again, so neither is forgotten (the time-only rule, forget_after_s 30, forgot both: a chair
+// seat the robot then drove into). The table, seen all along, stays.
+TEST(ObstacleMap, CellsOutOfViewOrTooNearAreKept)
+{
   const Pose2 robot(0, 0, 0);
-  std::vector<Eigen::Vector3f> person;
-  for (double z = 0.2; z <= 1.4; z += 0.02)
-    for (double x = -0.1; x <= 0.1; x += 0.02) person.emplace_back(x, 1.2, z);   // 1.2 m to the left
-  for (const double forget_after : {30.0, 0.0}) {
+  const StereoView view = ahead_view();
+  ObstacleMapOptions o;
+  o.forget_in_view_after = 3.0;
+  ObstacleMap map(o);
+  const int64_t t0 = 100 * kS;
+  auto first = body(-0.1, 0.1, 1.2, 0.2, 1.4);
+  const auto seat = board(0.45, 0.65, -0.2, 0.2, 0.47);
+  first.insert(first.end(), seat.begin(), seat.end());
+  for (int i = 0; i < 3; ++i) map.insert_stereo(first, {0, 0, 1.25}, robot, 0.0, t0 + i * kS / 10, &view);
+  ASSERT_GE(cell_value(map.project(robot, 1), 0.0, 1.2), 50);
+  ASSERT_GE(cell_value(map.project(robot, 1), 0.55, 0.0), 50);
+  const auto ahead = seen_by(table_scene(1.5, 2.0), view);
+  for (int i = 1; i <= 400; ++i) map.insert_stereo(ahead, {0, 0, 1.25}, robot, 0.0, t0 + i * kS / 10, &view);
+  const ObstacleGrid g = map.project(robot, 2);
+  EXPECT_GE(cell_value(g, 1.75, 0.0), 50);   // seen all along
+  EXPECT_GE(cell_value(g, 0.0, 1.2), 50);    // beside: out of view
+  EXPECT_GE(cell_value(g, 0.55, 0.0), 50);   // below the view, nearer than it reaches
+  EXPECT_EQ(map.forgotten(), 0);
+}
+
+// A body 2 m ahead, then frames without a point on it and no ray through it (it left, and what
+// is behind gives no disparity): forgotten after forget_in_view_after of looking at it. Not
+// while a nearer wall hides it, nor without the camera's view, nor with the rule off.
+TEST(ObstacleMap, CellsInViewWithoutPointsAreForgottenUnlessHidden)
+{
+  const Pose2 robot(0, 0, 0);
+  const StereoView view = ahead_view();
+  // Floor far to the sides only: no ray crosses the body's place.
+  const auto floor_aside = board(1.0, 2.5, 1.0, 1.5, 0.0);
+  std::vector<Eigen::Vector3f> wall;   // a board across the view 1.2 m ahead
+  for (double y = -0.6; y <= 0.6 + 1e-9; y += 0.02)
+    for (double z = 0.1; z <= 1.5 + 1e-9; z += 0.02) wall.emplace_back(1.2, y, z);
+  struct Case
+  {
+    const char* name;
+    double forget_after;
+    bool hidden;
+    bool with_view;
+    bool forgotten;
+  };
+  for (const Case& c : {Case{"in view", 3.0, false, true, true}, Case{"hidden", 3.0, true, true, false},
+                        Case{"no view", 3.0, false, false, false}, Case{"rule off", 0.0, false, true, false}}) {
     ObstacleMapOptions o;
-    o.forget_after = forget_after;
+    o.forget_in_view_after = c.forget_after;
+    ObstacleMap map(o);
+    const StereoView* v = c.with_view ? &view : nullptr;
+    const int64_t t0 = 100 * kS;
+    for (int i = 0; i < 3; ++i) map.insert_stereo(body(1.9, 2.1, 0.0, 0.5, 1.0), {0, 0, 1.25}, robot, 0.0, t0 + i * kS / 10, v);
+    ASSERT_GE(cell_value(map.project(robot, 1), 2.0, 0.0), 50) << c.name;
+    // 2 s: not yet.
+    int i = 3;
+    for (; i <= 20; ++i) map.insert_stereo(c.hidden ? wall : floor_aside, {0, 0, 1.25}, robot, 0.0, t0 + i * kS / 10, v);
+    EXPECT_GE(cell_value(map.project(robot, 2), 2.0, 0.0), 50) << c.name;
+    for (; i <= 60; ++i) map.insert_stereo(c.hidden ? wall : floor_aside, {0, 0, 1.25}, robot, 0.0, t0 + i * kS / 10, v);
+    const double after = cell_value(map.project(robot, 3), 2.0, 0.0);
+    if (c.forgotten) {
+      EXPECT_LT(after, 50) << c.name;
+      EXPECT_GT(map.forgotten(), 0) << c.name;
+    } else {
+      EXPECT_GE(after, 50) << c.name;
+      EXPECT_EQ(map.forgotten(), 0) << c.name;
+    }
+  }
+}
+
+// Seen free: rays to a wall behind the place where the body stood pass through its cells and
+// clear them (OctoMap's free space), with no time rule at all.
+TEST(ObstacleMap, CellsSeenFreeAreCleared)
+{
+  const Pose2 robot(0, 0, 0);
+  ObstacleMapOptions o;
+  o.forget_in_view_after = 0.0;
+  ObstacleMap map(o);
+  for (int i = 0; i < 3; ++i) map.insert_stereo(body(1.5, 1.7, 0.0, 0.6, 1.0), {0, 0, 1.25}, robot);
+  ASSERT_GE(cell_value(map.project(robot, 1), 1.6, 0.0), 50);
+  std::vector<Eigen::Vector3f> wall;
+  for (double y = -0.5; y <= 0.5 + 1e-9; y += 0.02)
+    for (double z = 0.1; z <= 1.4 + 1e-9; z += 0.02) wall.emplace_back(2.4, y, z);   // rays cross the body's place
+  for (int i = 0; i < 15; ++i) map.insert_stereo(wall, {0, 0, 1.25}, robot);
+  EXPECT_LT(cell_value(map.project(robot, 2), 1.6, 0.0), 50);
+  EXPECT_GE(cell_value(map.project(robot, 2), 2.4, 0.0), 50);
+}
+
+// A scan from the laser at the base's centre 0.4 m up, all around: `hits` (bearing [rad] ->
+// range) and no return (range_max) elsewhere.
+sensors::LaserScan scan_around(const std::vector<std::pair<double, double>>& hits)
+{
+  sensors::LaserScan s;
+  s.angle_min = -M_PI;
+  s.angle_increment = M_PI / 360;
+  s.range_min = 0.05;
+  s.range_max = 30.0;
+  for (int i = 0; i < 720; ++i) {
+    double r = s.range_max;
+    for (const auto& [bearing, range] : hits)
+      if (std::abs(std::remainder(s.bearing(i) - bearing, 2 * M_PI)) < 0.09) r = range;
+    s.ranges.push_back(static_cast<float>(r));
+  }
+  return s;
+}
+
+// Someone beside the robot, out of view, whom stereo saw once and the laser sees (their legs):
+// when the laser sees through that place, stereo's cells of them go too. A chair seat whose
+// column the laser never saw occupied (it passes beneath) stays. Without the rule the person
+// stays an obstacle for as long as the camera does not look there.
+TEST(ObstacleMap, LaserSeeingSomeoneGoneClearsWhatStereoSawOfThem)
+{
+  const Pose2 robot(0, 0, 0);
+  const Pose2 base_from_laser(0, 0, 0);
+  const StereoView view = ahead_view();
+  // The person's near side at y = 1.2 (a body 0.2 m wide), the seat ahead below the view.
+  auto seen = body(-0.1, 0.1, 1.2, 0.1, 1.4);
+  const auto seat = board(0.45, 0.65, -0.2, 0.2, 0.47);
+  seen.insert(seen.end(), seat.begin(), seat.end());
+  const auto present = scan_around({{M_PI / 2, 1.2}});
+  const auto gone = scan_around({});
+  for (const bool rule : {true, false}) {
+    ObstacleMapOptions o;
+    o.forget_in_view_after = 3.0;
+    o.laser_clears_stereo = rule;
     ObstacleMap map(o);
     const int64_t t0 = 100 * kS;
-    for (int i = 0; i < 3; ++i) map.insert_stereo(person, {0, 0, 1.25}, robot, 0.0, t0 + i * kS / 10);
-    ASSERT_GE(cell_value(map.project(robot, 1), 0.0, 1.2), 50);
-    // 40 s of frames looking ahead at a table: the person's cells get no point.
-    for (int i = 1; i <= 40; ++i) map.insert_stereo(table_scene(1.5, 2.0), {0, 0, 1.25}, robot, 0.0, t0 + i * kS);
-    const ObstacleGrid g = map.project(robot, 2);
-    EXPECT_GE(cell_value(g, 1.75, 0.0), 50) << forget_after;   // seen all along
-    if (forget_after > 0) {
-      EXPECT_LT(cell_value(g, 0.0, 1.2), 50);
-      EXPECT_GT(map.forgotten(), 0);
-    } else {
-      EXPECT_GE(cell_value(g, 0.0, 1.2), 50);
-      EXPECT_EQ(map.forgotten(), 0);
+    for (int i = 0; i < 3; ++i) {
+      map.insert_stereo(seen, {0, 0, 1.25}, robot, 0.0, t0 + i * kS / 10, &view);
+      map.insert_laser(present, robot, base_from_laser);
     }
+    ASSERT_GE(cell_value(map.project(robot, 1), 0.0, 1.21), 50);
+    ASSERT_GE(cell_value(map.project(robot, 1), 0.55, 0.0), 50);
+    // 3 s of looking ahead while the laser no longer sees them.
+    const auto ahead = seen_by(table_scene(1.5, 2.0), view);
+    for (int i = 3; i <= 30; ++i) {
+      map.insert_stereo(ahead, {0, 0, 1.25}, robot, 0.0, t0 + i * kS / 10, &view);
+      map.insert_laser(gone, robot, base_from_laser);
+    }
+    const ObstacleGrid g = map.project(robot, 2);
+    int person_cells = 0;
+    for (double x = -0.15; x <= 0.15; x += 0.05)
+      for (double y = 1.1; y <= 1.3; y += 0.05) person_cells += cell_value(g, x, y) >= 50;
+    if (rule) {
+      EXPECT_EQ(person_cells, 0);
+      EXPECT_GT(map.laser_cleared(), 0);
+    } else {
+      EXPECT_GT(person_cells, 0);
+      EXPECT_EQ(map.laser_cleared(), 0);
+    }
+    EXPECT_GE(cell_value(g, 0.55, 0.0), 50) << rule;   // the seat: the laser saw nothing in its column
+    EXPECT_GE(cell_value(g, 1.75, 0.0), 50) << rule;   // the table top ahead
   }
 }
 
