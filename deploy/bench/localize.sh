@@ -24,6 +24,15 @@
 #     robot's last view_path_length_m as well as the true pose does (Localizer::distinguishable
 #     asked of the truth: the map repeats itself there); global_success_ratio_unambiguous: the
 #     success ratio over the other trials.
+#     global_classes (per world global.classes): every trial by its outcome, judged at the first
+#     update at or after 10 s: ok; wrong_claim; claimed_not_kept (claimed by then, not kept within
+#     0.3 m / 10 deg); ambiguous_at_deadline (unclaimed, and the views seen by then do not single
+#     out the true pose: Localizer::why_not_distinguishable asked of the truth at that update, so no
+#     claim could have been right yet); unclaimed_estimate_right / unclaimed_estimate_elsewhere
+#     (unclaimed though the views single the truth out: the claim rule or the filter lags);
+#     tests/eval/localize/global_outcome.h.
+#     global_ambiguous_at_deadline_trials and global_success_ratio_distinguishable_at_deadline
+#     (the success ratio over the other trials) follow from them.
 #   kidnap_*: 10 per world: 10 s tracking, then the robot is carried >= 5 m elsewhere (its odometry
 #     goes on) and driven 40 s: flag time (p50), recovered within 30 s and staying (ratio).
 #   cpu_core_share: localizer CPU over simulated time in the tracking drives (one core = 1);
@@ -40,7 +49,9 @@
 #   flags (e.g. "--global-trials 10 --kidnaps 3"); LOCALIZE_MRPT=0 skips MRPT; LOCALIZE_TRACE=1
 #   writes every tracking update (estimate, truth, error, cluster share, inliers) to
 #   <world>/tracking_trace.txt and a line per global trial, kidnap and gateway link to stderr (a
-#   trial's line counts its updates by the reason the localizer stayed unsure: Localizer::unsure).
+#   trial's line counts its updates by the reason the localizer stayed unsure: Localizer::unsure,
+#   and gives its class); LOCALIZE_GLOBAL_TRIALS="world:trial ..." drives only those global
+#   trials (each from the start it has in a full run; the ratios then count only them).
 # The benchmark itself: tests/eval/localize (rgnav_localize_bench).
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"

@@ -124,6 +124,15 @@ int main(int argc, char** argv)
         totals.global_n > totals.global_ambiguous
             ? static_cast<double>(totals.global_ok) / static_cast<double>(totals.global_n - totals.global_ambiguous)
             : 0.0;
+    // Every trial by its outcome (global_outcome.h), and the success ratio over the trials whose
+    // views by the deadline single out the true pose (whether or not it was claimed).
+    j["global_classes"] = totals.global_classes;
+    const int64_t ambiguous_at_deadline = totals.global_classes.count("ambiguous_at_deadline") ? totals.global_classes.at("ambiguous_at_deadline") : 0;
+    j["global_ambiguous_at_deadline_trials"] = ambiguous_at_deadline;
+    j["global_success_ratio_distinguishable_at_deadline"] =
+        totals.global_n > ambiguous_at_deadline
+            ? static_cast<double>(totals.global_ok) / static_cast<double>(totals.global_n - ambiguous_at_deadline)
+            : 0.0;
     j["global_travel_m_p50"] = number_or_null(percentile(totals.global_travel, 0.5));
     j["kidnap_trials"] = totals.kidnap_n;
     j["kidnap_flag_s_p50"] = number_or_null(percentile(totals.flag_time, 0.5));
@@ -134,7 +143,8 @@ int main(int argc, char** argv)
     j["cpu_ms_per_update_p50"] = number_or_null(percentile(totals.update_cpu_ms, 0.5));
     j["particles_mean"] = totals.updates ? static_cast<double>(totals.particles_sum) / static_cast<double>(totals.updates) : 0.0;
     j["map_memory_mb_max"] = max_bytes / 1e6;
-    std::filesystem::create_directories(std::filesystem::path(json_path).parent_path());
+    // (a bare file name has no parent, and create_directories("") throws)
+    if (const auto parent = std::filesystem::path(json_path).parent_path(); !parent.empty()) std::filesystem::create_directories(parent);
     std::ofstream(json_path) << j.dump(2) << "\n";
     std::cout << j.dump(2) << "\n";
   } catch (const std::exception& e) {

@@ -8,6 +8,7 @@
 
 #include "bench_stats.h"
 #include "carmen_drive.h"
+#include "global_outcome.h"
 
 namespace rgnav::localize_eval {
 
@@ -112,6 +113,18 @@ nlohmann::json run_tracking(const BenchWorld& w, localizer::Localizer& loc, Tria
 
 namespace {
 
+// Global localization counts when right (and staying so) from some time up to this on.
+constexpr double kGlobalDeadlineS = 10.0;
+
+// LOCALIZE_GLOBAL_TRIALS="world:trial ..." drives only those global trials (the others still
+// draw their random start, so a trial starts where it does in a full run): to study a few.
+bool global_trial_wanted(const std::string& world, int trial)
+{
+  const char* only = std::getenv("LOCALIZE_GLOBAL_TRIALS");
+  if (!only || !*only) return true;
+  return (" " + std::string(only) + " ").find(" " + world + ":" + std::to_string(trial) + " ") != std::string::npos;
+}
+
 std::string unsure_counts(const std::map<localizer::Unsure, int>& counts)
 {
   std::string s;
@@ -126,11 +139,15 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
                           Totals& totals)
 {
   int ok = 0, estimate_ok = 0, wrong_claims = 0, ambiguous_n = 0;
+  std::map<std::string, int> classes;
+  int driven = 0;   // trials driven (all but when LOCALIZE_GLOBAL_TRIALS picks a few)
   std::vector<double> times, travels;
   for (int trial = 0; trial < trials; ++trial) {
     const auto [k, s] = random_tour_point(w.tour, ctx.rng);
     const auto route = route_from(w.tour, k, s, 40.0);
     auto d = ctx.drive(route, 30.0, Pose2());
+    if (!global_trial_wanted(w.name, trial)) continue;
+    ++driven;
     loc.start_global();
     std::unique_ptr<CarmenDrive> mrpt;
     if (trial < mrpt_trials) mrpt = std::make_unique<CarmenDrive>(w.dir + "/mrpt/global_" + std::to_string(trial), ctx.loc.base_from_laser, ctx.mrpt_scan_every);
@@ -139,6 +156,9 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
     bool started = false, wrong_claim = false;
     Pose2 truth_at_update;
     std::map<localizer::Unsure, int> unsure;   // updates per reason while unsure (trace)
+    // At the deadline (global_outcome.h): unclaimed? the truth distinguishable? the estimate right?
+    bool deadline_seen = false;
+    GlobalTrialEnd end;
     const auto res = run_drive(
         w.world, ctx.sim, d,
         [&](const DriveStep& st) {
@@ -156,6 +176,15 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
           settle.add(st.time_s, st.true_distance, claimed && e.good());
           settle_estimate.add(st.time_s, st.true_distance, loc.estimate().valid && e.good());
           wrong_claim = wrong_claim || (claimed && e.xy > kDivergedXy);
+          if (!deadline_seen && st.time_s >= kGlobalDeadlineS) {
+            deadline_seen = true;
+            end.unclaimed_at_deadline = loc.mode() == localizer::Mode::kGlobal;
+            end.estimate_good_at_deadline = loc.estimate().valid && e.good();
+            if (end.unclaimed_at_deadline) {
+              const int64_t r = w.frames.region_at(st.world_from_base, loc.estimate().region);
+              end.truth_at_deadline = r ? loc.why_not_distinguishable(r, w.frames.in_region(r, st.world_from_base)) : localizer::Unsure::kShortTravel;
+            }
+          }
           last_error = e;
           truth_at_update = st.world_from_base;
         },
@@ -163,9 +192,9 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
           if (mrpt) mrpt->odometry(o.utime, o.odom_from_base, o.v, o.omega);
         });
     ctx.utime = res.end_utime + 1'000'000;
-    const bool success = settle.good_now && settle.first_good_after <= 10.0;
+    const bool success = settle.good_now && settle.first_good_after <= kGlobalDeadlineS;
     ok += success;
-    estimate_ok += settle_estimate.good_now && settle_estimate.first_good_after <= 10.0;
+    estimate_ok += settle_estimate.good_now && settle_estimate.first_good_after <= kGlobalDeadlineS;
     wrong_claims += wrong_claim;
     // Still unsure at the end, and rightly so: some place >= unique_distance from the true pose
     // explains the views of the robot's last metres as well as the true pose does.
@@ -175,31 +204,38 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
       ambiguous = rt != 0 && !loc.distinguishable(rt, w.frames.in_region(rt, truth_at_update));
     }
     ambiguous_n += ambiguous;
+    end.success = success;
+    end.wrong_claim = wrong_claim;
+    const char* why = outcome_class(end);
+    ++classes[why];
     if (std::getenv("LOCALIZE_TRACE"))
       std::cerr << w.name << " global " << trial << (success ? " ok" : ambiguous ? " AMBIGUOUS" : " FAIL") << " settled " << settle.first_good_after
                 << " estimate_settled " << settle_estimate.first_good_after << " wrong_claim " << wrong_claim
                 << " error " << last_error.xy << " m " << last_error.theta / kDeg << " deg mode " << localizer::to_string(loc.mode())
                 << " share " << loc.estimate().cluster_share << " inliers " << loc.estimate().inlier_ratio << " region "
                 << loc.estimate().region << " fit " << (w.frames.fit_rmse.count(loc.estimate().region) ? w.frames.fit_rmse.at(loc.estimate().region) : NAN) << " start " << route[0].x()
-                << " " << route[0].y() << " unsure" << unsure_counts(unsure) << "\n";
+                << " " << route[0].y() << " unsure" << unsure_counts(unsure) << " class " << why << " truth_at_deadline "
+                << localizer::to_string(end.truth_at_deadline) << "\n";
     if (settle.good_now) {
       times.push_back(settle.first_good_after);
       travels.push_back(settle.distance_at);
     }
   }
   nlohmann::json g;
-  g["trials"] = trials;
-  g["success_ratio"] = trials ? static_cast<double>(ok) / trials : 0.0;
-  g["estimate_success_ratio"] = trials ? static_cast<double>(estimate_ok) / trials : 0.0;
+  g["trials"] = driven;
+  g["success_ratio"] = driven ? static_cast<double>(ok) / driven : 0.0;
+  g["estimate_success_ratio"] = driven ? static_cast<double>(estimate_ok) / driven : 0.0;
   g["wrong_claims"] = wrong_claims;
   g["ambiguous"] = ambiguous_n;
+  g["classes"] = classes;
+  for (const auto& [why, n] : classes) totals.global_classes[why] += n;
   g["time_s_p50"] = number_or_null(percentile(times, 0.5));
   g["travel_m_p50"] = number_or_null(percentile(travels, 0.5));
   totals.global_ok += ok;
   totals.global_estimate_ok += estimate_ok;
   totals.global_wrong += wrong_claims;
   totals.global_ambiguous += ambiguous_n;
-  totals.global_n += trials;
+  totals.global_n += driven;
   totals.global_time.insert(totals.global_time.end(), times.begin(), times.end());
   totals.global_travel.insert(totals.global_travel.end(), travels.begin(), travels.end());
   return g;

@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <map>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "bench_world.h"
@@ -36,6 +38,7 @@ struct Totals
   std::vector<double> track_xy, track_deg, global_time, global_travel, flag_time, recover_time, update_cpu_ms;
   int64_t handovers = 0, divergences = 0, false_kidnaps = 0, gateway_events = 0;
   int64_t global_n = 0, global_ok = 0, global_estimate_ok = 0, global_wrong = 0, global_ambiguous = 0;
+  std::map<std::string, int64_t> global_classes;   // trials per outcome (global_outcome.h)
   int64_t kidnap_n = 0, kidnap_ok = 0;
   int64_t particles_sum = 0, updates = 0;
   double cpu_s = 0, sim_s = 0;
