@@ -56,9 +56,10 @@
 #   seconds (0.5 rad/s) before the explorer takes over (default 0; the explorer itself looks
 #   behind first, config/explorer.yaml recovery.look_at_start); EXPLORE_JOBS runs at once (default 2); EXPLORE_ARGS adds bench flags
 #   (e.g. "--seed 3 --max-sim-s 1800"); EXPLORE_TRACE=1 prints a line per simulated second per run
-#   (true and SLAM pose, collision avoidance's mode, area seen, rooms, the explorer's phase,
+#   (true and SLAM pose, collision avoidance's mode, the nearest person's distance, area seen, rooms, the explorer's phase,
 #   activity, region, completeness, stack, goal and the planner's status and route) and every goal
-#   sent and ended with the planner's reason, to stderr.
+#   sent and ended with the planner's reason, to stderr. EXPLORE_DUMP_NO_PATH=DIR writes every goal the planner
+#   found no path for, with the map and pose it planned on, to DIR (replay: build/bin/rgnav_plan_replay).
 #   Quick run: EXPLORE_ONLY=lab_ipa EXPLORE_STARTS=0 ./rgnav bench explore
 # Time (2 cores, --jobs 2): 8-9 minutes for the full run (2026-12: 490 s wall, 20 runs, every one
 #   ending "done" before its cap); runs simulate at ~13x real time (collision avoidance's trajectory

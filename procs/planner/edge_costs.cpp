@@ -65,8 +65,15 @@ void EdgeCosts::gateway_failed(const rgmap::Gateway& g, double now_s)
 {
   auto& r = gateways_[g.id];
   ++r.failures;
+  // What can stay shut (a door, a narrow passage, a gateway of no known kind) stays closed twice
+  // as long with every failure in a row. An opening as wide as a hallway (a crossing, a turn) is
+  // held only by what passes through it (people, a cart): it is tried again after closed_retry_s
+  // however often it failed, or a robot whose only way on it is waits for nothing.
   constexpr int kMaxDoublings = 5;
-  r.closed_until = now_s + options_.closed_retry_s * (1 << std::min(r.failures_in_a_row, kMaxDoublings));
+  const bool can_stay_shut = g.cls == rgmap::GatewayClass::kDoor || g.cls == rgmap::GatewayClass::kNarrowPassage ||
+                             g.cls == rgmap::GatewayClass::kUnknown;
+  const int doublings = can_stay_shut ? std::min(r.failures_in_a_row, kMaxDoublings) : 0;
+  r.closed_until = now_s + options_.closed_retry_s * (1 << doublings);
   ++r.failures_in_a_row;
   if (g.cls == rgmap::GatewayClass::kDoor) r.extra += options_.door_failed_time;
   ++changes_;

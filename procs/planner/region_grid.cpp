@@ -91,7 +91,14 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
     cv::bitwise_or(free_mask, beside, free_mask);
   }
   for (const auto& points : gateways) carve_gateway(free_mask, points);
-  for (const auto& seg : region.segments) draw(free_mask, seg.a, seg.b);
+  // A line lying wholly inside a door's or passage's opening, clear of its jambs, is something
+  // standing in a way the robot has gone through (a person waiting there when the kernel saw it,
+  // a chair): collision avoidance sees whether it is still there, and a way it cannot pass is
+  // marked closed as it is tried. A shut door's leaf reaches the jambs and stays a wall.
+  std::vector<const rgmap::LineSegment*> walls_drawn;
+  for (const auto& seg : region.segments)
+    if (!in_an_opening(seg.a, seg.b, gateways)) walls_drawn.push_back(&seg);
+  for (const auto* seg : walls_drawn) draw(free_mask, seg->a, seg->b);
   const int blocked_cells = std::max(1, static_cast<int>(std::lround(options_.blocked_radius / resolution_)));
   auto draw_blocked = [&](cv::Mat& mask) {
     for (const auto& p : blocked) {
@@ -106,7 +113,7 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
   // space the region has not seen, never into a wall.
   cv::Mat walls(height_, width_, CV_8UC1, cv::Scalar(255)), wall_dist;
   cv::rectangle(walls, cv::Rect(0, 0, width_, height_), cv::Scalar(0), 1);
-  for (const auto& seg : region.segments) draw(walls, seg.a, seg.b);
+  for (const auto* seg : walls_drawn) draw(walls, seg->a, seg->b);
   draw_blocked(walls);
   cv::distanceTransform(walls, wall_dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
 
@@ -177,6 +184,29 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
   for (int l = 1; l < n; ++l)
     if (own_cells[static_cast<size_t>(l)] > (main_component_ ? own_cells[static_cast<size_t>(main_component_)] : 0))
       main_component_ = l;
+}
+
+bool RegionGrid::in_an_opening(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                               const std::vector<std::vector<Eigen::Vector2d>>& gateways) const
+{
+  // Clear of the jambs by a cell: a line ending at a jamb is the wall's or a shut door's.
+  const double clear = resolution_;
+  for (const auto& points : gateways) {
+    if (points.size() == 4) continue;   // a crossing's square: as wide as the hallways it joins
+    for (const auto& [u, v] : rgmap::gateway_edges(points)) {
+      const Eigen::Vector2d d = v - u;
+      const double length = d.norm();
+      if (length < 2 * clear + 1e-6) continue;
+      const Eigen::Vector2d along = d / length;
+      auto inside = [&](const Eigen::Vector2d& p) {
+        const Eigen::Vector2d r = p - u;
+        const double t = r.dot(along), n = std::fabs(along.x() * r.y() - along.y() * r.x());
+        return t >= clear && t <= length - clear && n <= options_.passage_depth;
+      };
+      if (inside(a) && inside(b)) return true;
+    }
+  }
+  return false;
 }
 
 void RegionGrid::carve_gateway(cv::Mat& free_mask, const std::vector<Eigen::Vector2d>& points) const

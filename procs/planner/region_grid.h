@@ -11,7 +11,10 @@
 // are free where the region itself knows nothing, so that a gateway's opening is not a wall of
 // unknown and a small region (a crossing's square) has room. The gateways' own openings are free
 // too (the RG kernel trims a region's freespace at narrow passages, doors included): a door's
-// line widened to passage_depth each side, a crossing's outline filled.
+// line widened to passage_depth each side, a crossing's outline filled. A line wholly inside a
+// door's or passage's opening, clear of its jambs, is left out (something that stood in a way the
+// robot has gone through; collision avoidance sees whether it still does); a shut door's leaf,
+// reaching the jambs, stays.
 #pragma once
 
 #include <Eigen/Core>
@@ -93,6 +96,9 @@ class RegionGrid
  private:
   size_t index(const Cell& c) const { return static_cast<size_t>(c.y()) * width_ + c.x(); }
   void carve_gateway(cv::Mat& free_mask, const std::vector<Eigen::Vector2d>& points) const;
+  // The segment a-b lies wholly inside a door's or narrow passage's opening, clear of its ends.
+  bool in_an_opening(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                     const std::vector<std::vector<Eigen::Vector2d>>& gateways) const;
 
   GridOptions options_;
   double resolution_ = 0.05;

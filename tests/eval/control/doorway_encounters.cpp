@@ -42,6 +42,9 @@ struct Run
 Run drive(const DoorwayEncounter& e, bool with_person, const lld::LldOptions& lo,
           const collision_avoidance::CaOptions& co, uint64_t seed, double limit_s, bool trace)
 {
+  // CB_DEBUG_EVERY=N: a trace line every N control periods (default 10).
+  const char* every = std::getenv("CB_DEBUG_EVERY");
+  const int trace_every = std::max(1, every ? std::atoi(every) : 10);
   sim::World world = e.world;
   if (!with_person) world.people.clear();
   sim::Simulator sim(world, control_sim_options(seed, true));
@@ -118,12 +121,22 @@ Run drive(const DoorwayEncounter& e, bool with_person, const lld::LldOptions& lo
     const auto& st = follower.step(now, kPeriod, &odi);
     cmd.set(sim.now_utime(), {st.command.v, st.command.omega}, lo.loop.command_deadline_ms * 1000);
     cmd_v = st.command.v;
-    if (trace && i % 10 == 0) {
+    if (trace && i % trace_every == 0) {
       std::cerr << "t=" << t << " robot " << truth.x() << "," << truth.y() << "," << truth.theta() << " "
                 << collision_avoidance::mode_name(ca.mode()) << " '" << ca.status() << "' v " << st.command.v
                 << " w " << st.command.omega;
       for (const auto& p : people) std::cerr << " person " << p.x() << "," << p.y();
-      std::cerr << "\n";
+      // What the local map holds near the robot (odom frame): the nearest point (robot frame).
+      const Eigen::Vector2d here = odi.pose.translation();
+      double best = 1e9;
+      Eigen::Vector2d nearest = Eigen::Vector2d::Zero();
+      for (const auto& p : ca.map().points())
+        if ((p - here).norm() < best) {
+          best = (p - here).norm();
+          nearest = odi.pose.inverse() * p;
+        }
+      std::cerr << " clear " << best << " at " << nearest.x() << "," << nearest.y() << " moving "
+                << ca.map().clearance_moving(here, 1.0) << "\n";
     }
     if (ca.mode() == collision_avoidance::Mode::kArrived) {
       r.arrived = true;

@@ -150,7 +150,7 @@ RunResult run_exploration(const WorldTruth& w, const StartTruth& start, ExploreD
              << " t=" << loop.sim().time_s() << " at " << loop.truth().x() << "," << loop.truth().y() << " slam "
              << view.map_from_base.x() << "," << view.map_from_base.y() << " ca "
              << collision_avoidance::mode_name(loop.ca().mode()) << " (" << loop.ca().status() << ", target "
-             << loop.ca().next_target() << ") seen " << seen.ratio() << " rooms "
+             << loop.ca().next_target() << ") person " << std::min(loop.nearest_person(), 99.0) << " seen " << seen.ratio() << " rooms "
              << entered_labels.size() << "/" << reachable_labels.size() << " | " << driver.trace_line();
         std::cerr << line.str() << "\n";
       }

@@ -1,6 +1,9 @@
 // rgnav's explorer and planner as an ExploreDriver (explore_drivers.h). Messages between them go
 // through the nodes' own conversions (GATEWAY_HYPOTHESES, NAV_GOAL, GLOBAL_PATH's status), so the
 // benchmark sees what the live processes see.
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -14,6 +17,7 @@
 #include "planned_drive.h"
 #include "planner/planner.h"
 #include "planner/planner_conversions.h"
+#include "rgmap/rgmap_json.h"
 
 namespace rgnav::explore_eval {
 
@@ -69,8 +73,10 @@ class RgDriver final : public ExploreDriver
     explorer_.set_pose({v.utime, v.map_from_base});
     // The planner's pose: the SLAM pose in the map's current region, as its node places SLAM_POSE.
     const int64_t region = map_->resolve(map_->current_region);
-    if (const rgmap::Region* r = map_->region(region))
-      planner_.on_pose({v.utime, region, r->map_from_region.inverse() * v.map_from_base, v.odom_from_base});
+    if (const rgmap::Region* r = map_->region(region)) {
+      last_pose_ = {v.utime, region, r->map_from_region.inverse() * v.map_from_base, v.odom_from_base};
+      planner_.on_pose(last_pose_);
+    }
     planner_.on_blocked(v.utime, v.cannot_pass);
     const auto o = planner_.update(v.utime);
     planner_cpu_s_ += localize_eval::thread_cpu() - c0;
@@ -85,6 +91,7 @@ class RgDriver final : public ExploreDriver
         if (outcome == explorer::GoalOutcome::kNoPath) {
           ++no_path_;
           if (no_path_reasons_.size() < 20) no_path_reasons_.push_back(o.path->reason);
+          dump_no_path(o.path->goal_id, o.path->reason);
         }
       }
     }
@@ -102,7 +109,9 @@ class RgDriver final : public ExploreDriver
                     << g.region_id << " at (" << g.region_point.x() << ", " << g.region_point.y() << ") map ("
                     << g.map_point.x() << ", " << g.map_point.y() << ")" << (g.beyond_known ? " beyond the known" : "") << "\n";
         }
-        planner_.set_goal(planner::to_nav_goal(explorer::to_msg(g, v.utime)), v.utime);
+        const planner::NavGoal nav = planner::to_nav_goal(explorer::to_msg(g, v.utime));
+        if (dump_dir_) sent_[nav.goal_id] = {nav, g};
+        planner_.set_goal(nav, v.utime);
       }
     }
     explorer_cpu_s_ += localize_eval::thread_cpu() - c2;
@@ -171,6 +180,32 @@ class RgDriver final : public ExploreDriver
   void set_trace(bool on) { trace_ = on; }
 
  private:
+  // EXPLORE_DUMP_NO_PATH=DIR: every goal the planner found no path for, with the map and the
+  // robot's pose it planned on, as DIR/no_path_<n>.json (tests/eval/plan: rgnav_plan_replay).
+  void dump_no_path(int64_t goal_id, const std::string& reason)
+  {
+    const auto it = sent_.find(goal_id);
+    if (!dump_dir_ || !*dump_dir_ || it == sent_.end() || !map_) return;
+    const auto& [g, explore_goal] = it->second;
+    // What the goal is for, map frame: the stack entry's crossing, or the frontier looked at.
+    Eigen::Vector2d looked_at = explore_goal.frontier_point;
+    if (const auto* e = explore_goal.kind == explorer::ExploreGoal::Kind::kGateway ? explorer_.stack().entry(explore_goal.entry_id) : nullptr)
+      looked_at = e->crossing;
+    const auto pose = [](const geometry::Pose2& p) { return nlohmann::json{p.x(), p.y(), p.theta()}; };
+    const nlohmann::json j = {{"reason", reason},
+                              {"utime", last_pose_.utime},
+                              {"pose", {{"region", last_pose_.region_id}, {"region_from_base", pose(last_pose_.region_from_base)}}},
+                              {"goal", {{"goal_id", g.goal_id}, {"region", g.region_id}, {"region_from_goal", pose(g.region_from_goal)},
+                                        {"position_tolerance", g.position_tolerance}, {"beyond_known", g.beyond_known},
+                                        {"kind", kind_name(explore_goal.kind)}, {"looked_at_map", {looked_at.x(), looked_at.y()}}}},
+                              {"map", rgmap::to_json(*map_)}};
+    std::ofstream(std::string(dump_dir_) + "/no_path_" + std::to_string(++dumps) + ".json") << j.dump();
+  }
+
+  const char* dump_dir_ = std::getenv("EXPLORE_DUMP_NO_PATH");
+  static inline std::atomic<int> dumps{0};   // runs at once share the folder
+  std::map<int64_t, std::pair<planner::NavGoal, explorer::ExploreGoal>> sent_;
+  planner::RobotPose last_pose_;
   static constexpr double kStepPeriod = 0.2;   // [s] config/explorer.yaml step.period_s
   planner::Planner planner_;
   explorer::Explorer explorer_;

@@ -292,6 +292,25 @@ TEST(GlobalPlanner, PassesADoorWhoseOpeningNeitherRoomKnows)
   EXPECT_EQ(around->legs.size(), 3u);
 }
 
+// A short line inside the door's opening (someone who stood in the doorway when the kernel saw
+// it) does not close the door in the room's planning grid; the door's leaf, shut across the
+// opening from jamb to jamb, does.
+TEST(RegionGrid, LeavesOutWhatStandsInADoorsOpeningButNotAShutDoor)
+{
+  auto joined = [](const V& a, const V& b) {
+    Ring r = ring(true);
+    r.map.region(r.a)->segments.push_back({a, b, 0.01, 8});
+    GlobalPlanner gp(options());
+    gp.set_map(r.map);
+    // From the room into the passage (its opening is carved free) straight through the door,
+    // not round through room B and the hallway.
+    const auto path = gp.region_planner(r.a)->plan(V(3.5, 1.5), V(4.8, 1.5));
+    return path && path->length < 2.0;
+  };
+  EXPECT_TRUE(joined(V(4.2, 1.4), V(4.25, 1.6)));
+  EXPECT_FALSE(joined(V(4.0, 1.0), V(4.0, 2.0)));
+}
+
 // A start next to a room beside this one (seen through the gateway) is moved onto the region's
 // own side, never into the other room.
 TEST(RegionGrid, AdaptsOnlyOntoTheRegionsOwnSpace)
@@ -572,6 +591,20 @@ TEST(GlobalPlanner, ABlockedPlaceIsGoneRoundUntilItsTime)
   EXPECT_EQ(gp.blocked_places(), 0u);
 }
 
+TEST(EdgeCosts, OnlyWhatCanStayShutIsClosedLongerWithEveryFailure)
+{
+  Ring r = ring();
+  EdgeCosts c(options().global);
+  const double retry = options().global.closed_retry_s;
+  // The door failed three times in a row: closed four times as long the third time.
+  for (double t : {0.0, 100.0, 200.0}) c.gateway_failed(*r.map.gateway(r.door), t);
+  EXPECT_TRUE(c.closed(r.door, 200.0 + 3.5 * retry));
+  // The hallway's opening, as often: people held it, each time for closed_retry_s only.
+  for (double t : {0.0, 100.0, 200.0}) c.gateway_failed(*r.map.gateway(r.ha), t);
+  EXPECT_TRUE(c.closed(r.ha, 200.0 + 0.5 * retry));
+  EXPECT_FALSE(c.closed(r.ha, 200.0 + retry + 1));
+}
+
 TEST(EdgeCosts, SavesAndRestoresWhatWasLearned)
 {
   Ring r = ring();
@@ -761,7 +794,9 @@ TEST(Planner, WaitsAtTheOnlyDoorBeforeCallingItClosed)
   Planner planner(options());
   planner.set_map(r.map);
   int64_t utime = kUtime;
-  for (int i = 0; i < 5; ++i) planner.global().costs().gateway_failed(*r.map.gateway(r.ha), utime * 1e-6);
+  // The hallway's opening is shut for the whole test: an opening counts as closed for
+  // closed_retry_s after its last failure, so it fails "in the future" (the test lasts <= 120 s).
+  planner.global().costs().gateway_failed(*r.map.gateway(r.ha), utime * 1e-6 + 120.0);
   FollowingRobot robot;
   robot.map_from_base = Pose2(2, 1.5, 0);
   robot.wall = [](const V& p) { return p.x() > 3.7 && p.x() < 5.3 && p.y() > 0.5; };
