@@ -110,7 +110,7 @@ class RgDriver final : public ExploreDriver
                     << g.map_point.x() << ", " << g.map_point.y() << ")" << (g.beyond_known ? " beyond the known" : "") << "\n";
         }
         const planner::NavGoal nav = planner::to_nav_goal(explorer::to_msg(g, v.utime));
-        if (dump_dir_) sent_[nav.goal_id] = {nav, g};
+        if (!dump_dir_.empty()) sent_[nav.goal_id] = {nav, g};
         planner_.set_goal(nav, v.utime);
       }
     }
@@ -185,7 +185,7 @@ class RgDriver final : public ExploreDriver
   void dump_no_path(int64_t goal_id, const std::string& reason)
   {
     const auto it = sent_.find(goal_id);
-    if (!dump_dir_ || !*dump_dir_ || it == sent_.end() || !map_) return;
+    if (dump_dir_.empty() || it == sent_.end() || !map_) return;
     const auto& [g, explore_goal] = it->second;
     // What the goal is for, map frame: the stack entry's crossing, or the frontier looked at.
     Eigen::Vector2d looked_at = explore_goal.frontier_point;
@@ -199,10 +199,11 @@ class RgDriver final : public ExploreDriver
                                         {"position_tolerance", g.position_tolerance}, {"beyond_known", g.beyond_known},
                                         {"kind", kind_name(explore_goal.kind)}, {"looked_at_map", {looked_at.x(), looked_at.y()}}}},
                               {"map", rgmap::to_json(*map_)}};
-    std::ofstream(std::string(dump_dir_) + "/no_path_" + std::to_string(++dumps) + ".json") << j.dump();
+    std::ofstream(dump_dir_ + "/no_path_" + std::to_string(++dumps) + ".json") << j.dump();
   }
 
-  const char* dump_dir_ = std::getenv("EXPLORE_DUMP_NO_PATH");
+  // Empty (unset or set to ""): no dumps, and no goals kept for them.
+  const std::string dump_dir_ = std::getenv("EXPLORE_DUMP_NO_PATH") ? std::getenv("EXPLORE_DUMP_NO_PATH") : "";
   static inline std::atomic<int> dumps{0};   // runs at once share the folder
   std::map<int64_t, std::pair<planner::NavGoal, explorer::ExploreGoal>> sent_;
   planner::RobotPose last_pose_;
