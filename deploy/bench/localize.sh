@@ -38,6 +38,8 @@
 #   cpu_core_share: localizer CPU over simulated time in the tracking drives (one core = 1);
 #     cpu_ms_per_update_p50, particles_mean, map_memory_mb_max (distance fields + bitmaps);
 #     per world map_load_ms (the fields built from a new map).
+#     global_cpu_ms_per_update_p50 / _p99 (per world global.cpu_ms_per_update_*): the filter
+#     updates of the global trials, the searches made while unsure included.
 #   Per world also: gateway_link_error_m_* (a gateway's transform between its regions against
 #     their true placement, at the gateway: the map's own inconsistency at a hand-over),
 #     region_fit_rmse_m_* (the per-region fits).

@@ -19,15 +19,30 @@ namespace {
 // seen late, a person who stepped close) may leave: moving away at a slope of kLeaveSlope
 // metres of clearance per metre driven is allowed, getting closer is not.
 constexpr double kLeaveSlope = 0.5;
+// A robot only a little short of the clearance from static things (a narrow hallway's wall a
+// few centimetres nearer than the margin after a turn on the spot bent the odometry) has to
+// make that up within kMakeUpWithin of driving, not at kLeaveSlope: no smooth chain along a
+// hallway gains 0.5 m of clearance per metre, and the robot stood turning on the spot for good.
+constexpr double kNearlyClear = 0.05;   // [m] short of the clearance by at most this
+constexpr double kMakeUpWithin = 1.0;   // [m]
 
 double required(double clearance, double c0, double s_from, double s)
 {
   return std::min(clearance, c0 - 0.01 + kLeaveSlope * std::max(0.0, s - s_from));
 }
 
+// The same for first_collision (everything the map holds at the plain clearance), with the
+// gentler slope when nearly clear; the extra margin from what may move keeps the steep one.
+double required_static(double clearance, double c0, double s_from, double s)
+{
+  const double short_by = clearance - c0;
+  const double slope = short_by <= kNearlyClear ? std::min(kLeaveSlope, (short_by + 0.01) / kMakeUpWithin) : kLeaveSlope;
+  return std::min(clearance, c0 - 0.01 + slope * std::max(0.0, s - s_from));
+}
+
 }  // namespace
 
-double required_clearance(double clearance, double c0, double s) { return required(clearance, c0, 0.0, s); }
+double required_clearance(double clearance, double c0, double s) { return required_static(clearance, c0, 0.0, s); }
 
 std::optional<double> first_collision(const Chain& chain, const LocalMap& map, double clearance, double step,
                                       double s_from)
@@ -38,14 +53,14 @@ std::optional<double> first_collision(const Chain& chain, const LocalMap& map, d
     const double a = chain.start_s(i);
     if (a + seg.length() < s_from) continue;
     if (seg.kind() == Kind::kTurn) {
-      if (map.clearance(seg.start().translation(), clearance) < required(clearance, c0, s_from, a)) return a;
+      if (map.clearance(seg.start().translation(), clearance) < required_static(clearance, c0, s_from, a)) return a;
       continue;
     }
     const int n = std::max(1, static_cast<int>(std::ceil(seg.length() / step)));
     for (int j = 0; j <= n; ++j) {
       const double ls = seg.length() * j / n;
       if (a + ls < s_from) continue;
-      if (map.clearance(seg.pose_at(ls).translation(), clearance) < required(clearance, c0, s_from, a + ls))
+      if (map.clearance(seg.pose_at(ls).translation(), clearance) < required_static(clearance, c0, s_from, a + ls))
         return a + ls;
     }
   }

@@ -38,7 +38,8 @@ struct PlannerOptions
 };
 
 // The clearance a chain needs at arc length s when it starts with clearance c0: the full
-// `clearance`, except that a robot already closer than that to something may leave (first_collision).
+// `clearance`, except that a robot already closer than that to something may leave (first_collision):
+// never closer, and away at 0.5 m per metre, or within a metre when only a few centimetres short.
 double required_clearance(double clearance, double c0, double s);
 
 // Where the footprint first touches the map along a chain (arc length), if anywhere, from

@@ -119,6 +119,12 @@ bool Explorer::failed_here(const Vector2d& map_point, int64_t utime) const
   });
 }
 
+bool Explorer::failed_before(const Vector2d& map_point) const
+{
+  return std::any_of(failed_.begin(), failed_.end(),
+                     [&](const FailedPlace& f) { return (f.map_point - map_point).norm() < options_.visited_radius; });
+}
+
 std::vector<Frontier> Explorer::open_frontiers(int64_t region_id) const
 {
   std::vector<Frontier> open;
@@ -147,7 +153,7 @@ std::vector<int32_t> Explorer::reachable_pieces(int64_t region_id, const planner
   return pieces;
 }
 
-std::optional<ExploreGoal> Explorer::frontier_goal(int64_t region_id, int64_t utime)
+std::optional<ExploreGoal> Explorer::frontier_goal(int64_t region_id, int64_t utime, bool untried_only)
 {
   const rgmap::Region* r = map_->region(region_id);
   const planner::RegionPlanner* rp = r ? grids_.region_planner(region_id) : nullptr;
@@ -171,7 +177,7 @@ std::optional<ExploreGoal> Explorer::frontier_goal(int64_t region_id, int64_t ut
       stack_.add(s, region_id, utime, *map_);
       continue;
     }
-    if (failed_here(at, utime)) continue;
+    if (failed_here(at, utime) || (untried_only && failed_before(at))) continue;
     // No view point: nowhere the planner's grid has room for the robot sees it. The frontier
     // itself is still a goal, after every one with a view point (the planner tries the region's
     // other pieces and beyond; its NO_PATH counts as an attempt): skipping it would end
@@ -217,23 +223,34 @@ std::optional<ExploreGoal> Explorer::gateway_goal(int64_t utime)
   return std::nullopt;
 }
 
+std::optional<ExploreGoal> Explorer::other_region_goal(int64_t current, int64_t utime, bool untried_only)
+{
+  std::optional<ExploreGoal> best;
+  const Vector2d robot = pose_->map_from_base.translation();
+  for (const auto& [id, r] : map_->regions()) {
+    if (id == current || r.state == rgmap::Region::State::kMerged) continue;
+    auto g = frontier_goal(id, utime, untried_only);
+    if (g && (!best || (g->map_point - robot).norm() < (best->map_point - robot).norm())) best = g;
+  }
+  if (best) best->kind = ExploreGoal::Kind::kRegion;
+  return best;
+}
+
 std::optional<ExploreGoal> Explorer::choose(int64_t utime)
 {
   const int64_t cur = map_->resolve(map_->current_region);
   // Region by region: the current region until it is complete ...
   if (auto g = frontier_goal(cur, utime)) return g;
+  // ... and the others entered before (the map's current region changes as the robot stands in
+  // a doorway or a junction: the hallway it explored a moment ago is still unfinished), where
+  // nothing failed before (a frontier that failed is tried again after the stack: taken before
+  // it, the robot would cross the building to and fro between it and the stack) ...
+  if (options_.stack.after_regions)
+    if (auto g = other_region_goal(cur, utime, true)) return g;
   // ... then the next gateway not gone through ...
   if (auto g = gateway_goal(utime)) return g;
   // ... and, with none left, a region left incomplete: the nearest of their frontiers.
-  std::optional<ExploreGoal> best;
-  const Vector2d robot = pose_->map_from_base.translation();
-  for (const auto& [id, r] : map_->regions()) {
-    if (id == cur || r.state == rgmap::Region::State::kMerged) continue;
-    auto g = frontier_goal(id, utime);
-    if (g && (!best || (g->map_point - robot).norm() < (best->map_point - robot).norm())) best = g;
-  }
-  if (best) best->kind = ExploreGoal::Kind::kRegion;
-  return best;
+  return other_region_goal(cur, utime, false);
 }
 
 bool Explorer::goal_still_open() const
@@ -444,10 +461,11 @@ Command Explorer::step(int64_t utime)
   std::optional<ExploreGoal> next = choose(utime);
   if (goal_) {
     // A gateway goal runs until it ends; a frontier goal gives way to a better choice: a region
-    // that became current, or a frontier much nearer than the one driven to.
+    // that became current, or a frontier much nearer than the one driven to (another region's
+    // only so: the current region changes back and forth in a doorway).
     if (goal_->kind == ExploreGoal::Kind::kGateway || is_recovery(*goal_) || !next) return cmd;
     if ((next->frontier_point - goal_->frontier_point).norm() < kSamePlace) return cmd;
-    if (next->region_id == goal_->region_id && next->kind == goal_->kind) {
+    if ((next->region_id == goal_->region_id && next->kind == goal_->kind) || next->kind == ExploreGoal::Kind::kRegion) {
       const double dn = (next->map_point - robot).norm(), dc = (goal_->map_point - robot).norm();
       if (dn > (1.0 - options_.switch_gain) * dc) return cmd;
     }

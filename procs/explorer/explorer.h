@@ -124,8 +124,11 @@ class Explorer
 
  private:
   std::optional<ExploreGoal> choose(int64_t utime);
-  std::optional<ExploreGoal> frontier_goal(int64_t region_id, int64_t utime);
+  // The nearest frontier of the region to look at (untried_only: none that failed before).
+  std::optional<ExploreGoal> frontier_goal(int64_t region_id, int64_t utime, bool untried_only = false);
   std::optional<ExploreGoal> gateway_goal(int64_t utime);
+  // The nearest frontier of a live region other than `current` (kind kRegion).
+  std::optional<ExploreGoal> other_region_goal(int64_t current, int64_t utime, bool untried_only);
   // The region's frontiers that are goals of its own: those at a stacked gateway's opening are not.
   std::vector<Frontier> open_frontiers(int64_t region_id) const;
   bool goal_still_open() const;
@@ -151,6 +154,7 @@ class Explorer
   std::vector<int32_t> reachable_pieces(int64_t region_id, const planner::RegionGrid& grid) const;
   bool visited(const Eigen::Vector2d& map_point) const;
   bool failed_here(const Eigen::Vector2d& map_point, int64_t utime) const;
+  bool failed_before(const Eigen::Vector2d& map_point) const;
   // Something set aside will be due again: not done yet.
   bool waiting_to_retry(int64_t utime) const;
   // Goals set aside for good whose surroundings changed since they failed are due again.

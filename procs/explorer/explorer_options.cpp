@@ -29,6 +29,7 @@ StackOptions load_stack(const config::Config& c)
   // Past the crossing point by less than the goal lies beyond it: reaching the goal passes it.
   s.passed_m = c.number("passed_m", s.passed_m, 0.0, s.beyond_m);
   s.breadth_first = c.boolean("breadth_first", s.breadth_first);
+  s.after_regions = c.boolean("after_regions", s.after_regions);
   return s;
 }
 

@@ -29,6 +29,11 @@ struct StackOptions
   double beyond_m = 1.0;           // [m] the goal lies this far past the gateway's crossing point
   double passed_m = 0.4;           // [m] the robot this far past the crossing point has traversed it
   bool breadth_first = true;       // order: fewest RG-graph hops from the start region first (else nearest first)
+  // Every region of the map complete before a new gateway (diss. ch. 7): the frontiers of regions
+  // entered before come ahead of the stack, those that failed once after it (else only the current
+  // region's come first, and a region the robot stepped out of for a moment waits until the stack
+  // is empty).
+  bool after_regions = true;
 };
 
 // Where the robot looks at a frontier from (view_point.h): a place the planner's grid has room for

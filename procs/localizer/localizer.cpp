@@ -10,6 +10,7 @@
 #include "geometry/segment2.h"
 #include "localizer/motion_model.h"
 #include "localizer/path_score.h"
+#include "localizer/path_search.h"
 #include "localizer/resampling.h"
 
 namespace rgnav::localizer {
@@ -162,6 +163,8 @@ void Localizer::start_global()
   inlier_usual_ = -1;
   previous_.reset();
   views_.clear();
+  path_rivals_.clear();
+  path_rivals_travel_ = -1;
 }
 
 bool Localizer::take_kidnap_flag()
@@ -219,6 +222,7 @@ bool Localizer::update(const sensors::LaserScan& scan, const Pose2& odom_from_ba
   move_particles(delta);
   odom_at_update_ = odom_from_base;
   if (mode_ == Mode::kGlobal) {
+    for (auto& h : path_rivals_) h.region_from_base = h.region_from_base * delta;
     global_travel_ += delta.translation().norm() + kTurnAsTravel * std::fabs(delta.theta());
     views_.add(odom_from_base, coarse_points(points, options_.global.beams));
   }
@@ -296,7 +300,8 @@ bool Localizer::kidnapped(const std::vector<Vector2d>& points, const Pose2& odom
   return static_cast<double>(utime_ - low_inlier_since_) * 1e-6 >= rec.kidnap_after_s;
 }
 
-std::vector<Hypothesis> Localizer::path_places(int64_t region, const Pose2& region_from_base) const
+std::vector<Hypothesis> Localizer::path_places(int64_t region, const Pose2& region_from_base,
+                                               const std::vector<Hypothesis>& path_rivals) const
 {
   // The pose and the best distinct places of the newest search elsewhere, all scored on the
   // views of the path: a look-alike that explains them about as well means the robot has not
@@ -319,15 +324,29 @@ std::vector<Hypothesis> Localizer::path_places(int64_t region, const Pose2& regi
   // Distinct places only: the search keeps one candidate per freespace cell, so the best few
   // are often neighbouring cells of one look-alike place.
   std::vector<Hypothesis> taken{{region, region_from_base, 0}};
-  for (const auto& h : last_search_) {
-    if (!maps_.region(h.region)) continue;
-    if (std::any_of(taken.begin(), taken.end(), [&](const Hypothesis& t) { return same_place(t, h); })) continue;
-    taken.push_back(h);
+  // Refined; false if it climbed back onto the pose (then it is the pose itself, no rival).
+  const auto add_rival = [&](const Hypothesis& h) {
     const Hypothesis rival = refine(h, score_in(h.region), step_xy, step_theta);
-    // A candidate that climbs back onto the pose is the pose itself, no rival.
-    if (same_place(taken.front(), rival)) continue;
+    if (same_place(taken.front(), rival)) return false;
     out.push_back(rival);
-    if (static_cast<int>(taken.size()) > g.rivals) break;
+    return true;
+  };
+  const auto is_taken = [&](const Hypothesis& h) {
+    return std::any_of(taken.begin(), taken.end(), [&](const Hypothesis& t) { return same_place(t, h); });
+  };
+  // The whole-path search's places (few, each a different place), then the newest scan
+  // search's best `rivals` distinct places.
+  for (const auto& h : path_rivals) {
+    if (!maps_.region(h.region) || is_taken(h)) continue;
+    taken.push_back(h);
+    add_rival(h);
+  }
+  const size_t before = taken.size();
+  for (const auto& h : last_search_) {
+    if (!maps_.region(h.region) || is_taken(h)) continue;
+    taken.push_back(h);
+    if (!add_rival(h)) continue;
+    if (static_cast<int>(taken.size() - before) >= g.rivals) break;
   }
   return out;
 }
@@ -356,7 +375,9 @@ Unsure Localizer::why_not_distinguishable(int64_t region, const Pose2& region_fr
 {
   if (!maps_.region(region) || views_.empty() || !odom_at_update_) return Unsure::kShortTravel;
   if (last_search_.empty()) return Unsure::kNone;
-  const auto places = path_places(region, region_from_base);
+  // Asked of any pose (the benchmark asks it of the truth): with a fresh search of the whole
+  // path, not the one made for the estimate.
+  const auto places = path_places(region, region_from_base, options_.global.claim_path_search ? search_path_rivals() : std::vector<Hypothesis>{});
   // The path fits best somewhere else than the pose (hill climbing can wander off a wrong
   // pose towards a better place): the pose is not what the views say.
   const auto& eo = options_.estimate;
@@ -370,7 +391,7 @@ Unsure Localizer::why_not_distinguishable(int64_t region, const Pose2& region_fr
   return Unsure::kNone;
 }
 
-Unsure Localizer::claim_check(std::optional<Hypothesis>* elsewhere) const
+Unsure Localizer::claim_check(std::optional<Hypothesis>* elsewhere)
 {
   // The estimate is claimed when it is distinguishable (above). When instead another place
   // explains the views of the path better than every other by the margin, the filter's cloud
@@ -380,14 +401,49 @@ Unsure Localizer::claim_check(std::optional<Hypothesis>* elsewhere) const
   elsewhere->reset();
   if (!maps_.region(estimate_.region) || views_.empty() || !odom_at_update_) return Unsure::kShortTravel;
   if (last_search_.empty()) return Unsure::kNone;
-  const auto places = path_places(estimate_.region, estimate_.region_from_base);
+  Unsure why = path_verdict(path_places(estimate_.region, estimate_.region_from_base, path_rivals_), elsewhere);
+  // Before a claim, every place of the map is asked (path_search.h), not only the scan search's
+  // few hundred: at most once per view_spacing of travel (the places found are carried along
+  // by odometry and refined on every update until the next search).
+  const auto& g = options_.global;
+  const bool searched_lately = path_rivals_travel_ >= 0 && global_travel_ - path_rivals_travel_ < g.view_spacing;
+  if (why == Unsure::kNone && g.claim_path_search && !searched_lately) {
+    path_rivals_ = search_path_rivals();
+    path_rivals_travel_ = global_travel_;
+    ++stats_.path_searches;
+    why = path_verdict(path_places(estimate_.region, estimate_.region_from_base, path_rivals_), elsewhere);
+  }
+  return why;
+}
+
+Unsure Localizer::path_verdict(const std::vector<Hypothesis>& places, std::optional<Hypothesis>* elsewhere) const
+{
+  elsewhere->reset();
+  if (places.empty()) return Unsure::kShortTravel;
   size_t best = 0;
   for (size_t k = 1; k < places.size(); ++k)
     if (places[k].score > places[best].score) best = k;
   const double margin = path_margin();
+  // With claim_judged_beams, the best place must win by the margin on the beams both maps can
+  // judge (path_score.h BeamFit): a turned copy of the place whose map happens to hold a wall
+  // the true place's map missed must not win on that gap.
+  const auto& g = options_.global;
+  std::vector<PlacedView> views;
+  std::vector<BeamFit> best_fits;
+  const BeamScorer coarse(g.sigma, options_.scan.z_hit, options_.scan.z_rand, options_.scan.max_distance);
+  const auto fits_of = [&](const Hypothesis& h) {
+    return path_beam_fits(maps_, coarse, h.region, h.region_from_base, views, options_.handover_bbox_margin, g.sigma);
+  };
+  if (g.claim_judged_beams) {
+    views = views_.placed(*odom_at_update_);
+    best_fits = fits_of(places[best]);
+  }
   bool clear = true;
-  for (size_t k = 0; k < places.size() && clear; ++k)
-    clear = k == best || same_place(places[k], places[best]) || places[k].score <= places[best].score - margin;
+  for (size_t k = 0; k < places.size() && clear; ++k) {
+    if (k == best || same_place(places[k], places[best])) continue;
+    clear = g.claim_judged_beams ? jointly_judged_difference(best_fits, fits_of(places[k])) >= margin
+                                 : places[k].score <= places[best].score - margin;
+  }
   const auto& eo = options_.estimate;
   const Pose2& e = estimate_.region_from_base;
   const Pose2& b = places[best].region_from_base;
@@ -396,6 +452,19 @@ Unsure Localizer::claim_check(std::optional<Hypothesis>* elsewhere) const
   if (clear && at_estimate) return Unsure::kNone;
   if (clear) *elsewhere = places[best];
   return best == 0 && at_estimate ? Unsure::kRival : Unsure::kPathElsewhere;
+}
+
+std::vector<Hypothesis> Localizer::search_path_rivals() const
+{
+  if (views_.empty() || !odom_at_update_) return {};
+  const auto& g = options_.global;
+  const BeamScorer coarse(g.sigma, options_.scan.z_hit, options_.scan.z_rand, options_.scan.max_distance);
+  PathSearchOptions ps;
+  ps.headings = 2 * g.headings;   // the far end of a path of metres feels half a scan-search step
+  ps.beams_per_view = g.beams;
+  ps.keep = g.path_search_places;
+  return path_search(maps_, views_.placed(*odom_at_update_), coarse, ps,
+                     [this](const Hypothesis& a, const Hypothesis& b) { return !same_place(a, b); });
 }
 
 void Localizer::seed_global(const std::vector<Vector2d>& points, size_t count, std::vector<Particle>* out)

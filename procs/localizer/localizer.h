@@ -11,7 +11,9 @@
 // scan-to-region search on the current scan (sensor resetting). The same search starts global
 // localization from an unknown pose, which claims a pose only when the views of the robot's
 // last metres (view_path.h, each scored in the region holding its place, path_score.h) fit it
-// clearly better than every other candidate place; when they single out another place than the
+// clearly better than every other candidate place (the newest scan search's and, before a
+// claim, those of a search of every place and heading on the path, path_search.h), counted on
+// the beams both places' maps can judge; when they single out another place than the
 // cloud's mode, half the cloud is moved there and the filter decides. A kidnap is flagged when
 // the estimate stops explaining the scans or jumps (recovery particles taking over); either way
 // the robot is localized globally anew, and a pose is claimed only by the same test.
@@ -97,6 +99,7 @@ struct LocalizerStats
   int64_t particle_handovers = 0;
   int64_t kidnaps = 0;                   // times the filter declared itself lost
   int64_t global_searches = 0;
+  int64_t path_searches = 0;     // whole-path searches before a claim (path_search.h)
   int64_t reassociations = 0;            // cloud moved to an overlapping region that explains the view better
   int64_t recovery_particles = 0;
   int particles = 0;
@@ -163,12 +166,19 @@ class Localizer
   void reassociate(const std::vector<Eigen::Vector2d>& points);
   // The pose refined on the views of the path, then the newest search's distinct places refined
   // the same way (the pose first; scores on the views).
-  std::vector<Hypothesis> path_places(int64_t region, const geometry::Pose2& region_from_base) const;
+  // `path_rivals` (places of a whole-path search, path_search.h) are checked before the newest
+  // search's.
+  std::vector<Hypothesis> path_places(int64_t region, const geometry::Pose2& region_from_base,
+                                      const std::vector<Hypothesis>& path_rivals) const;
+  // The best distinct places of a search of every place and heading on the views of the path.
+  std::vector<Hypothesis> search_path_rivals() const;
   bool same_place(const Hypothesis& a, const Hypothesis& b) const;
   double path_margin() const;
   // Why the estimate cannot be claimed yet (kNone: it can); `elsewhere` is set to the place the
   // path singles out when that is not the estimate.
-  Unsure claim_check(std::optional<Hypothesis>* elsewhere) const;
+  Unsure claim_check(std::optional<Hypothesis>* elsewhere);
+  // The same for given places (path_places: the estimate first).
+  Unsure path_verdict(const std::vector<Hypothesis>& places, std::optional<Hypothesis>* elsewhere) const;
   // Half the cloud replaced by particles around `place` (the lightest go).
   void inject_at(const Hypothesis& place);
   // The estimate moved farther than odometry says the robot did since the update before.
@@ -197,6 +207,8 @@ class Localizer
   double inlier_usual_ = -1;        // slow average of the estimate's inlier share, -1 = none yet
   std::vector<Hypothesis> last_search_;   // candidates of the newest global search
   ViewPath views_;                        // views since global localization started
+  std::vector<Hypothesis> path_rivals_;   // places of the newest whole-path search, moved along by odometry
+  double path_rivals_travel_ = -1;        // global_travel_ at that search (-1: none yet)
   std::optional<Estimate> previous_;      // the estimate of the update before, for the jump check
   bool kidnap_flag_ = false;
   // Gateway traversal evidence: the estimate entered `to` from `from` through `gateway`.

@@ -69,6 +69,14 @@ struct GlobalOptions
   int rivals = 16;                 // distinct places (unique_distance apart) of the newest search checked against the estimate
   double view_spacing = 0.5;       // [m] travel between the views kept for that test
   double view_path_length = 4.0;   // [m] travel back the views reach (odometry drift grows with it)
+  // Before a claim, every place and heading of the map is matched against the views of the path
+  // (path_search.h), and its best `path_search_places` distinct places must lose by the margin
+  // too (false: only the newest scan search's `rivals`).
+  bool claim_path_search = true;
+  int path_search_places = 8;
+  // ... and it must win on the beams both places' maps can judge (near a line or in the freespace
+  // their scans carved), not on a wall one map lacks (false: on all beams).
+  bool claim_judged_beams = true;
 };
 
 struct RecoveryOptions

@@ -1,5 +1,6 @@
 #include "localizer/path_score.h"
 
+#include <algorithm>
 #include <deque>
 #include <set>
 
@@ -45,6 +46,60 @@ double path_score(const RegionMaps& maps, const BeamScorer& scorer, int64_t regi
     s += scorer.score(m->field, pose, *v.points);
   }
   return s;
+}
+
+namespace {
+
+// Whether the map judges a beam from `from` that ends at `to` (no line near its end). The map
+// says "no wall there" only when its carved freespace goes on past the end (a beam end falls in
+// the free cell in front of any wall: the scans carve up to their own end points); it says
+// "the beam should have stopped" when the beam leaves the freespace earlier where a line is. A
+// beam that meets the end of the freespace where no line is has run into what the map's lines
+// do not hold: unjudged.
+bool judged_ray(const RegionModel& m, const Eigen::Vector2d& from, const Eigen::Vector2d& to, double near_line)
+{
+  const double length = (to - from).norm();
+  const double cell = m.freespace.resolution(), step = 0.5 * cell;
+  if (length < step) return false;
+  const Eigen::Vector2d dir = (to - from) / length;
+  for (double t = step; t <= length + 1.5 * cell; t += step) {
+    const Eigen::Vector2d p = from + t * dir;
+    if (m.is_free(p)) continue;
+    return t < length - cell && m.field.distance(p) <= near_line;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<BeamFit> path_beam_fits(const RegionMaps& maps, const BeamScorer& scorer, int64_t region, const Pose2& region_from_base,
+                                    const std::vector<PlacedView>& views, double bbox_margin, double near_line)
+{
+  std::vector<BeamFit> out;
+  for (const auto& v : views) {
+    const auto [m, pose] = holding_region(maps, region, region_from_base * v.now_from_then, bbox_margin);
+    for (const auto& p : *v.points) {
+      BeamFit f;
+      if (m) {
+        const Eigen::Vector2d q = pose * p;
+        const float d = m->field.distance(q);
+        f.log_p = scorer.log_p(d);
+        f.known = d <= near_line || judged_ray(*m, pose.translation(), q, near_line);
+      } else {
+        f.log_p = scorer.floor();
+      }
+      out.push_back(f);
+    }
+  }
+  return out;
+}
+
+double jointly_judged_difference(const std::vector<BeamFit>& a, const std::vector<BeamFit>& b)
+{
+  double d = 0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+    if (a[i].known && b[i].known) d += a[i].log_p - b[i].log_p;
+  return d;
 }
 
 }  // namespace rgnav::localizer

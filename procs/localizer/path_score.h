@@ -34,4 +34,25 @@ std::pair<const RegionModel*, geometry::Pose2> holding_region(const RegionMaps& 
 double path_score(const RegionMaps& maps, const BeamScorer& scorer, int64_t region, const geometry::Pose2& region_from_base,
                   const std::vector<PlacedView>& views, double bbox_margin);
 
+// One beam of a view scored at a candidate pose, and whether the map can judge it there: its end
+// lies near one of the holding region's lines (the map says wall) or in the freespace the
+// region's own scans carved (the map says no wall). Elsewhere the map has not seen the spot: a
+// wall the robot sees there may simply be missing from the map.
+struct BeamFit
+{
+  double log_p = 0;
+  bool known = false;
+};
+
+// Every beam of the views at the pose (as path_score), in view order. `near_line`: [m] a beam
+// end this close to a line counts as judged by the map.
+std::vector<BeamFit> path_beam_fits(const RegionMaps& maps, const BeamScorer& scorer, int64_t region,
+                                    const geometry::Pose2& region_from_base, const std::vector<PlacedView>& views,
+                                    double bbox_margin, double near_line);
+
+// How much better the beams fit at `a` than at `b` (sum of log p differences, equal-length
+// lists of the same beams), over the beams both maps can judge: evidence that the two maps
+// themselves tell apart, not a gap in one of them.
+double jointly_judged_difference(const std::vector<BeamFit>& a, const std::vector<BeamFit>& b);
+
 }  // namespace rgnav::localizer

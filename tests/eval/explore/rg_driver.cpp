@@ -3,6 +3,7 @@
 // benchmark sees what the live processes see.
 #include <atomic>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -199,6 +200,7 @@ class RgDriver final : public ExploreDriver
                                         {"position_tolerance", g.position_tolerance}, {"beyond_known", g.beyond_known},
                                         {"kind", kind_name(explore_goal.kind)}, {"looked_at_map", {looked_at.x(), looked_at.y()}}}},
                               {"map", rgmap::to_json(*map_)}};
+    std::filesystem::create_directories(dump_dir_);
     std::ofstream(dump_dir_ + "/no_path_" + std::to_string(++dumps) + ".json") << j.dump();
   }
 

@@ -141,6 +141,8 @@ int main(int argc, char** argv)
     j["kidnap_recover_s_p50"] = number_or_null(percentile(totals.recover_time, 0.5));
     j["cpu_core_share"] = totals.cpu_s / std::max(1e-9, totals.sim_s);
     j["cpu_ms_per_update_p50"] = number_or_null(percentile(totals.update_cpu_ms, 0.5));
+    j["global_cpu_ms_per_update_p50"] = number_or_null(percentile(totals.global_update_cpu_ms, 0.5));
+    j["global_cpu_ms_per_update_p99"] = number_or_null(percentile(totals.global_update_cpu_ms, 0.99));
     j["particles_mean"] = totals.updates ? static_cast<double>(totals.particles_sum) / static_cast<double>(totals.updates) : 0.0;
     j["map_memory_mb_max"] = max_bytes / 1e6;
     // (a bare file name has no parent, and create_directories("") throws)

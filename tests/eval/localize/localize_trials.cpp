@@ -141,7 +141,7 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
   int ok = 0, estimate_ok = 0, wrong_claims = 0, ambiguous_n = 0;
   std::map<std::string, int> classes;
   int driven = 0;   // trials driven (all but when LOCALIZE_GLOBAL_TRIALS picks a few)
-  std::vector<double> times, travels;
+  std::vector<double> times, travels, update_cpu_ms;
   for (int trial = 0; trial < trials; ++trial) {
     const auto [k, s] = random_tour_point(w.tour, ctx.rng);
     const auto route = route_from(w.tour, k, s, 40.0);
@@ -169,7 +169,11 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
             started = started || rt;
             mrpt->scan(st.scan, st.odom_from_base, rt ? &tg : nullptr);
           }
-          if (!loc.update(st.scan, st.odom_from_base)) return;
+          const double c0 = thread_cpu();
+          const bool updated = loc.update(st.scan, st.odom_from_base);
+          const double cpu_ms = 1e3 * (thread_cpu() - c0);
+          if (!updated) return;
+          update_cpu_ms.push_back(cpu_ms);
           if (loc.mode() == localizer::Mode::kGlobal) ++unsure[loc.unsure()];
           const Error e = error_of(loc.estimate(), w.frames, st.world_from_base);
           const bool claimed = loc.estimate().valid && loc.mode() == localizer::Mode::kTracking;
@@ -230,6 +234,11 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
   g["classes"] = classes;
   for (const auto& [why, n] : classes) totals.global_classes[why] += n;
   g["time_s_p50"] = number_or_null(percentile(times, 0.5));
+  // CPU of the filter updates in these drives (the searches of global localization included).
+  g["cpu_ms_per_update_p50"] = number_or_null(percentile(update_cpu_ms, 0.5));
+  g["cpu_ms_per_update_p99"] = number_or_null(percentile(update_cpu_ms, 0.99));
+  g["cpu_ms_per_update_max"] = number_or_null(update_cpu_ms.empty() ? NAN : *std::max_element(update_cpu_ms.begin(), update_cpu_ms.end()));
+  totals.global_update_cpu_ms.insert(totals.global_update_cpu_ms.end(), update_cpu_ms.begin(), update_cpu_ms.end());
   g["travel_m_p50"] = number_or_null(percentile(travels, 0.5));
   totals.global_ok += ok;
   totals.global_estimate_ok += estimate_ok;

@@ -36,6 +36,7 @@ struct TrialContext
 struct Totals
 {
   std::vector<double> track_xy, track_deg, global_time, global_travel, flag_time, recover_time, update_cpu_ms;
+  std::vector<double> global_update_cpu_ms;   // every filter update of the global trials (unsure ones cost the searches)
   int64_t handovers = 0, divergences = 0, false_kidnaps = 0, gateway_events = 0;
   int64_t global_n = 0, global_ok = 0, global_estimate_ok = 0, global_wrong = 0, global_ambiguous = 0;
   std::map<std::string, int64_t> global_classes;   // trials per outcome (global_outcome.h)

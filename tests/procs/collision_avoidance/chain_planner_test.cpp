@@ -62,5 +62,31 @@ TEST(ChainPlanner, TurnsInPlaceForTargetsBehind)
   EXPECT_EQ(c->chain[0].kind(), trajectory::Kind::kTurn);
 }
 
+// A hallway 0.9 m wide, the robot 0.12 m off its centre line: 0.33 m from one wall, a few
+// centimetres short of its clearance (0.36 m). A chain back to the centre line gains that only
+// slowly at first; it must still be taken (the robot stood turning on the spot in there), while
+// one that runs on along the wall without making up the clearance is not.
+TEST(ChainPlanner, LeavesAWallItIsNearlyClearOfAlongTheHallway)
+{
+  const std::vector<testing::Wall> walls = {{{-1, -0.33}, {6, -0.33}}, {{-1, 0.57}, {6, 0.57}}};
+  LocalMap map(LocalMapOptions{});
+  // Seen for over a second: static walls (what was just seen keeps the margin from what moves).
+  for (int64_t us = 1'000'000; us <= 2'200'000; us += 100'000) {
+    const ScanPoints s = testing::scan_points(Pose2(), walls, time::from_utime(us), map.max_range());
+    map.add_scan(s);
+    map.rebuild(s.stamp);
+  }
+  ASSERT_EQ(map.moving_size(), 0u);
+  PlannerOptions o;
+  const double clearance = o.robot_radius + o.safety_margin;
+  ASSERT_LT(map.clearance(Eigen::Vector2d::Zero(), clearance), clearance - 0.02);
+  ChainPlanner p(o);
+  const auto c = p.plan(Pose2(), 0.0, {Pose2(1.5, 0.12, 0.0), Pose2(2.5, 0.12, 0.0)}, map, 0.5);
+  ASSERT_TRUE(c);
+  EXPECT_NEAR(c->chain.end().translation().y(), 0.12, 1e-6);
+  const trajectory::Chain along({trajectory::Segment::line(Pose2(), 2.0)});
+  EXPECT_TRUE(first_collision(along, map, clearance, o.check_step));
+}
+
 }  // namespace
 }  // namespace rgnav::collision_avoidance

@@ -46,6 +46,7 @@ TEST(ExplorerConfig, ShippedConfigHasTheHeadersDefaults)
   EXPECT_EQ(o.stack.beyond_m, d.stack.beyond_m);
   EXPECT_EQ(o.stack.passed_m, d.stack.passed_m);
   EXPECT_EQ(o.stack.breadth_first, d.stack.breadth_first);
+  EXPECT_EQ(o.stack.after_regions, d.stack.after_regions);
   EXPECT_EQ(o.robot_radius, robot().radius);
   EXPECT_EQ(o.goal_tolerance, d.goal_tolerance);
   EXPECT_EQ(o.gateway_goal_tolerance, d.gateway_goal_tolerance);
@@ -112,6 +113,7 @@ TEST(ExplorerConfig, BadValuesAreRefusedNamingFileAndKey)
   refused("stack:\n  beyond_m: 0.5\n  passed_m: 0.8\n", "stack.passed_m");
   refused("stack:\n  merge_angle_rad: 4\n", "stack.merge_angle_rad");
   refused("stack:\n  breadth_first: maybe\n", "stack.breadth_first");
+  refused("stack:\n  after_regions: maybe\n", "stack.after_regions");
   refused("goals:\n  max_attempts: 0\n", "goals.max_attempts");
   refused("goals:\n  switch_gain: 1.5\n", "goals.switch_gain");
   refused("goals:\n  timeout_s: nan\n", "goals.timeout_s");

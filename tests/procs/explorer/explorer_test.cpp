@@ -259,6 +259,46 @@ TEST(Explorer, FrontierThenThroughItThenDone)
   EXPECT_TRUE(ex.take_finished_regions().empty()) << "each region is offered for naming once";
 }
 
+// Every region entered before is complete before a new gateway (diss. ch. 7): the robot in a
+// finished room off a hallway whose far end is still open goes back to that end before the
+// room's other door, however the map's current region changed as it stood in the doorway.
+TEST(Explorer, RegionsEnteredBeforeAreCompletedBeforeANewGateway)
+{
+  auto map = hallway(false);
+  const int64_t hall = map->current_region;
+  const int64_t room = add_region(map.get(), V(0, 1.8), V(3, 4),
+                                  {{V(0, 1.8), V(0, 4)}, {V(3, 1.8), V(3, 4)}, {V(0, 4), V(3, 4)}})
+                           .id;
+  rgmap::Gateway& door = map->add_gateway(rgmap::GatewayClass::kDoor, hall, kUtime);
+  map->connect(door.id, room, Pose2(0, 1.8, 0));
+  map->current_region = room;
+  ExplorerOptions o = no_look();
+  const auto explorer = [&](bool after_regions) {
+    o.stack.after_regions = after_regions;
+    auto ex = std::make_unique<Explorer>(o);
+    ex->set_map(map);
+    ex->set_pose({kUtime, Pose2(1.5, 3, 0)});
+    ex->add_sightings({sighting(V(1.5, 4), M_PI / 2)}, kUtime);   // the room's other door, north
+    return ex;
+  };
+  auto ex = explorer(true);
+  Command c = ex->step(kUtime);
+  ASSERT_TRUE(c.goal) << ex->status().activity;
+  EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kRegion);
+  EXPECT_EQ(c.goal->region_id, hall);
+  EXPECT_NEAR(c.goal->frontier_point.x(), 5.9, 0.1);
+  // Failed once: tried again after the stack, not before it (else the robot would go to and fro
+  // between a frontier it cannot reach and the gateways it leaves waiting).
+  ex->goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "goal unreachable: no route", kUtime + kSecond);
+  c = ex->step(kUtime + static_cast<int64_t>(o.retry_after_s + 2) * kSecond);   // due again by then
+  ASSERT_TRUE(c.goal) << ex->status().activity;
+  EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kGateway);
+
+  c = explorer(false)->step(kUtime);
+  ASSERT_TRUE(c.goal);
+  EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kGateway) << "the stack first: the hallway waits";
+}
+
 // A frontier the robot could only look at from space it cannot drive to (past a gap narrower
 // than its body) has no view point there: its goal is the frontier itself, any heading, left to
 // the planner (which may know a way round), never a place past the gap.

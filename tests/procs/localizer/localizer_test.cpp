@@ -11,6 +11,7 @@
 #include "localizer/likelihood_field.h"
 #include "localizer/localizer.h"
 #include "localizer/path_score.h"
+#include "localizer/path_search.h"
 #include "localizer/resampling.h"
 #include "twin_rooms.h"
 #include "two_room_map.h"
@@ -56,6 +57,18 @@ struct Drive
       updated = loc.update(testing::cast_scan(walls, truth, kLaser, utime, scan_id++), odom_from_map * truth);
       if (after_scan) after_scan();
     }
+  }
+
+  // The twin-room drive: facing the room's bottom-right corner, a step on, a turn, and across
+  // the room (room_a's; `dx` east of it: room_b at 10).
+  void across_twin_room(double dx = 0.0)
+  {
+    truth = Pose2(2.4 + dx, 1.4, -0.6);
+    to(truth);
+    to(Pose2(2.6 + dx, 1.2, -0.6));
+    to(Pose2(2.6 + dx, 1.2, 2.5));
+    to(Pose2(1.8 + dx, 1.8, 2.5));
+    to(Pose2(1.6 + dx, 1.95, 2.5));
   }
 };
 
@@ -219,15 +232,110 @@ TEST(Localizer, StaysUnsureWhereTheMapRepeatsItself)
   Localizer loc(options());
   loc.set_map(w.map);
   Drive drive{w.walls, loc};
-  drive.truth = Pose2(2.4, 1.4, -0.6);
-  drive.to(drive.truth);
-  drive.to(Pose2(2.6, 1.2, -0.6));
-  drive.to(Pose2(2.6, 1.2, 2.5));
-  drive.to(Pose2(1.8, 1.8, 2.5));
-  drive.to(Pose2(1.6, 1.95, 2.5));
+  drive.across_twin_room();
   EXPECT_EQ(loc.mode(), Mode::kGlobal);
   EXPECT_FALSE(loc.distinguishable(w.room_a, drive.truth));
   EXPECT_FALSE(loc.distinguishable(w.room_b, drive.truth));   // region frames: the same spot in either room
+}
+
+// The scan search keeps one place here (hypotheses = 1), so its rivals never hold the twin room:
+// the claim test of the newest search's places alone claims one of two identical rooms, a
+// guess. The search of every place on the path's views finds the twin, and the claim waits.
+TEST(Localizer, AClaimWaitsForATwinTheScanSearchDidNotKeep)
+{
+  const auto w = testing::twin_room_world(false);
+  auto o = options();
+  o.global.hypotheses = 1;
+  const auto drive_in_room_a = [&w](Localizer& loc) {
+    loc.set_map(w.map);
+    Drive drive{w.walls, loc};
+    drive.across_twin_room();
+  };
+  Localizer loc(o);
+  drive_in_room_a(loc);
+  EXPECT_EQ(loc.mode(), Mode::kGlobal);
+  EXPECT_GT(loc.stats().path_searches, 0);
+  auto scan_rivals_only = o;
+  scan_rivals_only.global.claim_path_search = false;
+  Localizer guesser(scan_rivals_only);
+  drive_in_room_a(guesser);
+  EXPECT_EQ(guesser.mode(), Mode::kTracking);   // claimed a room the views cannot tell
+}
+
+// Twin rooms alike in the world, room_b's map missing the cabinet (twin_room_world_with_map_gap):
+// the robot in room_b looks at the cabinet, which room_a's map explains and room_b's does not.
+// On all beams room_a wins by the cabinet's: the rule that counts every beam claims room_a, 10 m
+// wrong. On the beams both maps can judge, the rooms fit alike and the claim waits.
+TEST(Localizer, AWallMissingFromOneMapIsNoEvidenceForItsTwin)
+{
+  const auto w = testing::twin_room_world_with_map_gap();
+  const auto drive_in_room_b = [&w](Localizer& loc) {
+    loc.set_map(w.map);
+    Drive drive{w.walls, loc};
+    drive.across_twin_room(10.0);
+    drive.to(Pose2(11.6, 1.5, 3.5));
+  };
+  Localizer loc(options());
+  drive_in_room_b(loc);
+  EXPECT_FALSE(loc.mode() == Mode::kTracking && loc.estimate().region == w.room_a);
+  auto all_beams = options();
+  all_beams.global.claim_judged_beams = false;
+  Localizer fooled(all_beams);
+  drive_in_room_b(fooled);
+  EXPECT_EQ(fooled.mode(), Mode::kTracking);
+  EXPECT_EQ(fooled.estimate().region, w.room_a);
+}
+
+// The whole-path search on the twin rooms: the best place is the true one, in the room whose
+// corner the path saw; the twin room's same spot is found too, scoring worse by what that
+// corner adds; where nothing tells the rooms apart both score alike.
+TEST(PathSearch, FindsEveryPlaceThePathFitsBestFirst)
+{
+  const auto path_places_in = [](const testing::TwinRoomWorld& w) {
+    RegionMaps maps;
+    maps.set_map(w.map);
+    const BeamScorer scorer(0.2, 0.9, 0.1, 1.0);
+    const Pose2 then(2.4, 1.4, -0.6), mid(2.6, 1.2, 2.5), now(1.6, 1.95, 2.5);   // room_a, map frame
+    const auto scan_points = [&](const Pose2& map_pose) {
+      return beam_end_points(testing::cast_scan(w.walls, map_pose, kLaser, 1, 1), kLaser, 30);
+    };
+    static std::vector<Vector2d> p_then, p_mid, p_now;
+    p_then = scan_points(then);
+    p_mid = scan_points(mid);
+    p_now = scan_points(now);
+    const std::vector<PlacedView> views{{now.between(then), &p_then}, {now.between(mid), &p_mid}, {Pose2(), &p_now}};
+    const auto distinct = [&](const Hypothesis& a, const Hypothesis& b) {
+      const Pose2 pa = maps.region(a.region)->map_from_region * a.region_from_base;
+      const Pose2 pb = maps.region(b.region)->map_from_region * b.region_from_base;
+      return (pa.translation() - pb.translation()).norm() > 1.0 || std::fabs(geometry::normalize_angle(pa.theta() - pb.theta())) > 0.5;
+    };
+    return std::make_pair(path_search(maps, views, scorer, PathSearchOptions{}, distinct), now);
+  };
+  const auto near = [](const Hypothesis& h, const Pose2& p) {
+    return (h.region_from_base.translation() - p.translation()).norm() < 0.3 &&
+           std::fabs(geometry::normalize_angle(h.region_from_base.theta() - p.theta())) < 6 * M_PI / 180;
+  };
+  const auto twin_of = [&](const std::vector<Hypothesis>& places, int64_t region, const Pose2& p) {
+    return std::find_if(places.begin(), places.end(), [&](const Hypothesis& h) { return h.region == region && near(h, p); });
+  };
+  {
+    const auto w = testing::twin_room_world(true);
+    const auto [places, now] = path_places_in(w);
+    ASSERT_GE(places.size(), 2u);
+    EXPECT_EQ(places.front().region, w.room_a);
+    EXPECT_TRUE(near(places.front(), now));   // room frames sit at the rooms' corners: the map pose in room_a
+    const auto twin = twin_of(places, w.room_b, now);
+    ASSERT_NE(twin, places.end());
+    EXPECT_LT(twin->score, places.front().score - 5.0);
+  }
+  {
+    const auto w = testing::twin_room_world(false);
+    const auto [places, now] = path_places_in(w);
+    const auto a = twin_of(places, w.room_a, now), b = twin_of(places, w.room_b, now);
+    ASSERT_NE(a, places.end());
+    ASSERT_NE(b, places.end());
+    EXPECT_NEAR(a->score, b->score, 2.0);
+  }
 }
 
 TEST(Localizer, FlagsAKidnapAndRelocalizes)

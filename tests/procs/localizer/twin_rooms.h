@@ -22,5 +22,9 @@ struct TwinRoomWorld
 };
 
 TwinRoomWorld twin_room_world(bool corner_cut_in_b);
+// The same room twice, alike in the world; but room_b's map lacks the cabinet's two faces (the
+// mapping scans never saw them, so its freespace is not carved there either): a gap in one map
+// that the other fills.
+TwinRoomWorld twin_room_world_with_map_gap();
 
 }  // namespace rgnav::testing
