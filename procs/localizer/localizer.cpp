@@ -464,7 +464,7 @@ std::vector<Hypothesis> Localizer::search_path_rivals() const
   ps.beams_per_view = g.beams;
   ps.keep = g.path_search_places;
   return path_search(maps_, views_.placed(*odom_at_update_), coarse, ps,
-                     [this](const Hypothesis& a, const Hypothesis& b) { return !same_place(a, b); });
+                     [this](const Hypothesis& a, const Hypothesis& b) { return !same_place(a, b); }, progress_);
 }
 
 void Localizer::seed_global(const std::vector<Vector2d>& points, size_t count, std::vector<Particle>* out)

@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <random>
 #include <string>
@@ -114,6 +115,9 @@ class Localizer
   // A new map version. Particles keep their region-frame poses (no jump); a particle whose
   // region was merged away is carried over through the map frame.
   void set_map(const rgmap::RgMap& map);
+  // Called as long work goes on (the path search before a claim, region by region): the node
+  // reports it on its heartbeat (runtime/node.h note_progress).
+  void set_progress(std::function<void()> progress) { progress_ = std::move(progress); }
   // The pose is given (operator, persisted estimate): particles around it with these spreads.
   // False if the region is unknown.
   bool set_pose(int64_t region, const geometry::Pose2& region_from_base, double sigma_xy, double sigma_theta);
@@ -208,6 +212,7 @@ class Localizer
   std::vector<Hypothesis> last_search_;   // candidates of the newest global search
   ViewPath views_;                        // views since global localization started
   std::vector<Hypothesis> path_rivals_;   // places of the newest whole-path search, moved along by odometry
+  std::function<void()> progress_;        // set_progress
   double path_rivals_travel_ = -1;        // global_travel_ at that search (-1: none yet)
   std::optional<Estimate> previous_;      // the estimate of the update before, for the jump check
   bool kidnap_flag_ = false;

@@ -47,6 +47,7 @@ LocalizerNode::LocalizerNode(runtime::Node& node, const LocalizerNodeOptions& op
       max_odometry_gap_us_(std::max<int64_t>(1'000'000, 2 * max_scan_age_us_)),
       persist_period_us_(static_cast<int64_t>(std::llround(options.persist_period * 1e6)))
 {
+  loc_.set_progress([this] { node_.note_progress(); });
   if (!files_.state_file.empty()) {
     std::string problem;
     saved_ = load_estimate(files_.state_file, &problem);

@@ -33,7 +33,8 @@ std::vector<Eigen::Vector2d> path_points(const std::vector<PlacedView>& views, c
 
 std::vector<Hypothesis> path_search(const RegionMaps& maps, const std::vector<PlacedView>& views, const BeamScorer& scorer,
                                     const PathSearchOptions& options,
-                                    const std::function<bool(const Hypothesis&, const Hypothesis&)>& distinct)
+                                    const std::function<bool(const Hypothesis&, const Hypothesis&)>& distinct,
+                                    const std::function<void()>& progress)
 {
   const auto pts = path_points(views, options);
   if (pts.empty()) return {};
@@ -71,6 +72,7 @@ std::vector<Hypothesis> path_search(const RegionMaps& maps, const std::vector<Pl
       pool.push({id, geometry::Pose2(pos, 2 * M_PI * cell_h / nh), cell_best});
       if (pool.size() > pool_size) pool.pop();
     }
+    if (progress) progress();
   }
   std::vector<Hypothesis> ranked;
   ranked.reserve(pool.size());

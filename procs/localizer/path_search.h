@@ -33,9 +33,12 @@ struct PathSearchOptions
 
 // The `keep` best distinct places ("the robot stands here now") for the views, best first,
 // scored with `scorer` in each candidate's region (its stacked field: own lines and the
-// neighbours'). `distinct(a, b)` says whether two candidates are different places.
+// neighbours'). `distinct(a, b)` says whether two candidates are different places. `progress`
+// (if set) is called after each region: the search may take most of a second on a large map, and
+// the node's heartbeat shows the supervisor that it is busy, not hung.
 std::vector<Hypothesis> path_search(const RegionMaps& maps, const std::vector<PlacedView>& views, const BeamScorer& scorer,
                                     const PathSearchOptions& options,
-                                    const std::function<bool(const Hypothesis&, const Hypothesis&)>& distinct);
+                                    const std::function<bool(const Hypothesis&, const Hypothesis&)>& distinct,
+                                    const std::function<void()>& progress = nullptr);
 
 }  // namespace rgnav::localizer

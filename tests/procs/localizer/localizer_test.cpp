@@ -309,7 +309,10 @@ TEST(PathSearch, FindsEveryPlaceThePathFitsBestFirst)
       const Pose2 pb = maps.region(b.region)->map_from_region * b.region_from_base;
       return (pa.translation() - pb.translation()).norm() > 1.0 || std::fabs(geometry::normalize_angle(pa.theta() - pb.theta())) > 0.5;
     };
-    return std::make_pair(path_search(maps, views, scorer, PathSearchOptions{}, distinct), now);
+    int progress = 0;   // one report per region searched (the node's heartbeat shows the work going on)
+    auto places = path_search(maps, views, scorer, PathSearchOptions{}, distinct, [&progress] { ++progress; });
+    EXPECT_EQ(progress, static_cast<int>(maps.regions().size()));
+    return std::make_pair(std::move(places), now);
   };
   const auto near = [](const Hypothesis& h, const Pose2& p) {
     return (h.region_from_base.translation() - p.translation()).norm() < 0.3 &&
