@@ -52,8 +52,11 @@
 #   writes every tracking update (estimate, truth, error, cluster share, inliers) to
 #   <world>/tracking_trace.txt and a line per global trial, kidnap and gateway link to stderr (a
 #   trial's line counts its updates by the reason the localizer stayed unsure: Localizer::unsure,
-#   and gives its class); LOCALIZE_GLOBAL_TRIALS="world:trial ..." drives only those global
-#   trials (each from the start it has in a full run; the ratios then count only them).
+#   and gives its class; unclaimed at the deadline, also the estimate's claim test and the
+#   truth's lead as that test counts it: Localizer::claim_test); LOCALIZE_GLOBAL_TRIALS=
+#   "world:trial ..." drives only those global trials, LOCALIZE_KIDNAP_TRIALS only those kidnaps
+#   ("none" for none), each from the start it has in a full run (the ratios then count only them);
+#   LOCALIZE_SKIP_TRACKING=1 skips the tracking drives (their keys then say nothing).
 # The benchmark itself: tests/eval/localize (rgnav_localize_bench).
 set -euo pipefail
 ROOT="${RGNAV_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}"
@@ -80,9 +83,11 @@ if [ "${LOCALIZE_MRPT:-1}" != 0 ] && command -v pf-localization >/dev/null; then
   fi
 fi
 if [ "$mrpt_ok" = 1 ]; then
-  for spec in "${specs[@]}"; do
+  # The worlds benched: world_args holds "--sim NAME=PATH" pairs (nav_worlds.sh keeps its list
+  # to itself).
+  for spec in "${world_args[@]}"; do
+    [ "$spec" = --sim ] && continue
     name="${spec%%=*}"
-    wanted "$name" || continue
     python3 "$ROOT/deploy/bench/mrpt/mrpt_localize.py" "$WORK/$name/mrpt" --out "$WORK/$name/mrpt/mrpt.json" ||
       echo "bench localize: MRPT failed on $name" >&2
   done

@@ -95,6 +95,9 @@ void StereoCaptureNode::capture_once()
     node_.set_status(heartbeat_t::STATE_DEGRADED, "no frame: " + source_->error());
     return;
   }
+  // A grab (the simulated head renders two images) and each encoding take a while on a loaded
+  // host: each step counts as progress, so the supervisor sees busy, not hung.
+  node_.note_progress();
   stereo_images_t m;
   m.utime = frame->utime;
   m.frame_id = ++frame_id_;
@@ -102,6 +105,7 @@ void StereoCaptureNode::capture_once()
   m.pan = options_.pan;
   m.tilt = options_.tilt;
   m.left = encode_image(frame->left, frame->utime, options_.encoding, options_.jpeg_quality);
+  node_.note_progress();
   m.right = encode_image(frame->right, frame->utime, options_.encoding, options_.jpeg_quality);
   if (node_.publish(options_.channel, m)) node_.clear_status();
 }

@@ -132,7 +132,12 @@ void LocalMap::set_grid_points(time::Time stamp, std::vector<Eigen::Vector2d> od
 void LocalMap::rebuild(time::Time now)
 {
   while (!scans_.empty() && time::to_seconds(now - scans_.front().stamp) > options_.max_age) scans_.pop_front();
-  if (!grid_points_.empty() && time::to_seconds(now - grid_stamp_) > options_.max_age) grid_points_.clear();
+  // The 3D grid is a map (the vision's occupancy, projected), not a scan: on a loaded host a frame
+  // takes seconds through the vision, and its grid arrives older than max_age (under stress-ng the
+  // robot drove into a table top the grid held). It holds until a newer one replaces it, at most
+  // the memory time (a vision that stopped leaves nothing behind for longer).
+  const double grid_age = std::max(options_.max_age, options_.memory);
+  if (!grid_points_.empty() && time::to_seconds(now - grid_stamp_) > grid_age) grid_points_.clear();
   while (!views_.empty() && time::to_seconds(now - views_.front().stamp) > options_.memory) views_.pop_front();
   points_.clear();
   for (const auto& s : scans_)

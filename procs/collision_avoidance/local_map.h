@@ -2,7 +2,8 @@
 // frame from the last few laser scans (each placed with the odometry pose at its time) and
 // the occupied cells of the newest OBSTACLES_3D grid, in a uniform hash grid for fast
 // "how far is the nearest obstacle from here?" queries. Points older than `max_age` or
-// farther than `max_range` from the robot are dropped from the recent set.
+// farther than `max_range` from the robot are dropped from the recent set; the 3D grid, a map
+// that may arrive seconds after its frame, holds until replaced (at most `memory`).
 //
 // A short-term memory keeps what the 180 degree laser no longer sees: one point per
 // memory cell, for up to `memory` seconds, until a newer scan looks through its place (its

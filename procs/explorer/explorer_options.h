@@ -27,7 +27,7 @@ struct StackOptions
   double merge_distance = 1.0;     // [m] a sighting this near a stacked entry, heading within merge_angle, is that entry
   double merge_angle = 0.8;        // [rad]
   double beyond_m = 1.0;           // [m] the goal lies this far past the gateway's crossing point
-  double passed_m = 0.4;           // [m] the robot this far past the crossing point has traversed it
+  double passed_m = 0.4;           // [m] the robot this far past a door's crossing point (a crossing's goal) has gone through
   bool breadth_first = true;       // order: fewest RG-graph hops from the start region first (else nearest first)
   // Every region of the map complete before a new gateway (diss. ch. 7): the frontiers of regions
   // entered before come ahead of the stack, those that failed once after it (else only the current

@@ -64,10 +64,11 @@ std::vector<OtherRegion> other_regions(const rgmap::RgMap& map, const rgmap::Reg
 
 }  // namespace
 
-bool known_free(const rgmap::RgMap& map, const Vector2d& map_point)
+bool known_free(const rgmap::RgMap& map, const Vector2d& map_point, bool settled_only)
 {
   for (const auto& [id, r] : map.regions()) {
     if (r.state == rgmap::Region::State::kMerged || r.freespace.width() == 0) continue;
+    if (settled_only && r.state != rgmap::Region::State::kFinalised) continue;
     if (r.freespace.is_free(r.map_from_region.inverse() * map_point)) return true;
   }
   return false;

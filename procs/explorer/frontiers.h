@@ -42,7 +42,10 @@ struct RegionFrontiers
 // Frontiers of live region `region_id` of `map` (empty for a merged or unknown region).
 RegionFrontiers find_frontiers(const rgmap::RgMap& map, int64_t region_id, const FrontierOptions& options);
 
-// True if the map-frame point lies in free space of any live region of `map`.
-bool known_free(const rgmap::RgMap& map, const Eigen::Vector2d& map_point);
+// True if the map-frame point lies in free space of any live region of `map`; `settled_only`:
+// of a region the robot has left (finalised). The open region's freespace is provisional: it
+// takes in all the laser saw from it, the branches of a crossing not gone through too, and ends
+// at that crossing once the region is finalised.
+bool known_free(const rgmap::RgMap& map, const Eigen::Vector2d& map_point, bool settled_only = false);
 
 }  // namespace rgnav::explorer

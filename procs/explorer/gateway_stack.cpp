@@ -19,6 +19,25 @@ namespace {
 
 Vector2d unit(double heading) { return {std::cos(heading), std::sin(heading)}; }
 
+// How far past an entry's crossing point the robot is through it. A door's or a passage's
+// crossing point lies on its line: a step past it is through. A crossing's or a turn's lies in
+// the middle of a square as wide as the hallway: a robot turning through the square into another
+// branch, or stepping aside in it for a person, is that far along a branch it did not take (and
+// the detector's estimate of the middle is off by as much); it has left by a branch only once it
+// stands past the goal the explorer would send it to, beyond_m down that branch.
+double through_distance(rgmap::GatewayClass cls, const StackOptions& o)
+{
+  switch (cls) {
+    case rgmap::GatewayClass::kXCrossing:
+    case rgmap::GatewayClass::kTCrossing:
+    case rgmap::GatewayClass::kLTCrossing:
+    case rgmap::GatewayClass::kRTCrossing:
+    case rgmap::GatewayClass::kLTurn:
+    case rgmap::GatewayClass::kRTurn: return o.beyond_m + o.passed_m;
+    default: return o.passed_m;
+  }
+}
+
 // RG-graph hops from `start` to every region it reaches through traversed gateways.
 std::map<int64_t, int> hops_from(const rgmap::RgMap& map, int64_t start)
 {
@@ -110,11 +129,14 @@ int GatewayStack::update(const Vector2d& robot, const rgmap::RgMap& map)
     const Vector2d d = unit(e.heading);
     const Vector2d rel = robot - e.crossing;
     const double along = rel.dot(d), across = std::fabs(geometry::cross(d, rel));
-    if (along >= options_.passed_m && along <= options_.beyond_m + 1.0 && across <= options_.merge_distance) {
+    const double through = through_distance(e.cls, options_);
+    if (along >= through && along <= std::max(through, options_.beyond_m) + 1.0 && across <= options_.merge_distance) {
       e.state = StackEntry::State::kDone;
       e.reason = "traversed";
       ++marked;
-    } else if (known_free(map, e.beyond(options_.beyond_m)) && known_free(map, e.beyond(2 * options_.beyond_m))) {
+    } else if (known_free(map, e.beyond(options_.beyond_m), true) && known_free(map, e.beyond(2 * options_.beyond_m), true)) {
+      // Seen from elsewhere: free in a region the robot has left (the open region's freespace
+      // still takes in the branches of a crossing it has not gone through).
       e.state = StackEntry::State::kDone;
       e.reason = "seen beyond";
       ++marked;
@@ -140,7 +162,13 @@ std::vector<const StackEntry*> GatewayStack::order(const rgmap::RgMap& map, int6
     const auto it = hops.find(map.resolve(e->region_id));
     return it == hops.end() ? std::numeric_limits<int>::max() : it->second;
   };
+  // Entries never tried before those that failed: a sighting the robot could not go through (a
+  // gap between furniture, a corner taken for a door) is due again whenever the map gains a
+  // region, and ahead of the rest by its level it would hold back every gateway seen since —
+  // however far from the start the building's unexplored part lies.
   std::stable_sort(due.begin(), due.end(), [&](const StackEntry* a, const StackEntry* b) {
+    const bool fa = a->state != StackEntry::State::kPending, fb = b->state != StackEntry::State::kPending;
+    if (fa != fb) return fb;
     const int la = level(a), lb = level(b);
     if (la != lb) return la < lb;
     return (a->crossing - robot).squaredNorm() < (b->crossing - robot).squaredNorm();

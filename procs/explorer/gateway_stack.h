@@ -4,8 +4,8 @@
 // has been traversed; before that the gateway detector's sightings are what is known of it.
 // A sighting becomes an entry per exit heading (a crossing's branches are entries of their
 // own), in the map frame, with the region it was seen from. An entry is done once the robot has
-// been past it, or once the place beyond it is free in some region of the map (seen from
-// elsewhere); an entry the planner could not reach is set aside with the reason and tried
+// been past it, or once the place beyond it is free in some region of the map the robot has left
+// (seen from elsewhere); an entry the planner could not reach is set aside with the reason and tried
 // again later (ExplorerOptions::retry_after_s, max_attempts); one set aside for good is tried
 // again once the map near it changed (place_view.h).
 #pragma once
@@ -65,7 +65,7 @@ class GatewayStack
   int update(const Eigen::Vector2d& robot, const rgmap::RgMap& map);
   // Pending entries in the order they are to be visited: breadth-first (fewest RG-graph hops
   // from `start_region` to the entry's region, then nearest to `robot`), or nearest first;
-  // set-aside entries whose retry is due (utime and map) count as pending.
+  // set-aside entries whose retry is due (utime and map) follow, in the same order.
   std::vector<const StackEntry*> order(const rgmap::RgMap& map, int64_t start_region, const Eigen::Vector2d& robot,
                                        int64_t utime) const;
   void done(int64_t id, const std::string& reason);

@@ -165,6 +165,7 @@ void Localizer::start_global()
   views_.clear();
   path_rivals_.clear();
   path_rivals_travel_ = -1;
+  claim_test_ = ClaimTest{};
 }
 
 bool Localizer::take_kidnap_flag()
@@ -364,20 +365,21 @@ bool Localizer::same_place(const Hypothesis& a, const Hypothesis& b) const
          std::fabs(normalize_angle(pa.theta() - pb.theta())) < 3 * 2 * M_PI / g.headings;
 }
 
-double Localizer::path_margin() const
+double Localizer::path_margin(double views) const
 {
   // Two places that fit equally well differ by a sum of per-view noise, whose spread grows with
   // the square root of the number of views: so does the margin, for the same risk per claim.
-  return options_.global.unique_margin * std::sqrt(static_cast<double>(views_.size()));
+  return options_.global.unique_margin * std::sqrt(views);
 }
 
-Unsure Localizer::why_not_distinguishable(int64_t region, const Pose2& region_from_base) const
+Unsure Localizer::why_not_distinguishable(int64_t region, const Pose2& region_from_base, ClaimTest* test) const
 {
   if (!maps_.region(region) || views_.empty() || !odom_at_update_) return Unsure::kShortTravel;
   if (last_search_.empty()) return Unsure::kNone;
   // Asked of any pose (the benchmark asks it of the truth): with a fresh search of the whole
   // path, not the one made for the estimate.
   const auto places = path_places(region, region_from_base, options_.global.claim_path_search ? search_path_rivals() : std::vector<Hypothesis>{});
+  if (test) *test = lead_of(places, 0);
   // The path fits best somewhere else than the pose (hill climbing can wander off a wrong
   // pose towards a better place): the pose is not what the views say.
   const auto& eo = options_.estimate;
@@ -385,7 +387,7 @@ Unsure Localizer::why_not_distinguishable(int64_t region, const Pose2& region_fr
   if ((refined.translation() - region_from_base.translation()).norm() > eo.converged_xy ||
       std::fabs(normalize_angle(refined.theta() - region_from_base.theta())) > eo.converged_theta_deg * kDeg)
     return Unsure::kPathElsewhere;
-  const double margin = path_margin();
+  const double margin = path_margin(static_cast<double>(views_.size()));
   for (size_t k = 1; k < places.size(); ++k)
     if (places[k].score > places.front().score - margin) return Unsure::kRival;
   return Unsure::kNone;
@@ -401,7 +403,7 @@ Unsure Localizer::claim_check(std::optional<Hypothesis>* elsewhere)
   elsewhere->reset();
   if (!maps_.region(estimate_.region) || views_.empty() || !odom_at_update_) return Unsure::kShortTravel;
   if (last_search_.empty()) return Unsure::kNone;
-  Unsure why = path_verdict(path_places(estimate_.region, estimate_.region_from_base, path_rivals_), elsewhere);
+  Unsure why = path_verdict(path_places(estimate_.region, estimate_.region_from_base, path_rivals_), elsewhere, &claim_test_);
   // Before a claim, every place of the map is asked (path_search.h), not only the scan search's
   // few hundred: at most once per view_spacing of travel (the places found are carried along
   // by odometry and refined on every update until the next search).
@@ -411,47 +413,71 @@ Unsure Localizer::claim_check(std::optional<Hypothesis>* elsewhere)
     path_rivals_ = search_path_rivals();
     path_rivals_travel_ = global_travel_;
     ++stats_.path_searches;
-    why = path_verdict(path_places(estimate_.region, estimate_.region_from_base, path_rivals_), elsewhere);
+    why = path_verdict(path_places(estimate_.region, estimate_.region_from_base, path_rivals_), elsewhere, &claim_test_);
   }
   return why;
 }
 
-Unsure Localizer::path_verdict(const std::vector<Hypothesis>& places, std::optional<Hypothesis>* elsewhere) const
+Unsure Localizer::path_verdict(const std::vector<Hypothesis>& places, std::optional<Hypothesis>* elsewhere, ClaimTest* test) const
 {
   elsewhere->reset();
+  *test = ClaimTest{};
   if (places.empty()) return Unsure::kShortTravel;
   size_t best = 0;
   for (size_t k = 1; k < places.size(); ++k)
     if (places[k].score > places[best].score) best = k;
-  const double margin = path_margin();
-  // With claim_judged_beams, the best place must win by the margin on the beams both maps can
-  // judge (path_score.h BeamFit): a turned copy of the place whose map happens to hold a wall
-  // the true place's map missed must not win on that gap.
-  const auto& g = options_.global;
-  std::vector<PlacedView> views;
-  std::vector<BeamFit> best_fits;
-  const BeamScorer coarse(g.sigma, options_.scan.z_hit, options_.scan.z_rand, options_.scan.max_distance);
-  const auto fits_of = [&](const Hypothesis& h) {
-    return path_beam_fits(maps_, coarse, h.region, h.region_from_base, views, options_.handover_bbox_margin, g.sigma);
-  };
-  if (g.claim_judged_beams) {
-    views = views_.placed(*odom_at_update_);
-    best_fits = fits_of(places[best]);
-  }
-  bool clear = true;
-  for (size_t k = 0; k < places.size() && clear; ++k) {
-    if (k == best || same_place(places[k], places[best])) continue;
-    clear = g.claim_judged_beams ? jointly_judged_difference(best_fits, fits_of(places[k])) >= margin
-                                 : places[k].score <= places[best].score - margin;
-  }
+  *test = lead_of(places, best);
+  const bool clear = test->lead >= test->margin;
   const auto& eo = options_.estimate;
   const Pose2& e = estimate_.region_from_base;
   const Pose2& b = places[best].region_from_base;
   const bool at_estimate = places[best].region == estimate_.region && (b.translation() - e.translation()).norm() <= eo.converged_xy &&
                            std::fabs(normalize_angle(b.theta() - e.theta())) <= eo.converged_theta_deg * kDeg;
+  test->best_is_estimate = best == 0 && at_estimate;
   if (clear && at_estimate) return Unsure::kNone;
   if (clear) *elsewhere = places[best];
   return best == 0 && at_estimate ? Unsure::kRival : Unsure::kPathElsewhere;
+}
+
+ClaimTest Localizer::lead_of(const std::vector<Hypothesis>& places, size_t c) const
+{
+  // With claim_judged_beams, the place must lead by the margin on the beams both maps can
+  // judge (path_score.h BeamFit): a turned copy of the place whose map happens to hold a wall
+  // the true place's map missed must not win on that gap.
+  const auto& g = options_.global;
+  ClaimTest t;
+  t.places = static_cast<int>(places.size());
+  t.views = static_cast<int>(views_.size());
+  t.margin = path_margin(t.views);
+  t.lead = 1e300;
+  const auto views = views_.placed(*odom_at_update_);
+  for (const auto& v : views) t.beams += static_cast<int>(v.points->size());
+  const BeamScorer coarse(g.sigma, options_.scan.z_hit, options_.scan.z_rand, options_.scan.max_distance);
+  const auto fits_of = [&](const Hypothesis& h) {
+    return path_beam_fits(maps_, coarse, h.region, h.region_from_base, views, options_.handover_bbox_margin, g.sigma,
+                          g.judged_through_gateways);
+  };
+  const auto own = g.claim_judged_beams ? fits_of(places[c]) : std::vector<BeamFit>{};
+  for (size_t k = 0; k < places.size(); ++k) {
+    if (k == c || same_place(places[k], places[c])) continue;
+    const double all = places[c].score - places[k].score;
+    const JudgedDifference judged = g.claim_judged_beams ? jointly_judged(own, fits_of(places[k])) : JudgedDifference{all, t.beams};
+    if (judged.log_ratio >= t.lead) continue;
+    t.lead = judged.log_ratio;
+    t.lead_all_beams = all;
+    t.judged_beams = judged.beams;
+    const RegionModel* rc = maps_.region(places[c].region);
+    const RegionModel* rk = maps_.region(places[k].region);
+    if (rc && rk) {
+      const Pose2 pc = rc->map_from_region * places[c].region_from_base, pk = rk->map_from_region * places[k].region_from_base;
+      t.rival_distance = (pc.translation() - pk.translation()).norm();
+      t.rival_turn_deg = normalize_angle(pk.theta() - pc.theta()) / kDeg;
+    }
+    // A rival within the margin decides the test: the rest are not scored (each is a walk of
+    // every beam of the path), so the lead given is then that rival's, not always the weakest.
+    if (t.lead < t.margin) break;
+  }
+  return t;
 }
 
 std::vector<Hypothesis> Localizer::search_path_rivals() const

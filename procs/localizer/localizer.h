@@ -60,6 +60,23 @@ enum class Unsure
 };
 const char* to_string(Unsure u);
 
+// The numbers of the newest claim test (Localizer::claim_test): how far the place the views of
+// the path single out leads its closest rival, against what it must lead by. For diagnostics
+// and the benchmark's trace.
+struct ClaimTest
+{
+  int places = 0;               // places compared (the estimate refined, then its rivals)
+  bool best_is_estimate = false;
+  double lead = 0;              // the best place's lead over its closest rival (log-likelihood, coarse model) ...
+  double margin = 0;            // ... what it had to be
+  double lead_all_beams = 0;    // that lead counted on every beam
+  int judged_beams = 0;         // beams the lead counted (all of them without claim_judged_beams)
+  int beams = 0;                // beams of the path's views
+  int views = 0;
+  double rival_distance = 0;    // [m] from the best place to that rival, map frame
+  double rival_turn_deg = 0;
+};
+
 struct Particle
 {
   int64_t region = 0;
@@ -148,9 +165,11 @@ class Localizer
   {
     return why_not_distinguishable(region, region_from_base) == Unsure::kNone;
   }
-  // What keeps the pose from being distinguishable (kNone if it is).
-  Unsure why_not_distinguishable(int64_t region, const geometry::Pose2& region_from_base) const;
+  // What keeps the pose from being distinguishable (kNone if it is). `test`, if given: the
+  // pose's lead over its rivals as the claim test counts it (claim_test).
+  Unsure why_not_distinguishable(int64_t region, const geometry::Pose2& region_from_base, ClaimTest* test = nullptr) const;
   Unsure unsure() const { return unsure_; }
+  const ClaimTest& claim_test() const { return claim_test_; }
   // Set when a kidnap was flagged since the last call.
   bool take_kidnap_flag();
   std::vector<GatewayPassed> take_gateway_events();
@@ -177,12 +196,16 @@ class Localizer
   // The best distinct places of a search of every place and heading on the views of the path.
   std::vector<Hypothesis> search_path_rivals() const;
   bool same_place(const Hypothesis& a, const Hypothesis& b) const;
-  double path_margin() const;
+  // What the best place must lead by on the evidence of this many views.
+  double path_margin(double views) const;
   // Why the estimate cannot be claimed yet (kNone: it can); `elsewhere` is set to the place the
   // path singles out when that is not the estimate.
   Unsure claim_check(std::optional<Hypothesis>* elsewhere);
   // The same for given places (path_places: the estimate first).
-  Unsure path_verdict(const std::vector<Hypothesis>& places, std::optional<Hypothesis>* elsewhere) const;
+  Unsure path_verdict(const std::vector<Hypothesis>& places, std::optional<Hypothesis>* elsewhere, ClaimTest* test) const;
+  // How far places[c] leads every other distinct place: the weakest of those leads (or the first
+  // below the margin), on the beams both maps can judge (all beams without claim_judged_beams).
+  ClaimTest lead_of(const std::vector<Hypothesis>& places, size_t c) const;
   // Half the cloud replaced by particles around `place` (the lightest go).
   void inject_at(const Hypothesis& place);
   // The estimate moved farther than odometry says the robot did since the update before.
@@ -198,6 +221,7 @@ class Localizer
   std::mt19937_64 rng_;
   Mode mode_ = Mode::kNoMap;
   Unsure unsure_ = Unsure::kNone;
+  ClaimTest claim_test_;                  // of the newest claim_check
   std::vector<Particle> particles_;
   Estimate estimate_;
   LocalizerStats stats_;

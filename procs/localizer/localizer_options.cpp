@@ -87,6 +87,7 @@ LocalizerNodeOptions load_localizer_options(const config::Config& root, const co
   g.view_path_length = gl.number("view_path_length_m", g.view_path_length, 0.0, 100.0);
   g.claim_path_search = gl.boolean("claim_path_search", g.claim_path_search);
   g.claim_judged_beams = gl.boolean("claim_judged_beams", g.claim_judged_beams);
+  g.judged_through_gateways = gl.boolean("judged_through_gateways", g.judged_through_gateways);
   g.path_search_places = static_cast<int>(gl.integer("path_search_places", g.path_search_places, 1, 1000));
 
   const auto re = root.section("recovery");

@@ -77,6 +77,11 @@ struct GlobalOptions
   // ... and it must win on the beams both places' maps can judge (near a line or in the freespace
   // their scans carved), not on a wall one map lacks (false: on all beams).
   bool claim_judged_beams = true;
+  // A beam is judged in the freespace of the stacked map: the region's and, outside the region's
+  // own rectangle, its neighbours' beyond the gateways, where the field stacks their lines
+  // (false: the region's own freespace only). Off: more right claims, but more wrong ones on a
+  // floor of turned copies (procs/localizer/README.md).
+  bool judged_through_gateways = false;
 };
 
 struct RecoveryOptions

@@ -50,13 +50,44 @@ double path_score(const RegionMaps& maps, const BeamScorer& scorer, int64_t regi
 
 namespace {
 
+// The freespace a beam is judged in: the region's own, and with `through_gateways` its
+// neighbours' beyond the gateways too, where the stacked field holds their lines: outside the
+// region's own rectangle (region_maps.cpp; inside it the region's own lines are the authority,
+// and a neighbour's freespace there would judge beams against walls the field left out).
+// `last` remembers the neighbour the walk was in, which most often holds the next step.
+struct StackedFreespace
+{
+  const RegionMaps& maps;
+  const RegionModel& m;
+  bool through_gateways;
+  mutable const RegionLink* last = nullptr;
+
+  bool is_free(const Eigen::Vector2d& p) const
+  {
+    if (m.is_free(p)) return true;
+    if (!through_gateways || m.in_bbox(p, 0.0)) return false;
+    const auto neighbour_free = [&](const RegionLink& l) {
+      const RegionModel* n = maps.region(l.to);
+      return n && n->is_free(l.here_from_there.inverse() * p);
+    };
+    if (last && neighbour_free(*last)) return true;
+    for (const auto& l : m.links)
+      if (&l != last && neighbour_free(l)) {
+        last = &l;
+        return true;
+      }
+    return false;
+  }
+};
+
 // Whether the map judges a beam from `from` that ends at `to` (no line near its end). The map
 // says "no wall there" only when its carved freespace goes on past the end (a beam end falls in
 // the free cell in front of any wall: the scans carve up to their own end points); it says
 // "the beam should have stopped" when the beam leaves the freespace earlier where a line is. A
 // beam that meets the end of the freespace where no line is has run into what the map's lines
 // do not hold: unjudged.
-bool judged_ray(const RegionModel& m, const Eigen::Vector2d& from, const Eigen::Vector2d& to, double near_line)
+bool judged_ray(const RegionModel& m, const StackedFreespace& free, const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                double near_line)
 {
   const double length = (to - from).norm();
   const double cell = m.freespace.resolution(), step = 0.5 * cell;
@@ -64,7 +95,7 @@ bool judged_ray(const RegionModel& m, const Eigen::Vector2d& from, const Eigen::
   const Eigen::Vector2d dir = (to - from) / length;
   for (double t = step; t <= length + 1.5 * cell; t += step) {
     const Eigen::Vector2d p = from + t * dir;
-    if (m.is_free(p)) continue;
+    if (free.is_free(p)) continue;
     return t < length - cell && m.field.distance(p) <= near_line;
   }
   return true;
@@ -73,7 +104,7 @@ bool judged_ray(const RegionModel& m, const Eigen::Vector2d& from, const Eigen::
 }  // namespace
 
 std::vector<BeamFit> path_beam_fits(const RegionMaps& maps, const BeamScorer& scorer, int64_t region, const Pose2& region_from_base,
-                                    const std::vector<PlacedView>& views, double bbox_margin, double near_line)
+                                    const std::vector<PlacedView>& views, double bbox_margin, double near_line, bool through_gateways)
 {
   std::vector<BeamFit> out;
   for (const auto& v : views) {
@@ -81,10 +112,11 @@ std::vector<BeamFit> path_beam_fits(const RegionMaps& maps, const BeamScorer& sc
     for (const auto& p : *v.points) {
       BeamFit f;
       if (m) {
+        const StackedFreespace free{maps, *m, through_gateways};
         const Eigen::Vector2d q = pose * p;
         const float d = m->field.distance(q);
         f.log_p = scorer.log_p(d);
-        f.known = d <= near_line || judged_ray(*m, pose.translation(), q, near_line);
+        f.known = d <= near_line || judged_ray(*m, free, pose.translation(), q, near_line);
       } else {
         f.log_p = scorer.floor();
       }
@@ -94,11 +126,14 @@ std::vector<BeamFit> path_beam_fits(const RegionMaps& maps, const BeamScorer& sc
   return out;
 }
 
-double jointly_judged_difference(const std::vector<BeamFit>& a, const std::vector<BeamFit>& b)
+JudgedDifference jointly_judged(const std::vector<BeamFit>& a, const std::vector<BeamFit>& b)
 {
-  double d = 0;
+  JudgedDifference d;
   for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
-    if (a[i].known && b[i].known) d += a[i].log_p - b[i].log_p;
+    if (a[i].known && b[i].known) {
+      d.log_ratio += a[i].log_p - b[i].log_p;
+      ++d.beams;
+    }
   return d;
 }
 

@@ -45,14 +45,26 @@ struct BeamFit
 };
 
 // Every beam of the views at the pose (as path_score), in view order. `near_line`: [m] a beam
-// end this close to a line counts as judged by the map.
+// end this close to a line counts as judged by the map. `through_gateways`: the freespace a beam
+// is judged in is the stacked map's, the region's and its neighbours' beyond the gateways (as
+// the field stacks their lines); false: the region's own (a beam through a doorway is then
+// unjudged unless it ends near a line).
 std::vector<BeamFit> path_beam_fits(const RegionMaps& maps, const BeamScorer& scorer, int64_t region,
                                     const geometry::Pose2& region_from_base, const std::vector<PlacedView>& views,
-                                    double bbox_margin, double near_line);
+                                    double bbox_margin, double near_line, bool through_gateways = false);
 
 // How much better the beams fit at `a` than at `b` (sum of log p differences, equal-length
 // lists of the same beams), over the beams both maps can judge: evidence that the two maps
-// themselves tell apart, not a gap in one of them.
-double jointly_judged_difference(const std::vector<BeamFit>& a, const std::vector<BeamFit>& b);
+// themselves tell apart, not a gap in one of them. `beams`: how many beams that sum counted.
+struct JudgedDifference
+{
+  double log_ratio = 0;
+  int beams = 0;
+};
+JudgedDifference jointly_judged(const std::vector<BeamFit>& a, const std::vector<BeamFit>& b);
+inline double jointly_judged_difference(const std::vector<BeamFit>& a, const std::vector<BeamFit>& b)
+{
+  return jointly_judged(a, b).log_ratio;
+}
 
 }  // namespace rgnav::localizer

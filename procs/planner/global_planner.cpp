@@ -142,6 +142,7 @@ const RegionPlanner* GlobalPlanner::region_planner(int64_t region)
       if (map_.resolve(b.region) == region) blocked.push_back(b.point);
     p = std::make_unique<RegionPlanner>(*map_.region(region), options_.grid, neighbours(region), gateways, blocked);
     planner_utime_[region] = newest_utime(region);
+    if (progress_) progress_();
   }
   return p.get();
 }
@@ -209,6 +210,7 @@ const std::optional<RegionPath>& GlobalPlanner::region_path(const Arc& arc, int 
   const PathKey key{arc.region, a, b};
   auto it = cache.find(key);
   if (it == cache.end()) {
+    if (progress_) progress_();
     const auto t0 = std::chrono::steady_clock::now();
     const RegionPlanner* rp = region_planner(arc.region);
     std::optional<RegionPath> path;

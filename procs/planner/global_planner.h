@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -86,6 +87,9 @@ class GlobalPlanner
 
   // The region planner of a live region (built on first use); nullptr for an unknown region.
   const RegionPlanner* region_planner(int64_t region);
+  // Called after each region planner built and each path searched within a region: a plan on a
+  // large map takes seconds on a loaded host, during which a process shows that it is alive.
+  void set_progress(std::function<void()> progress) { progress_ = std::move(progress); }
   // The robot at p in `region` cut off from its free space there, but standing in the main free
   // space of a neighbour across a gateway within reach: that region and p in its frame.
   std::optional<std::pair<int64_t, Eigen::Vector2d>> start_beside(int64_t region, const Eigen::Vector2d& p);
@@ -161,6 +165,7 @@ class GlobalPlanner
   std::vector<Arc> arcs_;                                            // between graph nodes
   std::map<int64_t, std::vector<int>> nodes_of_region_;
   std::map<int64_t, std::unique_ptr<RegionPlanner>> planners_;      // per live region
+  std::function<void()> progress_;                                   // set_progress
   std::map<int64_t, int64_t> planner_utime_;                         // region utime they were built from
   std::map<PathKey, std::optional<RegionPath>> paths_;               // between graph nodes, this map version
   struct BlockedPlace { int64_t region; Eigen::Vector2d point; double until_s; };

@@ -73,6 +73,8 @@ PlannerNode::PlannerNode(runtime::Node& node, PlannerNodeConfig config, PlannerF
       planner_(config_.options.planner),
       poses_(config_.pose)
 {
+  // Planning on a large map takes seconds on a loaded host: the supervisor sees it progressing.
+  planner_.global().set_progress([this] { node_.note_progress(); });
   if (!files_.state_file.empty()) restore();
   if (!files_.map.empty()) {
     take_map(rgmap::load_map_flag(files_.map), files_.map);

@@ -408,6 +408,7 @@ void RgKernel::restore_state(persist::ByteReader& r)
   // All read and checked: commit.
   map_ = std::move(map);
   builders_ = std::move(builders);
+  for (auto& [id, b] : builders_) b.set_progress(progress_);
   region_of_scan_ = std::move(region_of_scan);
   scan_inputs_ = std::move(inputs);
   entered_utime_ = std::move(entered);

@@ -202,6 +202,7 @@ void RegionBuilder::see_through_all() const
   if (options_.seen_through_margin <= 0) return;
   const double margin = options_.seen_through_margin;
   for (const auto& [id, s] : scans_) {
+    note_progress();
     const SeenScan& mine = seen_scan(s);
     auto& flags = seen_through_[id];
     flags.assign(mine.points.size(), 0);
@@ -291,9 +292,15 @@ void RegionBuilder::refresh() const
   hi_ = -lo_;
   // All the free space first, so that what moved is known wherever it was seen empty, at any time;
   // and every point any other scan saw through.
-  for (const auto& [id, s] : scans_) carve(s);
+  for (const auto& [id, s] : scans_) {
+    note_progress();
+    carve(s);
+  }
   if (!seen_through_valid_) see_through_all();
-  for (const auto& [id, s] : scans_) add_lines(s);
+  for (const auto& [id, s] : scans_) {
+    note_progress();
+    add_lines(s);
+  }
   stale_ = false;
   holds_seen_through_ = false;
   scans_at_rebuild_ = scans_.size();
@@ -370,6 +377,7 @@ void RegionBuilder::describe(rgmap::Region* region, const GatewayLines& gateway_
   const bool filter = std::any_of(scans_.begin(), scans_.end(), [&](const auto& kv) { return !on_foreign_side(kv.second); });
   std::vector<Cell> origins;   // of the scans carved: where the region's own space is (freespace_trim.h)
   for (const auto& [id, s] : scans_) {
+    note_progress();
     if (filter && on_foreign_side(s)) continue;
     const Vector2d o = s.region_from_laser.translation();
     origins.emplace_back(cell_index(o.x(), res), cell_index(o.y(), res));

@@ -108,6 +108,10 @@ class RegionBuilder
                 const std::vector<ForeignSide>& foreign = {}) const;
   // Gateways of the region known when later scans are carved (beams crossing them are skipped).
   void set_gateway_lines(GatewayLines lines) { gateway_lines_ = std::move(lines); }
+  // Called once per scan while the whole region is worked through again (a rebuild of the line
+  // map, an exact description): seconds for a large region on a loaded core, during which a
+  // process shows that it is alive (RgKernel::set_progress).
+  void set_progress(std::function<void()> progress) { progress_ = std::move(progress); }
   // Another region's scan (its laser pose in this region's frame, points in its laser frame): the
   // points of this region it sees through are left out of the line map too (seen_through_margin),
   // as a walker seen last before a gateway is seen through from beyond it. True if any was not
@@ -145,10 +149,15 @@ class RegionBuilder
   void rebuild_if_seen_through(bool exact) const;
   void refresh() const;
   void fill_objects(rgmap::Region* region) const;
+  void note_progress() const
+  {
+    if (progress_) progress_();
+  }
   void fill_region(rgmap::Region* region, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
                    const std::vector<std::pair<int32_t, int32_t>>& cells) const;
 
   const RegionBuildOptions options_;
+  std::function<void()> progress_;        // set_progress
   std::map<int64_t, StoredScan> scans_;   // by scan id: deterministic order
   GatewayLines gateway_lines_;
   // Caches derived from scans_, rebuilt lazily after corrections.

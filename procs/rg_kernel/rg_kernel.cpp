@@ -30,9 +30,15 @@ StoredScan RgKernel::to_stored(const ScanInput& s, int64_t region_id) const
 int64_t RgKernel::open_region(const geometry::Pose2& map_from_region, int64_t utime)
 {
   Region& r = map_.add_region(map_from_region, utime);
-  builders_.emplace(r.id, RegionBuilder(options_.build));
+  builders_.emplace(r.id, RegionBuilder(options_.build)).first->second.set_progress(progress_);
   spdlog::info("opened region {}", r.id);
   return r.id;
+}
+
+void RgKernel::set_progress(std::function<void()> progress)
+{
+  progress_ = std::move(progress);
+  for (auto& [id, b] : builders_) b.set_progress(progress_);
 }
 
 void RgKernel::enter(int64_t region_id, int64_t utime, const Vector2d& robot)

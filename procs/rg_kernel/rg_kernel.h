@@ -165,7 +165,8 @@ class RgKernel
   // Called between the steps of a gateway traversal (finalising the region left, looking for
   // the known region beyond), each up to a few hundred ms on a loaded core, so that a process
   // can show it is alive meanwhile (the demo's supervisor once took the kernel for hung there).
-  void set_progress(std::function<void()> progress) { progress_ = std::move(progress); }
+  // The regions' builders call it too, once per scan, while they work through a whole region.
+  void set_progress(std::function<void()> progress);
   size_t stale_regions() const { return dirty_.size(); }
   // Same, computed from scratch for every region (tests, offline tools).
   rgmap::RgMap described_map() const;

@@ -101,6 +101,7 @@ class RgDriver final : public ExploreDriver
     if (ended || t - last_step_s_ >= kStepPeriod) {
       last_step_s_ = t;
       const explorer::Command c = explorer_.step(v.utime);
+      if (trace_) trace_stack_changes(t);
       if (c.cancel) planner_.cancel(c.cancel_goal_id, v.utime);
       if (c.goal) {
         const auto& g = *c.goal;
@@ -175,12 +176,40 @@ class RgDriver final : public ExploreDriver
       if (e.state == explorer::StackEntry::State::kSetAside)
         aside.push_back({{"id", e.id}, {"crossing", {e.crossing.x(), e.crossing.y()}}, {"reason", e.reason}, {"attempts", e.attempts}});
     j["set_aside"] = aside;
+    // Traced runs keep the whole stack (every entry's state and reason) for a look afterwards.
+    if (trace_) j["stack"] = explorer_.stack().to_json();
     return j;
   }
 
   void set_trace(bool on) { trace_ = on; }
 
  private:
+  // The trace: each stack entry that changed state since the last step, with its reason and the
+  // regions (and their states) that hold the places beyond it as free.
+  void trace_stack_changes(double t)
+  {
+    for (const auto& e : explorer_.stack().entries()) {
+      const auto it = traced_states_.find(e.id);
+      if (it != traced_states_.end() && it->second == e.state) continue;
+      traced_states_[e.id] = e.state;
+      std::cerr << std::fixed << std::setprecision(2) << "  stack t=" << t << " entry " << e.id << " class "
+                << static_cast<int>(e.cls) << " at (" << e.crossing.x() << ", " << e.crossing.y() << ") heading "
+                << e.heading << " -> " << static_cast<int>(e.state) << " " << e.reason;
+      if (map_) {
+        for (const double k : {1.0, 2.0}) {
+          std::cerr << " | beyond " << k << ":";
+          for (const auto& [id, r] : map_->regions())
+            if (r.state != rgmap::Region::State::kMerged && r.freespace.width() > 0 &&
+                r.freespace.is_free(r.map_from_region.inverse() * e.beyond(k)))
+              std::cerr << " r" << id << "/" << static_cast<int>(r.state);
+        }
+        std::cerr << " | current r" << map_->current_region;
+      }
+      std::cerr << "\n";
+    }
+  }
+  std::map<int64_t, explorer::StackEntry::State> traced_states_;
+
   // EXPLORE_DUMP_NO_PATH=DIR: every goal the planner found no path for, with the map and the
   // robot's pose it planned on, as DIR/no_path_<n>.json (tests/eval/plan: rgnav_plan_replay).
   void dump_no_path(int64_t goal_id, const std::string& reason)

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <sstream>
 
 #include "bench_stats.h"
 #include "carmen_drive.h"
@@ -32,6 +33,9 @@ nlohmann::json run_tracking(const BenchWorld& w, localizer::Localizer& loc, Tria
   std::vector<sim::Vec2> route;
   for (int lap = 0; lap < laps; ++lap) route.insert(route.end(), w.tour.begin() + (lap == 0 ? 0 : 1), w.tour.end());
   auto d = ctx.drive(route, 3600.0 * laps, Pose2());
+  // LOCALIZE_SKIP_TRACKING=1: not driven (its random numbers drawn as in a full run), to study
+  // a few global trials or kidnaps sooner.
+  if (const char* skip = std::getenv("LOCALIZE_SKIP_TRACKING"); skip && std::string(skip) == "1") return nlohmann::json::object();
   CarmenDrive mrpt(w.dir + "/mrpt/track", ctx.loc.base_from_laser, ctx.mrpt_scan_every);
   const Pose2 start(route[0], d.start_heading);
   const int64_t r0 = w.frames.region_at(start);
@@ -116,11 +120,12 @@ namespace {
 // Global localization counts when right (and staying so) from some time up to this on.
 constexpr double kGlobalDeadlineS = 10.0;
 
-// LOCALIZE_GLOBAL_TRIALS="world:trial ..." drives only those global trials (the others still
-// draw their random start, so a trial starts where it does in a full run): to study a few.
-bool global_trial_wanted(const std::string& world, int trial)
+// LOCALIZE_GLOBAL_TRIALS="world:trial ..." drives only those global trials, LOCALIZE_KIDNAP_TRIALS
+// only those kidnaps ("none": none); the others still draw their random starts, so a trial
+// starts where it does in a full run: to study a few.
+bool trial_wanted(const char* variable, const std::string& world, int trial)
 {
-  const char* only = std::getenv("LOCALIZE_GLOBAL_TRIALS");
+  const char* only = std::getenv(variable);
   if (!only || !*only) return true;
   return (" " + std::string(only) + " ").find(" " + world + ":" + std::to_string(trial) + " ") != std::string::npos;
 }
@@ -130,6 +135,15 @@ std::string unsure_counts(const std::map<localizer::Unsure, int>& counts)
   std::string s;
   for (const auto& [why, n] : counts) s += std::string(" [") + localizer::to_string(why) + "] " + std::to_string(n);
   return s;
+}
+
+std::string claim_test_text(const localizer::ClaimTest& t)
+{
+  std::ostringstream o;
+  o << "{lead " << t.lead << " margin " << t.margin << " all_beams " << t.lead_all_beams << " judged " << t.judged_beams << "/"
+    << t.beams << " views " << t.views << " places " << t.places << " best_is_estimate " << t.best_is_estimate << " rival "
+    << t.rival_distance << " m " << t.rival_turn_deg << " deg}";
+  return o.str();
 }
 
 }  // namespace
@@ -146,7 +160,7 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
     const auto [k, s] = random_tour_point(w.tour, ctx.rng);
     const auto route = route_from(w.tour, k, s, 40.0);
     auto d = ctx.drive(route, 30.0, Pose2());
-    if (!global_trial_wanted(w.name, trial)) continue;
+    if (!trial_wanted("LOCALIZE_GLOBAL_TRIALS", w.name, trial)) continue;
     ++driven;
     loc.start_global();
     std::unique_ptr<CarmenDrive> mrpt;
@@ -159,6 +173,9 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
     // At the deadline (global_outcome.h): unclaimed? the truth distinguishable? the estimate right?
     bool deadline_seen = false;
     GlobalTrialEnd end;
+    // Unclaimed at the deadline (trace): the claim test of the estimate and the truth's lead.
+    localizer::ClaimTest claim_test, truth_test;
+    localizer::Unsure unsure_at_deadline = localizer::Unsure::kNone;
     const auto res = run_drive(
         w.world, ctx.sim, d,
         [&](const DriveStep& st) {
@@ -186,7 +203,9 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
             end.estimate_good_at_deadline = loc.estimate().valid && e.good();
             if (end.unclaimed_at_deadline) {
               const int64_t r = w.frames.region_at(st.world_from_base, loc.estimate().region);
-              end.truth_at_deadline = r ? loc.why_not_distinguishable(r, w.frames.in_region(r, st.world_from_base)) : localizer::Unsure::kShortTravel;
+              end.truth_at_deadline = r ? loc.why_not_distinguishable(r, w.frames.in_region(r, st.world_from_base), &truth_test) : localizer::Unsure::kShortTravel;
+              claim_test = loc.claim_test();
+              unsure_at_deadline = loc.unsure();
             }
           }
           last_error = e;
@@ -219,7 +238,11 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
                 << " share " << loc.estimate().cluster_share << " inliers " << loc.estimate().inlier_ratio << " region "
                 << loc.estimate().region << " fit " << (w.frames.fit_rmse.count(loc.estimate().region) ? w.frames.fit_rmse.at(loc.estimate().region) : NAN) << " start " << route[0].x()
                 << " " << route[0].y() << " unsure" << unsure_counts(unsure) << " class " << why << " truth_at_deadline "
-                << localizer::to_string(end.truth_at_deadline) << "\n";
+                << localizer::to_string(end.truth_at_deadline);
+    if (std::getenv("LOCALIZE_TRACE") && end.unclaimed_at_deadline)
+      std::cerr << " deadline [" << localizer::to_string(unsure_at_deadline) << "] claim_test " << claim_test_text(claim_test)
+                << " truth_test " << claim_test_text(truth_test);
+    if (std::getenv("LOCALIZE_TRACE")) std::cerr << "\n";
     if (settle.good_now) {
       times.push_back(settle.first_good_after);
       travels.push_back(settle.distance_at);
@@ -257,6 +280,7 @@ nlohmann::json run_global(const BenchWorld& w, localizer::Localizer& loc, TrialC
 nlohmann::json run_kidnaps(const BenchWorld& w, localizer::Localizer& loc, TrialContext& ctx, int trials, Totals& totals)
 {
   int ok = 0, flagged = 0;
+  int driven = 0;   // kidnaps driven (all but when LOCALIZE_KIDNAP_TRIALS picks a few)
   std::vector<double> flags, recovers;
   for (int trial = 0; trial < trials; ++trial) {
     const auto [k, s] = random_tour_point(w.tour, ctx.rng);
@@ -268,8 +292,6 @@ nlohmann::json run_kidnaps(const BenchWorld& w, localizer::Localizer& loc, Trial
       --trial;
       continue;
     }
-    const auto a = run_drive(w.world, ctx.sim, d, [&](const DriveStep& st) { loc.update(st.scan, st.odom_from_base); });
-    loc.take_kidnap_flag();
     // Somewhere at least 5 m away.
     std::vector<sim::Vec2> route_b;
     for (int attempt = 0; attempt < 50; ++attempt) {
@@ -277,6 +299,13 @@ nlohmann::json run_kidnaps(const BenchWorld& w, localizer::Localizer& loc, Trial
       route_b = route_from(w.tour, kb, sb, 40.0);
       if ((route_b[0] - route.back()).norm() >= 5.0) break;
     }
+    if (!trial_wanted("LOCALIZE_KIDNAP_TRIALS", w.name, trial)) {
+      ctx.drive(route_b, 40.0, Pose2());   // its random numbers drawn as in a full run
+      continue;
+    }
+    ++driven;
+    const auto a = run_drive(w.world, ctx.sim, d, [&](const DriveStep& st) { loc.update(st.scan, st.odom_from_base); });
+    loc.take_kidnap_flag();
     ctx.utime = a.end_utime + 100'000;
     auto db = ctx.drive(route_b, 40.0, a.end_odom);
     Settling settle;
@@ -305,13 +334,13 @@ nlohmann::json run_kidnaps(const BenchWorld& w, localizer::Localizer& loc, Trial
     if (settle.good_now) recovers.push_back(settle.first_good_after);
   }
   nlohmann::json kj;
-  kj["trials"] = trials;
+  kj["trials"] = driven;
   kj["flagged"] = flagged;
   kj["flag_s_p50"] = number_or_null(percentile(flags, 0.5));
-  kj["recovered_ratio"] = trials ? static_cast<double>(ok) / trials : 0.0;
+  kj["recovered_ratio"] = driven ? static_cast<double>(ok) / driven : 0.0;
   kj["recover_s_p50"] = number_or_null(percentile(recovers, 0.5));
   totals.kidnap_ok += ok;
-  totals.kidnap_n += trials;
+  totals.kidnap_n += driven;
   totals.flag_time.insert(totals.flag_time.end(), flags.begin(), flags.end());
   totals.recover_time.insert(totals.recover_time.end(), recovers.begin(), recovers.end());
   return kj;

@@ -124,6 +124,19 @@ TEST(LocalMap, GridPointsAndScanCount)
   EXPECT_NEAR(map.clearance({0.0, 0.0}, 1.0), 0.4, 1e-9);
 }
 
+// A loaded vision delivers its grid seconds after the frame: a map still, until a newer one
+// comes, for at most the memory time.
+TEST(LocalMap, ALateGridHoldsUntilTheMemoryTime)
+{
+  LocalMapOptions o;
+  LocalMap map(o);
+  map.set_grid_points(time::from_utime(1'000'000), {{0.0, -0.4}});
+  map.rebuild(time::from_utime(1'000'000 + static_cast<int64_t>((o.max_age + 2.0) * 1e6)));
+  EXPECT_EQ(map.size(), 1u) << "older than max_age: still the newest grid";
+  map.rebuild(time::from_utime(1'000'000 + static_cast<int64_t>((o.memory + 0.5) * 1e6)));
+  EXPECT_EQ(map.size(), 0u) << "older than the memory time: gone";
+}
+
 
 // A scan from a robot at `pose` seeing one obstacle point `hit` (base frame) and free space
 // out to 4 m elsewhere, over a 180 degree field of view.

@@ -111,14 +111,21 @@ GatewaySighting sighting(const V& at, double heading)
   return s;
 }
 
+// The closed hallway (the current region, where the robot started) and a room north of it
+// ([0, 6] x [5, 7], the id returned), joined by a traversed door.
+std::pair<std::shared_ptr<rgmap::RgMap>, int64_t> hallway_and_room()
+{
+  auto map = hallway(true);
+  const int64_t room = add_region(map.get(), V(0, 5), V(6, 7), {}).id;
+  rgmap::Gateway& g = map->add_gateway(rgmap::GatewayClass::kDoor, map->current_region, kUtime);
+  map->connect(g.id, room, Pose2(0, 5, 0));
+  return {map, room};
+}
+
 TEST(GatewayStack, BreadthFirstThenNearestAndDoneWhenPassed)
 {
-  // Two regions joined by a traversed gateway: region 1 (start) and region 2.
-  auto map = hallway(true);
+  const auto [map, r2] = hallway_and_room();
   const int64_t r1 = map->current_region;
-  const int64_t r2 = add_region(map.get(), V(0, 5), V(6, 7), {}).id;
-  rgmap::Gateway& g = map->add_gateway(rgmap::GatewayClass::kDoor, r1, kUtime);
-  map->connect(g.id, r2, Pose2(0, 5, 0));
 
   GatewayStack stack;
   stack.add(sighting(V(5, 6.5), M_PI / 2), r2, kUtime, *map);    // near the robot, one hop away
@@ -155,6 +162,69 @@ TEST(GatewayStack, BreadthFirstThenNearestAndDoneWhenPassed)
   nlohmann::json bad = stack.to_json();
   bad["entries"][0]["state"] = "maybe";
   EXPECT_THROW(copy.from_json(bad), std::invalid_argument);
+}
+
+// The open region's freespace takes in all the laser saw from it, a crossing's branches the robot
+// has not gone through too; it ends at the crossing once the region is finalised. Only the space
+// of a region the robot has left says that what lies beyond a gateway was seen.
+TEST(GatewayStack, SpaceOfTheOpenRegionIsNotSeenBeyond)
+{
+  auto map = hallway(false);
+  const int64_t r1 = map->current_region;
+  GatewayStack stack;
+  stack.add(sighting(V(10, 0.9), 0.0), r1, kUtime, *map);   // east, past the hallway's open end
+  ASSERT_EQ(stack.entries().size(), 1u);
+  rgmap::Region& beyond = add_region(map.get(), V(6, 0), V(14, 1.8), {});   // open: the robot in it
+  EXPECT_EQ(stack.update(V(3, 0.9), *map), 0) << "provisional space of the open region";
+  beyond.state = rgmap::Region::State::kFinalised;
+  EXPECT_EQ(stack.update(V(3, 0.9), *map), 1) << "the region left: seen beyond";
+  EXPECT_EQ(stack.entries()[0].reason, "seen beyond");
+}
+
+// A gateway that failed and is due again waits behind every one never tried, however near the
+// start it lies: else a gap the robot cannot pass, due again whenever the map grows, holds back
+// the gateways seen since.
+TEST(GatewayStack, FailedEntriesComeAfterUntriedOnes)
+{
+  const auto [map, r2] = hallway_and_room();
+  const int64_t r1 = map->current_region;
+  GatewayStack stack;
+  stack.add(sighting(V(1, 1.8), M_PI / 2), r1, kUtime, *map);    // in the start region
+  stack.add(sighting(V(5, 6.5), M_PI / 2), r2, kUtime, *map);    // one hop away
+  const V robot(1, 1);
+  auto order = stack.order(*map, r1, robot, kUtime);
+  ASSERT_EQ(order.size(), 2u);
+  const int64_t start_id = order[0]->id, far_id = order[1]->id;
+  EXPECT_EQ(order[0]->region_id, r1);
+  stack.failed(start_id, "no progress", kUtime, kUtime + 60 * kSecond, 3, 2, {});
+  order = stack.order(*map, r1, robot, kUtime + 61 * kSecond);
+  ASSERT_EQ(order.size(), 2u) << "due again";
+  EXPECT_EQ(order[0]->id, far_id) << "the untried gateway first";
+  EXPECT_EQ(order[1]->id, start_id);
+}
+
+// A robot turning through a crossing from one branch into another is past the crossing's middle
+// along the branches it did not take, by as much as the detector's estimate of the middle is off:
+// those stay on the stack until it stands past their goals; a door is through a step past its line.
+TEST(GatewayStack, ACrossingsBranchIsTakenOnlyPastItsGoal)
+{
+  auto map = hallway(true);
+  const int64_t r1 = map->current_region;
+  GatewaySighting crossing = sighting(V(10, 0.9), 0.0);   // east, out of the hallway's known end
+  crossing.cls = rgmap::GatewayClass::kXCrossing;
+  crossing.headings = {0.0, M_PI / 2};                     // east and north
+  GatewayStack stack;
+  stack.add(crossing, r1, kUtime, *map);
+  ASSERT_EQ(stack.entries().size(), 2u);
+  // Turning from the west into the north branch, a little east of the middle.
+  EXPECT_EQ(stack.update(V(10.5, 1.2), *map), 0) << "half a metre east of the middle is still the crossing";
+  EXPECT_EQ(stack.update(V(10.5, 2.5), *map), 1) << "past the north goal: the north branch is taken";
+  EXPECT_EQ(stack.entries()[1].state, StackEntry::State::kDone);
+  EXPECT_EQ(stack.entries()[0].state, StackEntry::State::kPending) << "the east branch is still to be explored";
+
+  GatewayStack doors;
+  doors.add(sighting(V(10, 0.9), 0.0), r1, kUtime, *map);
+  EXPECT_EQ(doors.update(V(10.5, 1.0), *map), 1) << "a step past a door's line is through it";
 }
 
 TEST(PlaceView, CountsFreeSpaceAndWallNearThePlace)

@@ -171,6 +171,30 @@ TEST(PathScore, AViewIsScoredInTheRegionHoldingItsPlace)
   EXPECT_LT(path_score(maps, scorer, w.room_b, in_region(w, w.room_b, Pose2(6.0, 0.9, 0.0)), views, 0.3), truth - 5.0);
 }
 
+// A beam from room_a through the door that ends in the middle of room_b, far from any line:
+// room_b's scans carved that spot free, so the stacked map (room_a's lines and room_b's beyond
+// the door) says "no wall there" and judges the beam. Judged in room_a's own freespace only, the
+// beam leaves it at the door, where no line is, and would count as unjudged: a look-alike place
+// whose map has a wall there could not be told apart on it.
+TEST(PathScore, ABeamThroughAGatewayIsJudgedInTheNeighboursFreespace)
+{
+  const auto w = testing::two_room_world();
+  RegionMaps maps;
+  maps.set_map(w.map);
+  const BeamScorer scorer(0.2, 0.9, 0.1, 1.0);
+  const Pose2 here(2.0, 1.5, 0.0);   // room_a (its frame = the map frame), facing the door
+  const std::vector<Vector2d> through_door{Vector2d(4.5, 0.0)};   // ends at map (6.5, 1.5), 1.5 m from room_b's walls
+  const std::vector<Vector2d> at_wall{Vector2d(0.0, 1.5)};        // ends on room_a's top wall
+  for (const bool stacked : {true, false}) {
+    SCOPED_TRACE(stacked ? "stacked freespace" : "own freespace");
+    const auto fits = [&](const std::vector<Vector2d>& points) {
+      return path_beam_fits(maps, scorer, w.room_a, here, {{Pose2(), &points}}, 0.3, 0.2, stacked);
+    };
+    EXPECT_EQ(fits(through_door).front().known, stacked);
+    EXPECT_TRUE(fits(at_wall).front().known);   // near a line: judged either way
+  }
+}
+
 TEST(Localizer, FindsItselfFromAnUnknownPoseWhileDriving)
 {
   const auto w = testing::two_room_world();
@@ -236,6 +260,14 @@ TEST(Localizer, StaysUnsureWhereTheMapRepeatsItself)
   EXPECT_EQ(loc.mode(), Mode::kGlobal);
   EXPECT_FALSE(loc.distinguishable(w.room_a, drive.truth));
   EXPECT_FALSE(loc.distinguishable(w.room_b, drive.truth));   // region frames: the same spot in either room
+  // The claim test's numbers say why: the twin room's spot, 10 m away, leads or trails by less
+  // than the margin, counted on every beam of the path (both rooms' maps judge them all).
+  ClaimTest twin;
+  loc.why_not_distinguishable(w.room_a, drive.truth, &twin);
+  EXPECT_LT(std::fabs(twin.lead), twin.margin);
+  EXPECT_NEAR(twin.rival_distance, 10.0, 0.3);
+  EXPECT_EQ(twin.judged_beams, twin.beams);
+  EXPECT_GT(twin.views, 1);
 }
 
 // The scan search keeps one place here (hypotheses = 1), so its rivals never hold the twin room:

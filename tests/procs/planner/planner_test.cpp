@@ -271,6 +271,22 @@ TEST(GlobalPlanner, RoutesThroughTheDoorAndAroundItWhenClosed)
 }
 
 // The door's opening is unknown to both rooms: the gateway itself makes it passable.
+// The node beats its heartbeat from this: planning on a large map took the planner past its
+// supervisor's 1 s bound on work without progress under stress-ng.
+TEST(GlobalPlanner, ReportsProgressForEveryRegionItWorksIn)
+{
+  Ring r = ring();
+  GlobalPlanner gp(options());
+  int calls = 0;
+  gp.set_progress([&calls] { ++calls; });
+  gp.set_map(r.map);
+  EXPECT_EQ(calls, 0);
+  std::string why;
+  const auto route = gp.plan(PlanRequest{r.a, V(2, 1.5), r.b, V(2.5, 1.5)}, &why);
+  ASSERT_TRUE(route) << why;
+  EXPECT_GE(calls, 2 * static_cast<int>(route->legs.size())) << "a region planner built and a path searched per leg";
+}
+
 TEST(GlobalPlanner, PassesADoorWhoseOpeningNeitherRoomKnows)
 {
   Ring r = ring(true);
