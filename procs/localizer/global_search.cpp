@@ -13,6 +13,28 @@ std::vector<Eigen::Vector2d> coarse_points(const std::vector<Eigen::Vector2d>& p
   return pts;
 }
 
+std::vector<std::vector<Eigen::Vector2d>> rotated_per_heading(const std::vector<Eigen::Vector2d>& points, int headings)
+{
+  const int nh = std::max(1, headings);
+  std::vector<std::vector<Eigen::Vector2d>> rotated(static_cast<size_t>(nh));
+  for (int h = 0; h < nh; ++h) {
+    const Eigen::Matrix2d r = geometry::Pose2(0, 0, 2 * M_PI * h / nh).rotation();
+    for (const auto& p : points) rotated[static_cast<size_t>(h)].push_back(r * p);
+  }
+  return rotated;
+}
+
+std::vector<size_t> spread_indices(size_t n, size_t m)
+{
+  std::vector<size_t> picked;
+  if (n == 0 || m == 0) return picked;
+  for (size_t k = 0; k < m; ++k) {
+    const size_t i = m == 1 ? n - 1 : k * (n - 1) / (m - 1);
+    if (picked.empty() || picked.back() != i) picked.push_back(i);
+  }
+  return picked;
+}
+
 Hypothesis refine(const RegionModel& region, Hypothesis h, const std::vector<Eigen::Vector2d>& base_points,
                   const BeamScorer& scorer, double step_xy, double step_theta)
 {
@@ -51,13 +73,8 @@ std::vector<Hypothesis> global_search(const RegionMaps& maps, const std::vector<
   // A coarse grid of candidates needs a broad hit noise to see the true place at all.
   const BeamScorer scorer(options.sigma, scan.z_hit, scan.z_rand, scan.max_distance);
   const auto pts = coarse_points(base_points, options.beams);
-  // The points rotated once per heading.
   const int nh = std::max(1, options.headings);
-  std::vector<std::vector<Eigen::Vector2d>> rotated(static_cast<size_t>(nh));
-  for (int h = 0; h < nh; ++h) {
-    const Eigen::Matrix2d r = geometry::Pose2(0, 0, 2 * M_PI * h / nh).rotation();
-    for (const auto& p : pts) rotated[static_cast<size_t>(h)].push_back(r * p);
-  }
+  const auto rotated = rotated_per_heading(pts, nh);
   for (const auto& [id, region] : maps.regions()) {
     if (region->field.empty()) continue;
     for (const auto& pos : region->free_positions) {
@@ -91,10 +108,7 @@ std::vector<Hypothesis> global_search(const RegionMaps& maps, const std::vector<
   // needs the path's shape, not every view.
   constexpr size_t kPathViews = 4;
   std::vector<PlacedView> few;
-  for (size_t k = 0; k < kPathViews; ++k) {
-    const size_t i = k * (path.size() - 1) / (kPathViews - 1);
-    if (few.empty() || few.back().points != path[i].points) few.push_back(path[i]);
-  }
+  for (const size_t i : spread_indices(path.size(), kPathViews)) few.push_back(path[i]);
   for (auto& h : found) h.score = path_score(maps, scorer, h.region, h.region_from_base, few, bbox_margin);
   std::partial_sort(found.begin() + static_cast<long>(by_scan), found.begin() + static_cast<long>(keep), found.end(), best_first);
   found.resize(keep);

@@ -28,6 +28,12 @@ struct Hypothesis
 
 // Up to `beams` of the points, evenly spread: the coarse search's share of a scan.
 std::vector<Eigen::Vector2d> coarse_points(const std::vector<Eigen::Vector2d>& points, int beams);
+// The points turned once per heading: [h] holds them turned by 2 pi h / headings (a search
+// scores every place at every heading with these, instead of turning the points each time).
+std::vector<std::vector<Eigen::Vector2d>> rotated_per_heading(const std::vector<Eigen::Vector2d>& points, int headings);
+// Up to `m` indices spread evenly over 0 .. n-1, ascending and distinct: the first and the last
+// among them (only the last for m = 1). Views spread over a path keep its shape.
+std::vector<size_t> spread_indices(size_t n, size_t m);
 
 // A candidate moved to the best pose of a small local grid around it (hill climbing in steps
 // of step_xy / step_theta, halved until below a tenth), rescored with `scorer`.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <optional>
 #include <set>
 
 namespace rgnav::localizer {
@@ -109,14 +110,17 @@ std::vector<BeamFit> path_beam_fits(const RegionMaps& maps, const BeamScorer& sc
   std::vector<BeamFit> out;
   for (const auto& v : views) {
     const auto [m, pose] = holding_region(maps, region, region_from_base * v.now_from_then, bbox_margin);
+    // One per view: the neighbour the last beam's walk ended in is where the next one's most
+    // likely goes.
+    const std::optional<StackedFreespace> free =
+        m ? std::optional<StackedFreespace>(StackedFreespace{maps, *m, through_gateways}) : std::nullopt;
     for (const auto& p : *v.points) {
       BeamFit f;
       if (m) {
-        const StackedFreespace free{maps, *m, through_gateways};
         const Eigen::Vector2d q = pose * p;
         const float d = m->field.distance(q);
         f.log_p = scorer.log_p(d);
-        f.known = d <= near_line || judged_ray(*m, free, pose.translation(), q, near_line);
+        f.known = d <= near_line || judged_ray(*m, *free, pose.translation(), q, near_line);
       } else {
         f.log_p = scorer.floor();
       }

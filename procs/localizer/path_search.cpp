@@ -14,15 +14,8 @@ namespace {
 std::vector<Eigen::Vector2d> path_points(const std::vector<PlacedView>& views, const PathSearchOptions& options)
 {
   std::vector<Eigen::Vector2d> pts;
-  if (views.empty()) return pts;
-  const size_t n = views.size(), want = static_cast<size_t>(std::max(1, options.views));
-  std::vector<size_t> picked;
-  const size_t m = std::min(n, want);
-  for (size_t k = 0; k < m; ++k) {
-    const size_t i = m == 1 ? n - 1 : k * (n - 1) / (m - 1);
-    if (picked.empty() || picked.back() != i) picked.push_back(i);
-  }
-  for (size_t i : picked)
+  const size_t want = static_cast<size_t>(std::max(1, options.views));
+  for (size_t i : spread_indices(views.size(), std::min(views.size(), want)))
     for (const auto& p : coarse_points(*views[i].points, options.beams_per_view)) pts.push_back(views[i].now_from_then * p);
   std::mt19937 rng(1);   // fixed: the same views give the same search
   std::shuffle(pts.begin(), pts.end(), rng);
@@ -39,11 +32,7 @@ std::vector<Hypothesis> path_search(const RegionMaps& maps, const std::vector<Pl
   const auto pts = path_points(views, options);
   if (pts.empty()) return {};
   const int nh = std::max(1, options.headings);
-  std::vector<std::vector<Eigen::Vector2d>> rotated(static_cast<size_t>(nh));
-  for (int h = 0; h < nh; ++h) {
-    const Eigen::Matrix2d r = geometry::Pose2(0, 0, 2 * M_PI * h / nh).rotation();
-    for (const auto& p : pts) rotated[static_cast<size_t>(h)].push_back(r * p);
-  }
+  const auto rotated = rotated_per_heading(pts, nh);
   // The best `pool` candidates so far (one per cell), worst on top.
   const auto worse = [](const Hypothesis& a, const Hypothesis& b) { return a.score > b.score; };
   std::priority_queue<Hypothesis, std::vector<Hypothesis>, decltype(worse)> pool(worse);

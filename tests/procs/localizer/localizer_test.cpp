@@ -94,6 +94,20 @@ TEST(LikelihoodField, DistanceToTheNearestLine)
   EXPECT_FLOAT_EQ(f.distance({50, 50}), 1.0f);        // off the field: saturated
 }
 
+// The searches' shared pieces: views spread over a path keep its first and last, no index twice;
+// points turned per heading.
+TEST(GlobalSearch, SpreadIndicesAndTurnedPoints)
+{
+  EXPECT_EQ(spread_indices(10, 4), (std::vector<size_t>{0, 3, 6, 9}));
+  EXPECT_EQ(spread_indices(2, 4), (std::vector<size_t>{0, 1}));
+  EXPECT_EQ(spread_indices(5, 1), (std::vector<size_t>{4}));
+  EXPECT_TRUE(spread_indices(0, 3).empty());
+  const auto turned = rotated_per_heading({Eigen::Vector2d(1, 0)}, 4);
+  ASSERT_EQ(turned.size(), 4u);
+  EXPECT_LT((turned[1][0] - Eigen::Vector2d(0, 1)).norm(), 1e-12);
+  EXPECT_LT((turned[2][0] - Eigen::Vector2d(-1, 0)).norm(), 1e-12);
+}
+
 TEST(Resampling, KldCountGrowsWithTheBinsAndIsClamped)
 {
   ParticleCount o;
