@@ -19,7 +19,12 @@
 # robot drives, where the stack drives: braking begun within 200 ms of the fault, at rest within
 # 200 ms plus the braking time at the chain's slowest stop deceleration). A process not built
 # yet is `pending`. Then the stress section (tests/fault/stress.sh; RGNAV_STRESS_SOAK_S, default
-# 300). Writes logs/bench/faults.json: one row per (process, fault), and "stress".
+# 300; every demo process gets a hang probe, one not running when it is due is a failed probe).
+# Writes logs/bench/faults.json: one row per (process, fault), and "stress". One row alone:
+#   RGNAV_ROOT=$PWD RGNAV_BUILD=$PWD/build tests/fault/run_in_netns.sh DIR --prepare \
+#     tests/fault/sim_stack_configs.sh build/bin/fault_harness --launch $PWD/tests/fault/sim_stack.pmd \
+#     --supervisor build/bin/supervisor --supervisor-config config/supervisor.yaml --state-dir DIR \
+#     --log F.log --out F.json --no-supervisor-fault --process scan_mapper --fault busy_loop
 set -uo pipefail
 root=${RGNAV_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)}
 build=${RGNAV_BUILD:-$root/build}

@@ -1,5 +1,6 @@
 #include "collision_avoidance/ca_options.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rgnav::collision_avoidance {
@@ -87,6 +88,11 @@ CaNodeOptions load_ca_options(const config::Config& root, const config::RobotDes
   c.grid.comfort_weight = gp.number("comfort_weight", c.grid.comfort_weight, 0.0, 100.0);
   c.grid.shadow_cost = gp.number("shadow_cost", c.grid.shadow_cost, 1.0, 100.0);
   c.detour_speed = gp.number("speed_mps", c.detour_speed, 0.05, 2.0);
+  c.squeeze_margin = gp.number("squeeze_margin_m", c.squeeze_margin, 0.0, 1.0);
+  if (c.squeeze_margin >= c.planner.safety_margin && c.squeeze_margin > 0.0)
+    gp.fail("squeeze_margin_m", "must be below planner.safety_margin_m (0: off)");
+  c.squeeze_speed = gp.number("squeeze_speed_mps", c.squeeze_speed, 0.05, 1.0);
+  c.squeeze_people = gp.number("squeeze_people_m", c.squeeze_people, 0.0, 20.0);
   if (c.grid.margin < c.planner.robot_radius + c.planner.safety_margin + c.grid.comfort)
     gp.fail("margin_m", "must cover the clearance (robot radius + safety margin) plus comfort_m");
 
@@ -102,6 +108,11 @@ CaNodeOptions load_ca_options(const config::Config& root, const config::RobotDes
   c.give_way.spread = be.number("give_way_spread_rad", c.give_way.spread, 0.0, M_PI);
   c.give_way_speed = be.number("give_way_speed_mps", c.give_way_speed, 0.02, 1.0);
   c.give_way_timeout = be.number("give_way_timeout_s", c.give_way_timeout, 1.0, 600.0);
+  c.retrace_own_track = be.boolean("retrace_own_track", c.retrace_own_track);
+  c.own_track.max_back = be.number("retrace_max_m", c.own_track.max_back, 0.2, 10.0);
+  c.own_track.max_length = std::max(c.own_track.max_length, c.own_track.max_back);
+  c.own_track.tolerance = be.number("retrace_tolerance_m", c.own_track.tolerance, 0.0, 0.2);
+  c.retrace_speed = be.number("retrace_speed_mps", c.retrace_speed, 0.02, 0.5);
   const auto yi = root.section("yield");
   auto& y = c.give_way.yield;
   c.yield_sideways_after = yi.number("after_s", c.yield_sideways_after, 0.0, 600.0);

@@ -1,11 +1,23 @@
 #include "collision_avoidance/collision_avoidance.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rgnav::collision_avoidance {
 
 using trajectory::Chain;
 using trajectory::Segment;
+
+namespace {
+
+PlannerOptions squeeze_options(const CaOptions& o)
+{
+  PlannerOptions p = o.planner;
+  p.safety_margin = std::min(o.squeeze_margin, o.planner.safety_margin);
+  return p;
+}
+
+}  // namespace
 
 const char* mode_name(Mode m)
 {
@@ -22,7 +34,11 @@ const char* mode_name(Mode m)
 }
 
 CollisionAvoidance::CollisionAvoidance(const CaOptions& options)
-    : options_(options), planner_(options.planner), map_(options.map)
+    : options_(options),
+      planner_(options.planner),
+      squeeze_planner_(squeeze_options(options)),
+      map_(options.map),
+      track_(options.own_track)
 {
 }
 
@@ -88,6 +104,16 @@ void CollisionAvoidance::on_obstacle_points(time::Time stamp, std::vector<Eigen:
   map_.set_grid_points(stamp, std::move(odom_points));
 }
 
+bool CollisionAvoidance::person_within(double reach) const
+{
+  const Eigen::Vector2d here = pose_.translation();
+  for (const auto& t : map_.tracker().tracks())
+    if (t.moved && !t.centroids.empty() && (t.centroids.back().second - here).norm() <= reach) return true;
+  for (const auto& m : map_.tracker().last_seen_movers())
+    if ((m.position - here).norm() <= reach) return true;
+  return false;
+}
+
 std::vector<Pose2> CollisionAvoidance::goals() const
 {
   std::vector<Pose2> out;
@@ -134,6 +160,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::send_new(Chain chain, 
   active_ = t;
   last_sent_ = now;
   stopped_ = t.chain.empty();
+  squeezing_ = false;  // the caller says so after this
   mode_ = mode;
   return t;
 }
@@ -160,6 +187,11 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   updated_once_ = true;
   last_update_ = now;
   map_.rebuild(now);
+  // The way the robot came, with the clearance it had (not while it drives back over it).
+  if (retrace_.empty()) {
+    const double full = options_.planner.robot_radius + options_.planner.safety_margin;
+    track_.add(pose_.translation(), map_.clearance(pose_.translation(), full));
+  }
   if (!has_progress_pose_ || (pose_.translation() - progress_pose_).norm() > options_.headway) {
     has_progress_pose_ = true;
     progress_pose_ = pose_.translation();
@@ -199,10 +231,13 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   if (backoff_id_ && active_ && active_->id == *backoff_id_ && keeps_going) {
     const bool ours = has_feedback_ && feedback_.trajectory_id == *backoff_id_;
     const bool ended = ours && (feedback_.state == 2 || feedback_.state == 0);
-    // Committed, but never blind: something on what remains of it ends it.
-    const bool blocked = first_collision(active_->chain, map_, options_.planner.robot_radius + options_.planner.safety_margin,
-                                         options_.planner.check_step, ours ? feedback_.progress : 0.0)
-                             .has_value();
+    // Committed, but never blind: something on what remains of it ends it (on the way back
+    // along the robot's track: closer than the robot was there).
+    const bool blocked =
+        retrace_.empty() ? first_collision(active_->chain, map_, options_.planner.robot_radius + options_.planner.safety_margin,
+                                           options_.planner.check_step, ours ? feedback_.progress : 0.0)
+                               .has_value()
+                         : retrace_blocked();
     if (!ended && !blocked && now < backoff_until_) {
       if (time::to_seconds(now - last_sent_) >= options_.refresh_period) {
         last_sent_ = now;
@@ -213,6 +248,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   }
   backoff_id_.reset();
   giving_way_now_ = false;
+  retrace_.clear();
   // Giving way goes on until the robot is out of the way: a line that turned out blocked once
   // the turn brought its end into view (the laser looks ahead only) is replaced by the next
   // freest one from where the robot is, instead of heading straight back into the spot.
@@ -250,7 +286,8 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
     const bool ours = has_feedback_ && feedback_.trajectory_id == active_->id;
     const double progress = ours ? feedback_.progress : 0.0;
     // An obstacle on what remains of the chain (look a little behind the progress, too).
-    if (first_collision_near(active_->chain, map_, options_.planner, std::max(0.0, progress - 0.1))) replan = true;
+    const PlannerOptions& kept = squeezing_ ? squeeze_planner_.options() : options_.planner;
+    if (first_collision_near(active_->chain, map_, kept, std::max(0.0, progress - 0.1))) replan = true;
     if (ours && (feedback_.state == 2 || feedback_.state == 0)) replan = true;  // ended short of the target
     if (ours && std::fabs(feedback_.cross_track) > options_.replan_cross_track) replan = true;
   }
@@ -288,12 +325,36 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
       }
     }
   }
+  // Nothing keeps the full clearance: a passage the body fits through with squeeze_margin,
+  // slowly (a chain, else a detour on the grid). Only to targets with the full clearance
+  // (through a narrow place to room beyond, not up to something), and begun only from where
+  // the robot has it (closer to something, a person who stepped up to it, it backs off) with
+  // nobody near; once in, it goes on (walkers keep the near margin on every chain).
+  bool squeeze = false;
+  const double tight = options_.planner.robot_radius + squeeze_planner_.options().safety_margin;
+  const double here_clear = map_.clearance(pose_.translation(), clearance);
+  if (!planned && options_.squeeze_margin > 0.0 && options_.squeeze_margin < options_.planner.safety_margin &&
+      (squeezing_ ? here_clear >= tight - 0.01 : here_clear >= clearance && !(options_.squeeze_people > 0.0 && person_within(options_.squeeze_people)))) {
+    auto g = goals();
+    while (!g.empty() && map_.clearance(g.back().translation(), clearance) < clearance) g.pop_back();
+    const double speed = std::min(targets_.max_speed, options_.squeeze_speed);
+    if (!g.empty()) planned = squeeze_planner_.plan(pose_, v_now, g, map_, speed);
+    if (!planned && !g.empty()) {
+      const bool is_goal = final_goal && next_ + 1 == targets_.poses.size();
+      if (auto corners = grid_path(map_, pose_.translation(), g.front().translation(), tight, options_.grid))
+        planned = squeeze_planner_.plan_along(pose_, v_now, *corners,
+                                              is_goal ? std::optional<double>(g.front().theta()) : std::nullopt, map_, speed);
+    }
+    squeeze = planned.has_value();
+  }
   if (planned) {
     blocked_since_set_ = false;
     ++replans_;
     if (detour) ++detours_;
-    status_ = detour ? "planned: detour" : "planned";
-    return send_new(std::move(planned->chain), now, planned->predicted_time, Mode::kPlanned);
+    status_ = squeeze ? "planned: squeezing through" : detour ? "planned: detour" : "planned";
+    auto sent = send_new(std::move(planned->chain), now, planned->predicted_time, Mode::kPlanned);
+    squeezing_ = squeeze;
+    return sent;
   }
   return reactive(now);
 }

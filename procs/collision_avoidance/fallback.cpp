@@ -94,6 +94,58 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::giving_way(time::Time 
   return sent;
 }
 
+std::optional<trajectory::Trajectory> CollisionAvoidance::retracing(time::Time now)
+{
+  if (!options_.retrace_own_track) return std::nullopt;
+  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
+  const auto way = way_back(track_, map_, pose_.translation(), options_.planner.robot_radius, clearance,
+                            options_.own_track);
+  if (!way) return std::nullopt;
+  const bool standing = std::fabs(has_feedback_ ? feedback_.v_cmd : v_) < 0.02;
+  if (!standing) return stop(now, Mode::kReactive, "reactive fallback: no headway, stopping to go back the way it came");
+  // Straight legs along the track, turning on the spot at its corners (always safe for the
+  // round base): no smoothing, which would leave the track where it is tight.
+  Chain c;
+  Pose2 from = pose_;
+  double t = 0.0;
+  for (const auto& corner : way->corners) {
+    const Eigen::Vector2d d = corner - from.translation();
+    const double dth = geometry::normalize_angle(std::atan2(d.y(), d.x()) - from.theta());
+    if (std::fabs(dth) > 1e-3) {
+      c.push_back(Segment::turn(from, dth));
+      t += trajectory::turn_duration(dth, options_.omega_max, 1.0);
+      from = c.end();
+    }
+    Segment leg = Segment::line(from, d.norm());
+    leg.set_v_max(options_.retrace_speed);
+    c.push_back(leg);
+    t += d.norm() / options_.retrace_speed;
+    from = c.end();
+  }
+  status_ = "reactive fallback: no headway, going back the way it came";
+  auto sent = commit_backoff(send_new(std::move(c), now, t, Mode::kReactive), now, t);
+  if (sent) {
+    retrace_.clear();
+    for (size_t i = 0; i < way->points.size(); ++i) retrace_.push_back({way->points[i], way->needs[i]});
+    // What it drives back over is no longer the way it came: a second way back from there
+    // would lead into the same place again.
+    track_.keep_oldest(way->track_index + 1);
+  }
+  return sent;
+}
+
+bool CollisionAvoidance::retrace_blocked() const
+{
+  // The points not yet passed: from the one nearest to the robot on.
+  size_t nearest = 0;
+  for (size_t i = 1; i < retrace_.size(); ++i)
+    if ((retrace_[i].at - pose_.translation()).norm() < (retrace_[nearest].at - pose_.translation()).norm()) nearest = i;
+  const double clearance = options_.planner.robot_radius + options_.planner.safety_margin;
+  for (size_t i = nearest + 1; i < retrace_.size(); ++i)
+    if (map_.clearance(retrace_[i].at, clearance) < retrace_[i].need) return true;
+  return false;
+}
+
 std::optional<trajectory::Trajectory> CollisionAvoidance::commit_backoff(std::optional<trajectory::Trajectory> t,
                                                                          time::Time now, double duration)
 {
@@ -198,6 +250,9 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::reactive(time::Time no
         return back;
       }
     }
+    // Stuck where the robot drove in: back the way it came. Backing away from what is near
+    // wants the full clearance, which the way in may never have had.
+    if (auto back = retracing(now)) return back;
     if (auto away = backing_off(now, reach)) {
       status_ = "reactive fallback: no headway, yielding";
       return away;

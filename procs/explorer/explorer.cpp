@@ -21,6 +21,10 @@ constexpr double kMovedSinceFailure = 0.5;   // [m] the robot this far from the 
 constexpr double kTrackStep = 0.2;           // [m] the robot's track keeps a place every this far ...
 constexpr size_t kTrackPlaces = 100;         // ... the newest this many (20 m)
 constexpr double kNoViewAfter = 1e4;         // [m] a frontier without a view point counts as this much farther
+// How a goal ended (ExplorerStatus, last_end()).
+constexpr const char* kExplored = "explored";       // its frontier is gone from the map
+constexpr const char* kNoProgress = "no progress";  // the robot got no nearer in progress_timeout_s
+constexpr const char* kTimedOut = "timed out";
 
 nlohmann::json point_json(const Vector2d& p) { return {p.x(), p.y()}; }
 
@@ -240,16 +244,18 @@ std::optional<ExploreGoal> Explorer::choose(int64_t utime)
 {
   const int64_t cur = map_->resolve(map_->current_region);
   // Region by region: the current region until it is complete ...
-  if (auto g = frontier_goal(cur, utime)) return g;
+  if (auto g = frontier_goal(cur, utime, true)) return g;
   // ... and the others entered before (the map's current region changes as the robot stands in
-  // a doorway or a junction: the hallway it explored a moment ago is still unfinished), where
-  // nothing failed before (a frontier that failed is tried again after the stack: taken before
-  // it, the robot would cross the building to and fro between it and the stack) ...
+  // a doorway or a junction: the hallway it explored a moment ago is still unfinished) ...
   if (options_.stack.after_regions)
     if (auto g = other_region_goal(cur, utime, true)) return g;
   // ... then the next gateway not gone through ...
   if (auto g = gateway_goal(utime)) return g;
-  // ... and, with none left, a region left incomplete: the nearest of their frontiers.
+  // ... and, with none left, the frontiers that failed before, the current region's first. Tried
+  // again before the stack, a frontier the robot cannot get at (behind furniture, in a gap it
+  // does not fit through) held it in one room while the rest of the building waited, and taken
+  // in another region before the stack, the robot would cross the building to and fro.
+  if (auto g = frontier_goal(cur, utime)) return g;
   return other_region_goal(cur, utime, false);
 }
 
@@ -272,6 +278,7 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
   if (!goal_) return;
   if (reached) ++goals_reached_;
   else ++goals_failed_;
+  last_end_ = reason;
   if (is_recovery(*goal_)) {
     // A look or a step ended (done or not): the goals are chosen anew from the new view.
     goal_.reset();
@@ -300,6 +307,18 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
              map_->version != last_failure_->second;
     last_failure_ = std::make_pair(here, map_->version);
   }
+  // A goal the robot got no nearer to (or not to in time) while the planner had a way: blamed on
+  // the goal only if the robot arrived somewhere since the last such failure. A robot held where
+  // it stands (wedged among furniture, its collision avoidance finding no way on) fails every goal
+  // in turn, and counting those set the whole building aside and ended exploring after two rooms.
+  const bool could_not_get_on = reason == kNoProgress || reason == kTimedOut;
+  if (!reached && could_not_get_on) {
+    counts = counts && arrived_since_failure_;
+    if (counts) arrived_since_failure_ = false;
+  }
+  // Evidence the robot can drive: it arrived at a goal (not a frontier the map filled in while it
+  // stood, nor a turn on the spot).
+  if (reached && reason != kExplored && goal_->kind != ExploreGoal::Kind::kLook) arrived_since_failure_ = true;
   // A gateway taken for closed for a while: the goal is due again later, no attempt of its own.
   if (behind_closed) counts = false;
   if (goal_->kind == ExploreGoal::Kind::kGateway) {
@@ -426,18 +445,18 @@ Command Explorer::step(int64_t utime)
     if (goal_->kind == ExploreGoal::Kind::kStep && (robot - goal_->map_point).norm() <= goal_->tolerance)
       end_goal(true, "reached", utime);
     else if (utime - goal_sent_utime_ > static_cast<int64_t>(options_.recovery.timeout_s * 1e6))
-      end_goal(false, "timed out", utime);
+      end_goal(false, kTimedOut, utime);
   } else if (goal_) {
     const double d = (robot - goal_->map_point).norm();
     if (d < goal_best_distance_ - options_.progress_m) {
       goal_best_distance_ = d;
       goal_progress_utime_ = utime;
     }
-    if (!goal_still_open()) end_goal(true, goal_->kind == ExploreGoal::Kind::kGateway ? "gone through" : "explored", utime);
+    if (!goal_still_open()) end_goal(true, goal_->kind == ExploreGoal::Kind::kGateway ? "gone through" : kExplored, utime);
     else if (d <= goal_->tolerance) end_goal(true, "reached", utime);
-    else if (utime - goal_sent_utime_ > static_cast<int64_t>(options_.goal_timeout_s * 1e6)) end_goal(false, "timed out", utime);
+    else if (utime - goal_sent_utime_ > static_cast<int64_t>(options_.goal_timeout_s * 1e6)) end_goal(false, kTimedOut, utime);
     else if (utime - goal_progress_utime_ > static_cast<int64_t>(options_.progress_timeout_s * 1e6))
-      end_goal(false, "no progress", utime);
+      end_goal(false, kNoProgress, utime);
   }
   if (!decide_now_ && utime - last_decision_utime_ < static_cast<int64_t>(options_.decide_period_s * 1e6)) return cmd;
   last_decision_utime_ = utime;

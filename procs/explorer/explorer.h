@@ -12,7 +12,10 @@
 // ("start cut off", planner/no_path_reason.h), or when everything left failed from where it
 // stands, it looks behind again, then steps back along its own track (RecoveryOptions), instead
 // of standing where nothing changes; a goal only a gateway taken for closed is in the way of
-// counts no failed attempt. A goal the robot gets no nearer to in progress_timeout_s fails.
+// counts no failed attempt. A goal the robot gets no nearer to in progress_timeout_s fails; such a
+// failure counts against the goal only if the robot arrived somewhere since the last one (a robot
+// held where it stands fails every goal, and is not done for that). A frontier that failed, the
+// current region's too, waits until the stack is empty.
 //
 // Pure algorithm, message time only: the node feeds it the RG map, the robot's pose, the
 // detector's gateway sightings and the planner's goal status, and calls step() at its own pace.
@@ -26,6 +29,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "explorer/explorer_options.h"
@@ -113,6 +117,10 @@ class Explorer
   // The running goal (status() has it too, but works out every region's frontiers for the rest).
   const std::optional<ExploreGoal>& goal() const { return goal_; }
   const GatewayStack& stack() const { return stack_; }
+  // How the last goal ended: "reached", "no progress", "timed out", "no path: <reason>", ...
+  const std::string& last_end() const { return last_end_; }
+  // Goals reached and failed so far (status() has them too, but works out every region's frontiers).
+  std::pair<int, int> goal_counts() const { return {goals_reached_, goals_failed_}; }
   // Regions finished since the last call (complete and left, or all at the end), for naming.
   std::vector<int64_t> take_finished_regions();
 
@@ -187,6 +195,7 @@ class Explorer
   };
   std::vector<FailedPlace> failed_;             // frontier goals the planner could not reach
   std::optional<std::pair<Eigen::Vector2d, int64_t>> last_failure_;   // robot position and map version then
+  bool arrived_since_failure_ = false;          // the robot arrived at a goal since the last counted "no progress"
   std::vector<Eigen::Vector2d> track_;          // map frame: where the robot was, newest last
   Recovery recovery_due_ = Recovery::kNone;
   std::optional<Eigen::Vector2d> looked_at_, stepped_from_;   // where the last look / step began
@@ -194,6 +203,7 @@ class Explorer
   int64_t last_region_ = 0;
   int goals_sent_ = 0, goals_reached_ = 0, goals_failed_ = 0;
   std::string activity_;
+  std::string last_end_;
 };
 
 }  // namespace rgnav::explorer

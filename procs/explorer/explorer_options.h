@@ -30,9 +30,9 @@ struct StackOptions
   double passed_m = 0.4;           // [m] the robot this far past a door's crossing point (a crossing's goal) has gone through
   bool breadth_first = true;       // order: fewest RG-graph hops from the start region first (else nearest first)
   // Every region of the map complete before a new gateway (diss. ch. 7): the frontiers of regions
-  // entered before come ahead of the stack, those that failed once after it (else only the current
-  // region's come first, and a region the robot stepped out of for a moment waits until the stack
-  // is empty).
+  // entered before come ahead of the stack (else only the current region's come first, and a region
+  // the robot stepped out of for a moment waits until the stack is empty). A frontier that failed
+  // once, the current region's too, comes after the stack either way.
   bool after_regions = true;
 };
 

@@ -94,6 +94,13 @@ const FollowerStatus& Follower::step(time::Time now, double dt, const OdometryIn
     want.v = 0.0;
   }
   status_.command = slew(want, dt, decel);
+  // A stop ramps the command down from the last command, not from what the robot does. A base
+  // that stopped the robot itself meanwhile (a drive fault, its deadman in a host stall, with
+  // the odometry stale) would, once back, drive the rest of that ramp: a robot measured at rest
+  // during a stop is held at rest.
+  if (status_.state == FollowerState::kStopping && odometry_fresh && std::fabs(odo->v) < options_.rest_speed &&
+      std::fabs(odo->omega) < options_.rest_omega)
+    status_.command = {};
   if (status_.state == FollowerState::kStopping && status_.command.v == 0.0 && status_.command.omega == 0.0)
     status_.state = status_.stop_reason == StopReason::kEndOfPlan ? FollowerState::kDone : FollowerState::kIdle;
   if (status_.state == FollowerState::kTracking && !plan_) status_.state = FollowerState::kIdle;

@@ -40,6 +40,9 @@ struct FollowerOptions
   double feedforward_lead = 0.05;   // [s]
   double end_tolerance = 0.02;      // [m] along-track error at which the end is reached
   double end_settle_timeout = 2.0;  // [s] after the reference arrived, stop anyway
+  // Measured below both: the robot stands (a stop does not move it again, Follower::step).
+  double rest_speed = 0.005;        // [m/s]
+  double rest_omega = 0.01;         // [rad/s]
 };
 
 // A trajectory ready to follow: chain and its velocity profile (computed off the loop).

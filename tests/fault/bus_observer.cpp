@@ -46,7 +46,8 @@ BusObserver::BusObserver(const std::string& url, const std::string& host, const 
         t.last = now;
         t.dropped = hb.messages_dropped;
         t.messages_in = hb.messages_in;
-        hb_log_.push_back({now, hb.name, hb.pid, hb.messages_in});
+        t.busy_ms = hb.busy_ms;
+        hb_log_.push_back({now, hb.name, hb.pid, hb.messages_in, hb.progress});
       },
       &drops_);
   bus::subscribe<supervisor_status_t>(
@@ -182,6 +183,35 @@ std::optional<Clock::time_point> BusObserver::first_heartbeat_with_input(const s
   for (const auto& h : hb_log_)
     if (h.when >= t && h.name == name && h.pid == pid && h.messages_in > 0) return h.when;
   return std::nullopt;
+}
+
+std::optional<Clock::time_point> BusObserver::last_seen_progressing(const std::string& name, int pid, Clock::time_point from,
+                                                                   Clock::time_point to) const
+{
+  std::vector<const HeartbeatSample*> window;
+  for (const auto& h : hb_log_)
+    if (h.when >= from && h.when <= to && h.name == name && h.pid == pid) window.push_back(&h);
+  if (window.empty()) return std::nullopt;
+  const int64_t frozen = window.back()->progress;
+  for (auto it = window.rbegin(); it != window.rend(); ++it)
+    if ((*it)->progress != frozen) return (*it)->when;
+  return std::nullopt;
+}
+
+std::string BusObserver::heartbeat_trace(const std::string& name, int pid, Clock::time_point from, Clock::time_point to,
+                                         Clock::time_point t0) const
+{
+  std::string out;
+  std::optional<int64_t> before;
+  for (const auto& h : hb_log_) {
+    if (h.name != name || h.pid != pid || h.when > to) continue;
+    if (h.when >= from) {
+      const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(h.when - t0).count();
+      out += (out.empty() ? "" : " ") + std::to_string(ms) + ":+" + (before ? std::to_string(h.progress - *before) : "?");
+    }
+    before = h.progress;
+  }
+  return out;
 }
 
 std::optional<int64_t> BusObserver::state(const std::string& name) const

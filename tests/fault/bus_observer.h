@@ -29,6 +29,7 @@ struct HeartbeatTrack
   std::chrono::milliseconds max_gap{0};  // since reset_gaps()
   int64_t dropped = 0;                   // messages_dropped of the newest heartbeat
   int64_t messages_in = 0;               // accepted inputs of the newest heartbeat
+  int32_t busy_ms = 0;                   // the newest heartbeat's time of its loop in the current turn
 };
 
 struct StatusSample
@@ -77,6 +78,17 @@ class BusObserver
   std::optional<Clock::time_point> first_heartbeat_new_pid(const std::string& name, int old_pid, Clock::time_point t) const;
   // First heartbeat of `name`, pid `pid`, at or after t that counts accepted inputs (its live input began).
   std::optional<Clock::time_point> first_heartbeat_with_input(const std::string& name, int pid, Clock::time_point t) const;
+  // The last heartbeat of `name`, pid `pid`, in [from, to] whose progress counter (loop turns,
+  // handled inputs, steps of long work) differs from that of its last heartbeat in the window:
+  // the process was last seen progressing then. None if every heartbeat of the window shows
+  // the same count (no progress since before `from`).
+  std::optional<Clock::time_point> last_seen_progressing(const std::string& name, int pid, Clock::time_point from,
+                                                         Clock::time_point to) const;
+  // The heartbeats of `name`, pid `pid`, in [from, to] for a row's note: "ms:+n" each, ms from
+  // `t0` when it arrived, n the progress since the one before (so a late one, or progress that
+  // came late, shows).
+  std::string heartbeat_trace(const std::string& name, int pid, Clock::time_point from, Clock::time_point to,
+                              Clock::time_point t0) const;
 
   // Newest state counter a probe published, and its first value at or after t.
   std::optional<int64_t> state(const std::string& name) const;
@@ -150,6 +162,7 @@ class BusObserver
     std::string name;
     int pid = 0;
     int64_t messages_in = 0;
+    int64_t progress = 0;  // its progress counter
   };
   std::vector<HeartbeatSample> hb_log_;
   std::vector<StatusSample> status_log_;

@@ -33,6 +33,10 @@ struct HarnessOptions
   // detected within the first and running again after both plus a start.
   std::chrono::milliseconds work_timeout{1000};
   std::chrono::milliseconds hung_grace{300};
+  // Busy loops are sent early in a step of work of the process's loop (its heartbeat shows a
+  // turn under way for 100-300 ms), so that it takes the fault in only after that work: busy
+  // and progressing until then, hung from then on.
+  bool busy_loop_mid_work = false;
   // Drive-chain faults with the simulator's true motion to measure: how long to wait for the
   // robot to be moving before injecting (braking must be exercised).
   std::chrono::milliseconds moving_wait{45000};
@@ -47,6 +51,7 @@ struct FaultRow
   std::string process;
   std::string fault;
   std::optional<double> detect_ms;
+  std::optional<double> hang_start_ms;     // busy loop: fault -> the process last seen progressing (its detection is bounded from there)
   std::optional<double> restart_ms;
   bool others_restarted = false;
   std::optional<bool> state_lost;

@@ -32,6 +32,7 @@ int main(int argc, char** argv)
   app.add_option("--process", o.processes, "only these processes (repeatable)");
   app.add_option("--fault", o.faults, "only these faults (repeatable): sigkill sigstop busy_loop crash_loop flood malformed loss_dup_delay");
   app.add_flag("--no-supervisor-fault", no_supervisor_fault, "skip killing the supervisor itself");
+  app.add_flag("--busy-loop-mid-work", o.busy_loop_mid_work, "send busy loops while the process's loop is in a step of work");
   app.add_option("--host-stall-ms", o.host_stall_ms, "before the process faults, stop the whole stack this long while driving (repeatable)");
   app.add_option("--heartbeat-timeout-ms", timeout_ms, "the supervisor's heartbeat timeout");
   app.add_option("--heartbeat-period-ms", period_ms, "the processes' heartbeat period");
@@ -104,6 +105,7 @@ int main(int argc, char** argv)
     nlohmann::json j = {{"launch", o.launch}, {"process", r.process}, {"fault", r.fault}, {"others_restarted", r.others_restarted},
                         {"status", r.status}, {"note", r.note}};
     j["detect_ms"] = r.detect_ms ? nlohmann::json(*r.detect_ms) : nlohmann::json();
+    j["hang_start_ms"] = r.hang_start_ms ? nlohmann::json(*r.hang_start_ms) : nlohmann::json();
     j["restart_ms"] = r.restart_ms ? nlohmann::json(*r.restart_ms) : nlohmann::json();
     j["state_lost"] = r.state_lost ? nlohmann::json(*r.state_lost) : nlohmann::json();
     j["robot_stopped_ms"] = r.robot_stopped_ms ? nlohmann::json(*r.robot_stopped_ms) : nlohmann::json();

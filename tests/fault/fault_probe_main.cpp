@@ -3,10 +3,13 @@
 // and owns state that must survive a restart — a counter (inputs accepted, or messages sent
 // when it has no input) persisted atomically before each publication and reloaded at start.
 // The counter goes out as velocity_cmd_t.seq, so anyone listening can check nothing was lost.
+// With --work-ms it is also a busy process: every --work-every-ms its loop spends --work-ms in one
+// step of work (progressing between steps only), as a scan mapper matching a scan would.
 //   fault_probe --name mid --input FAULT_A --output FAULT_B --state /run/x/mid.state
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 
@@ -22,6 +25,8 @@ struct ProbeFlags
   std::string output;
   double rate_hz = 20;
   std::string state_path;
+  int work_ms = 0;          // [ms] one step of work on the loop, 0 = none
+  int work_every_ms = 1000;
 };
 
 class Probe
@@ -38,9 +43,19 @@ class Probe
     if (!flags_.output.empty()) {
       node_.every(std::chrono::microseconds(static_cast<int64_t>(1e6 / flags_.rate_hz)), [this] { publish(); });
     }
+    if (flags_.work_ms > 0)
+      node_.every(std::chrono::milliseconds(flags_.work_every_ms), [this] { work(std::chrono::milliseconds(flags_.work_ms)); });
   }
 
  private:
+  // Computes (spins on the CPU) for `d` without returning to the loop.
+  static void work(std::chrono::milliseconds d)
+  {
+    const auto until = std::chrono::steady_clock::now() + d;
+    volatile uint64_t turns = 0;
+    while (std::chrono::steady_clock::now() < until) ++turns;
+  }
+
   void publish()
   {
     if (flags_.input.empty()) ++count_;
@@ -92,5 +107,7 @@ int main(int argc, char** argv)
         app.add_option("--output", flags.output, "output channel (velocity_cmd_t, seq = state counter)");
         app.add_option("--rate", flags.rate_hz, "output rate [Hz]")->check(CLI::Range(0.1, 1000.0));
         app.add_option("--state", flags.state_path, "state file (persisted counter)");
+        app.add_option("--work-ms", flags.work_ms, "one step of work on the loop this long [ms] (0: none)")->check(CLI::Range(0, 5000));
+        app.add_option("--work-every-ms", flags.work_every_ms, "a step of work this often [ms]")->check(CLI::Range(10, 60000));
       });
 }

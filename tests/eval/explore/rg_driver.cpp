@@ -14,6 +14,7 @@
 #include "explore_drivers.h"
 #include "explorer/explorer.h"
 #include "explorer/explorer_conversions.h"
+#include "goal_time_budget.h"
 #include "gateway_detector/gateway_conversions.h"
 #include "planned_drive.h"
 #include "planner/planner.h"
@@ -117,6 +118,13 @@ class RgDriver final : public ExploreDriver
       }
     }
     explorer_cpu_s_ += localize_eval::thread_cpu() - c2;
+    {
+      const auto& g = explorer_.goal();
+      const auto s = explorer_.goal_counts();
+      const std::string& end = explorer_.last_end();
+      budget_.step(t, g ? std::optional<int64_t>(g->goal_id) : std::nullopt, g ? kind_name(g->kind) : "", s.first, s.second,
+                   end.substr(0, end.find(':')), v.map_from_base.translation());
+    }
     if (o.targets) {
       // For the trace: what collision avoidance was last given, seen from the robot.
       last_targets_.clear();
@@ -170,7 +178,8 @@ class RgDriver final : public ExploreDriver
                         {"maps_refused", maps_refused_},
                         {"planner_replans", planner_.replans()},
                         {"explorer_cpu_s", explorer_cpu_s_},
-                        {"planner_cpu_s", planner_cpu_s_}};
+                        {"planner_cpu_s", planner_cpu_s_},
+                        {"time_budget", budget_.to_json()}};
     nlohmann::json aside = nlohmann::json::array();
     for (const auto& e : explorer_.stack().entries())
       if (e.state == explorer::StackEntry::State::kSetAside)
@@ -252,6 +261,7 @@ class RgDriver final : public ExploreDriver
   bool trace_ = std::getenv("EXPLORE_TRACE") != nullptr;
   std::vector<Eigen::Vector2d> last_targets_;
   bool last_final_is_goal_ = false;
+  GoalTimeBudget budget_;
 };
 
 }  // namespace

@@ -492,6 +492,80 @@ TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
   EXPECT_EQ(ex.status().goals_failed, 5);
 }
 
+// A frontier of the current region that failed waits behind the stack: tried again before it, a
+// frontier the robot cannot get at (behind furniture) held it in one room while the rest of the
+// building waited.
+TEST(Explorer, AFailedFrontierOfTheCurrentRegionWaitsBehindTheStack)
+{
+  Explorer ex(retrying(3));
+  int64_t t = kUtime;
+  auto map = hallway(false);
+  ex.set_map(map);
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  ex.add_sightings({sighting(V(3, 1.8), M_PI / 2)}, t);   // a door in the north wall
+  auto g = next_goal(ex, t);
+  ASSERT_TRUE(g);
+  EXPECT_EQ(g->kind, ExploreGoal::Kind::kFrontier) << "the region first";
+  ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "goal unreachable", t);
+  ex.set_pose({t += kSecond, Pose2(1.5, 0.9, 0)});
+  g = next_goal(ex, t += 31 * kSecond);   // the frontier is due again by now
+  ASSERT_TRUE(g) << ex.status().activity;
+  EXPECT_EQ(g->kind, ExploreGoal::Kind::kGateway);
+  // The stack empty (the door gone through and seen beyond), the frontier is tried again.
+  ex.goal_report(g->goal_id, GoalOutcome::kReached, "", t);
+  add_region(map.get(), V(2, 1.8), V(4, 4), {{V(2, 1.8), V(2, 4)}, {V(4, 1.8), V(4, 4)}, {V(2, 4), V(4, 4)}});
+  ++map->version;
+  ex.set_map(map);
+  g = next_goal(ex, t += kSecond);
+  ASSERT_TRUE(g) << ex.status().activity;
+  EXPECT_EQ(g->kind, ExploreGoal::Kind::kFrontier);
+  EXPECT_NEAR(g->frontier_point.x(), 5.9, 0.1);
+}
+
+// A robot held where it stands (wedged among furniture, its collision avoidance finding no way
+// on) fails every goal by the progress bound. Those failures are not the goals' fault until the
+// robot arrived somewhere since the last one: exploring does not end while the robot cannot move.
+TEST(Explorer, ARobotThatCannotGetOnIsNotDone)
+{
+  ExplorerOptions o = retrying(1);
+  o.progress_timeout_s = 20;
+  Explorer ex(o);
+  int64_t t = kUtime;
+  auto map = hallway(false);
+  // The goal ends after 21 s with the robot where it was; the map changes meanwhile (people).
+  const auto fail_by_no_progress = [&](const ExploreGoal& g) {
+    for (int k = 0; k < 21; ++k) {
+      auto changed = std::make_shared<rgmap::RgMap>(*map);
+      changed->version = map->version + k + 1;
+      ex.set_map(changed);
+      ex.set_pose({t += kSecond, Pose2(1, 0.9, 0)});
+      ex.step(t);
+    }
+    map->version += 22;
+    EXPECT_FALSE(ex.goal() && ex.goal()->goal_id == g.goal_id) << "still running: " << ex.status().activity;
+  };
+  ex.set_map(map);
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  for (int k = 0; k < 4; ++k) {
+    const auto g = next_goal(ex, t += 31 * kSecond);
+    ASSERT_TRUE(g) << "try " << k << ": " << ex.status().activity;
+    fail_by_no_progress(*g);
+    EXPECT_NE(ex.phase(), Phase::kDone) << ex.status().activity;
+  }
+  EXPECT_EQ(ex.status().goals_failed, 4);
+  // Once the robot arrived somewhere (here at the frontier's view point: the open end, still open,
+  // goes to the stack), the next failure is the goal's: set aside for good, exploring ends.
+  auto g = next_goal(ex, t += 31 * kSecond);
+  ASSERT_TRUE(g);
+  ex.goal_report(g->goal_id, GoalOutcome::kReached, "", t);
+  g = next_goal(ex, t += kSecond);
+  ASSERT_TRUE(g) << ex.status().activity;
+  EXPECT_EQ(g->kind, ExploreGoal::Kind::kGateway);
+  fail_by_no_progress(*g);
+  next_goal(ex, t += 100 * kSecond);
+  EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
+}
+
 // A frontier set aside for good is tried once more when the map near it changes (here a short
 // line appears 1 m from it: a person stepping in), and exploring ends only once it failed again
 // on that map.

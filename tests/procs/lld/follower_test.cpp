@@ -229,6 +229,48 @@ TEST(Follower, StaleOdometryStopsWithinLimits)
   EXPECT_LE(steps * kDt, o.odometry_timeout + (v0 + o.limits.a_max * o.odometry_timeout) / o.stop_decel + 2 * kDt);
 }
 
+// The base stops on its own while the follower's controlled stop is still ramping its command
+// down (a drive fault or the base's deadman in a host stall, with the odometry stale meanwhile).
+// When the base comes back the robot stands: the stop must not hand it the rest of the ramp (a
+// stale command that drove a robot at rest again, seen in the fault bench).
+TEST(Follower, StopHoldsARobotTheBaseAlreadyStopped)
+{
+  LineDrive d(8.0);
+  for (int i = 0; i < 60; ++i) {
+    const OdometryInput odo = d.odometry();
+    d.f.step(d.now, kDt, &odo);
+    d.f.refresh(1, d.now);
+    d.plant.advance(d.f.last_command(), kDt);
+    d.tick();
+  }
+  ASSERT_GT(d.f.last_command().v, 0.3);
+  // The odometry freezes past its timeout and the base quick-stops the robot meanwhile.
+  const OdometryInput frozen = d.odometry();
+  for (int i = 0; i * kDt <= d.o.odometry_timeout + 2 * kDt; ++i) {
+    d.f.step(d.now, kDt, &frozen);
+    d.f.refresh(1, d.now);
+    d.tick();
+  }
+  ASSERT_EQ(d.f.status().stop_reason, StopReason::kStaleOdometry);
+  ASSERT_GT(d.f.last_command().v, 0.1) << "the ramp must still be under way for this test to mean anything";
+  d.plant.v = 0.0;
+  d.plant.omega = 0.0;
+  // The base is back, its odometry fresh and at rest.
+  const geometry::Pose2 stood = d.plant.pose;
+  double v_max_after = 0.0;
+  for (int i = 0; i < 40; ++i) {
+    const OdometryInput odo = d.odometry();
+    d.f.step(d.now, kDt, &odo);
+    d.f.refresh(1, d.now);
+    v_max_after = std::max(v_max_after, d.f.last_command().v);
+    d.plant.advance(d.f.last_command(), kDt);
+    d.tick();
+  }
+  EXPECT_EQ(v_max_after, 0.0);
+  EXPECT_LT((d.plant.pose.translation() - stood.translation()).norm(), 1e-6);
+  EXPECT_EQ(d.f.status().state, FollowerState::kIdle);
+}
+
 TEST(Follower, StaleTrajectoryStops)
 {
   LineDrive d(20.0);
