@@ -481,8 +481,11 @@ Command Explorer::step(int64_t utime)
   if (goal_) {
     // A gateway goal runs until it ends; a frontier goal gives way to a better choice: a region
     // that became current, or a frontier much nearer than the one driven to (another region's
-    // only so: the current region changes back and forth in a doorway).
+    // only so: the current region changes back and forth in a doorway); never to the stack's next
+    // gateway (a frontier tried again while nothing on the stack was due was dropped half-way
+    // whenever an entry came due, and tried again after it, over and over).
     if (goal_->kind == ExploreGoal::Kind::kGateway || is_recovery(*goal_) || !next) return cmd;
+    if (next->kind == ExploreGoal::Kind::kGateway) return cmd;
     if ((next->frontier_point - goal_->frontier_point).norm() < kSamePlace) return cmd;
     if ((next->region_id == goal_->region_id && next->kind == goal_->kind) || next->kind == ExploreGoal::Kind::kRegion) {
       const double dn = (next->map_point - robot).norm(), dc = (goal_->map_point - robot).norm();

@@ -522,6 +522,36 @@ TEST(Explorer, AFailedFrontierOfTheCurrentRegionWaitsBehindTheStack)
   EXPECT_NEAR(g->frontier_point.x(), 5.9, 0.1);
 }
 
+// A frontier goal under way is not dropped for the stack's next gateway: one tried again while
+// nothing on the stack was due was dropped half-way whenever an entry came due, and tried again
+// after it, over and over.
+TEST(Explorer, AFrontierGoalUnderWayIsNotDroppedForTheStack)
+{
+  Explorer ex(retrying(3));
+  int64_t t = kUtime;
+  auto map = hallway(false);
+  ex.set_map(map);
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  ex.add_sightings({sighting(V(3, 1.8), M_PI / 2)}, t);   // a door in the north wall
+  auto g = next_goal(ex, t);
+  ASSERT_TRUE(g);
+  ASSERT_EQ(g->kind, ExploreGoal::Kind::kFrontier);
+  ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "goal unreachable", t);   // due again at +30 s
+  ex.set_pose({t += kSecond, Pose2(1.5, 0.9, 0)});
+  g = next_goal(ex, t += 9 * kSecond);
+  ASSERT_TRUE(g);
+  ASSERT_EQ(g->kind, ExploreGoal::Kind::kGateway);
+  ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "goal unreachable", t);   // due again at +40 s
+  ex.set_pose({t += kSecond, Pose2(2, 0.9, 0)});
+  g = next_goal(ex, t += 21 * kSecond);   // +32 s: only the frontier is due
+  ASSERT_TRUE(g) << ex.status().activity;
+  ASSERT_EQ(g->kind, ExploreGoal::Kind::kFrontier);
+  const Command c = ex.step(t += 10 * kSecond);   // +42 s: the door is due too
+  EXPECT_FALSE(c.goal) << "replaced by " << (c.goal ? to_string(c.goal->kind) : "");
+  ASSERT_TRUE(ex.goal());
+  EXPECT_EQ(ex.goal()->goal_id, g->goal_id);
+}
+
 // A robot held where it stands (wedged among furniture, its collision avoidance finding no way
 // on) fails every goal by the progress bound. Those failures are not the goals' fault until the
 // robot arrived somewhere since the last one: exploring does not end while the robot cannot move.
