@@ -495,20 +495,27 @@ TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
 // A frontier of the current region that failed waits behind the stack: tried again before it, a
 // frontier the robot cannot get at (behind furniture) held it in one room while the rest of the
 // building waited.
+// The open hallway with a door seen in its north wall, the robot at its west end at `t`: the
+// first goal, the hallway's open end, fails (no path) and is due again after retry_after_s.
+std::shared_ptr<rgmap::RgMap> open_end_fails_beside_a_door(Explorer& ex, int64_t t)
+{
+  auto map = hallway(false);
+  ex.set_map(map);
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  ex.add_sightings({sighting(V(3, 1.8), M_PI / 2)}, t);
+  const auto g = next_goal(ex, t);
+  EXPECT_TRUE(g && g->kind == ExploreGoal::Kind::kFrontier) << "the region first: " << ex.status().activity;
+  if (g) ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "goal unreachable", t);
+  return map;
+}
+
 TEST(Explorer, AFailedFrontierOfTheCurrentRegionWaitsBehindTheStack)
 {
   Explorer ex(retrying(3));
   int64_t t = kUtime;
-  auto map = hallway(false);
-  ex.set_map(map);
-  ex.set_pose({t, Pose2(1, 0.9, 0)});
-  ex.add_sightings({sighting(V(3, 1.8), M_PI / 2)}, t);   // a door in the north wall
-  auto g = next_goal(ex, t);
-  ASSERT_TRUE(g);
-  EXPECT_EQ(g->kind, ExploreGoal::Kind::kFrontier) << "the region first";
-  ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "goal unreachable", t);
+  const auto map = open_end_fails_beside_a_door(ex, t);
   ex.set_pose({t += kSecond, Pose2(1.5, 0.9, 0)});
-  g = next_goal(ex, t += 31 * kSecond);   // the frontier is due again by now
+  auto g = next_goal(ex, t += 31 * kSecond);   // the frontier is due again by now
   ASSERT_TRUE(g) << ex.status().activity;
   EXPECT_EQ(g->kind, ExploreGoal::Kind::kGateway);
   // The stack empty (the door gone through and seen beyond), the frontier is tried again.
@@ -529,16 +536,9 @@ TEST(Explorer, AFrontierGoalUnderWayIsNotDroppedForTheStack)
 {
   Explorer ex(retrying(3));
   int64_t t = kUtime;
-  auto map = hallway(false);
-  ex.set_map(map);
-  ex.set_pose({t, Pose2(1, 0.9, 0)});
-  ex.add_sightings({sighting(V(3, 1.8), M_PI / 2)}, t);   // a door in the north wall
-  auto g = next_goal(ex, t);
-  ASSERT_TRUE(g);
-  ASSERT_EQ(g->kind, ExploreGoal::Kind::kFrontier);
-  ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "goal unreachable", t);   // due again at +30 s
+  open_end_fails_beside_a_door(ex, t);   // due again at +30 s
   ex.set_pose({t += kSecond, Pose2(1.5, 0.9, 0)});
-  g = next_goal(ex, t += 9 * kSecond);
+  auto g = next_goal(ex, t += 9 * kSecond);
   ASSERT_TRUE(g);
   ASSERT_EQ(g->kind, ExploreGoal::Kind::kGateway);
   ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "goal unreachable", t);   // due again at +40 s
