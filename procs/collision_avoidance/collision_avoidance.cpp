@@ -104,6 +104,15 @@ void CollisionAvoidance::on_obstacle_points(time::Time stamp, std::vector<Eigen:
   map_.set_grid_points(stamp, std::move(odom_points));
 }
 
+bool CollisionAvoidance::may_squeeze(double clearance, double tight) const
+{
+  const double here = map_.clearance(pose_.translation(), clearance);
+  // Under way: on while the body keeps the squeeze margin (scan noise allowed).
+  if (squeezing_) return here >= tight - 0.01;
+  // Begun only from the full clearance, with nobody near (squeeze_people).
+  return here >= clearance && !(options_.squeeze_people > 0.0 && person_within(options_.squeeze_people));
+}
+
 bool CollisionAvoidance::person_within(double reach) const
 {
   const Eigen::Vector2d here = pose_.translation();
@@ -332,9 +341,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   // nobody near; once in, it goes on (walkers keep the near margin on every chain).
   bool squeeze = false;
   const double tight = options_.planner.robot_radius + squeeze_planner_.options().safety_margin;
-  const double here_clear = map_.clearance(pose_.translation(), clearance);
-  if (!planned && options_.squeeze_margin > 0.0 && options_.squeeze_margin < options_.planner.safety_margin &&
-      (squeezing_ ? here_clear >= tight - 0.01 : here_clear >= clearance && !(options_.squeeze_people > 0.0 && person_within(options_.squeeze_people)))) {
+  if (!planned && options_.squeeze_margin > 0.0 && may_squeeze(clearance, tight)) {
     auto g = goals();
     while (!g.empty() && map_.clearance(g.back().translation(), clearance) < clearance) g.pop_back();
     const double speed = std::min(targets_.max_speed, options_.squeeze_speed);

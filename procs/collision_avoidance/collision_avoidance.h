@@ -164,6 +164,9 @@ class CollisionAvoidance
   bool someone_waits_near(double reach) const;
   // A tracked person (walking, or walked up and stopped) within `reach`.
   bool person_within(double reach) const;
+  // A squeeze may go on (the body keeps `tight`) or begin (the robot has the full `clearance`,
+  // nobody within squeeze_people).
+  bool may_squeeze(double clearance, double tight) const;
   bool targets_changed_goal() const { return targets_.goal_id != give_way_goal_id_; }
   // Leaving a person's path sideways (yielding.cpp). The person in the way, if any: someone
   // walking toward the robot with it on their path, or someone who stopped in front of it.

@@ -48,16 +48,14 @@ void GoalTimeBudget::step(double t, std::optional<int64_t> goal_id, const std::s
 
 nlohmann::json GoalTimeBudget::to_json() const
 {
-  nlohmann::json kinds = nlohmann::json::object();
-  for (const auto& [name, k] : kinds_) {
-    double running = k.running_s;
-    if (goal_id_ && name == kind_) running += goal_s_;
-    kinds[name] = {{"reached_s", k.reached_s}, {"reached", k.reached},       {"failed_s", k.failed_s},
-                   {"failed", k.failed},       {"replaced_or_running_s", running}, {"failed_s_by_reason", k.failed_s_by_reason}};
-  }
-  if (goal_id_ && !kinds.contains(kind_))
-    kinds[kind_] = {{"reached_s", 0.0}, {"reached", 0}, {"failed_s", 0.0}, {"failed", 0}, {"replaced_or_running_s", goal_s_}};
-  return {{"by_kind", kinds}, {"no_goal_s", no_goal_s_}, {"standing_with_goal_s", still_with_goal_s_}};
+  // The goal running at the end counts with the replaced ones.
+  std::map<std::string, KindTime> kinds = kinds_;
+  if (goal_id_) kinds[kind_].running_s += goal_s_;
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, k] : kinds)
+    out[name] = {{"reached_s", k.reached_s}, {"reached", k.reached},   {"failed_s", k.failed_s},
+                 {"failed", k.failed},       {"replaced_or_running_s", k.running_s}, {"failed_s_by_reason", k.failed_s_by_reason}};
+  return {{"by_kind", out}, {"no_goal_s", no_goal_s_}, {"standing_with_goal_s", still_with_goal_s_}};
 }
 
 }  // namespace rgnav::explore_eval
