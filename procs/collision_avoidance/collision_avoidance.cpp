@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/pose_track.h"
+
 namespace rgnav::collision_avoidance {
 
 using trajectory::Chain;
 using trajectory::Segment;
 
 namespace {
+
+constexpr double kOdometryKept = 1.0;     // [s]
+constexpr int64_t kOdometryGapUs = 100'000; // odometry messages further apart bracket no scan
 
 PlannerOptions squeeze_options(const CaOptions& o)
 {
@@ -68,11 +73,24 @@ void CollisionAvoidance::cancel()
   targets_changed_ = true;
 }
 
-void CollisionAvoidance::on_odometry(time::Time, const Pose2& odom_from_base, double v)
+void CollisionAvoidance::on_odometry(time::Time stamp, const Pose2& odom_from_base, double v)
 {
   pose_ = odom_from_base;
   v_ = v;
   has_pose_ = true;
+  const int64_t us = time::to_utime(stamp);
+  // Out of order or a jump back (a restarted source): start the history anew.
+  if (!odometry_.empty() && us <= odometry_.back().utime) odometry_.clear();
+  odometry_.push_back({us, odom_from_base});
+  while (odometry_.size() > 2 && us - odometry_.front().utime > static_cast<int64_t>(kOdometryKept * 1e6))
+    odometry_.pop_front();
+}
+
+Pose2 CollisionAvoidance::pose_at(time::Time stamp) const
+{
+  const auto p = geometry::bracketed_at(odometry_, time::to_utime(stamp), kOdometryGapUs,
+                                        [](const OdometrySample& s) { return s.pose; });
+  return p ? *p : pose_;
 }
 
 void CollisionAvoidance::on_scan(time::Time stamp, const std::vector<PolarReading>& laser_readings, double range_max)
@@ -80,7 +98,7 @@ void CollisionAvoidance::on_scan(time::Time stamp, const std::vector<PolarReadin
   if (!has_pose_) return;
   ScanPoints sp;
   sp.stamp = stamp;
-  sp.odom_from_base = pose_;
+  sp.odom_from_base = pose_at(stamp);
   last_readings_.clear();
   sp.laser_origin = options_.base_from_laser.translation();
   const double seen_limit = std::min(range_max, map_.max_range());

@@ -14,6 +14,7 @@
 // message time; knows no LCM.
 #pragma once
 
+#include <deque>
 #include <optional>
 #include <string>
 #include <vector>
@@ -129,6 +130,9 @@ class CollisionAvoidance
   void cancel();
   void on_odometry(time::Time stamp, const Pose2& odom_from_base, double v);
   // Scan readings in the laser frame as (bearing, range); range >= range_max means no return.
+  // Placed with the odometry pose at the scan's stamp, between the two odometry messages around
+  // it (odometry newer than the scan may have come first: scans at 75 Hz, odometry at 50 Hz);
+  // without both, with the newest pose.
   void on_scan(time::Time stamp, const std::vector<PolarReading>& laser_readings, double range_max);
   void on_obstacle_points(time::Time stamp, std::vector<Eigen::Vector2d> odom_points);
   void on_drive_feedback(const DriveFeedback& feedback) { feedback_ = feedback; has_feedback_ = true; }
@@ -224,6 +228,17 @@ class CollisionAvoidance
   size_t next_ = 0;
   bool has_pose_ = false;
   Pose2 pose_;
+  // The odometry of the last kOdometryKept seconds, for the pose at a scan's stamp. Placed with
+  // the newest pose instead, the scans of a turn on the spot put the walls a few degrees off
+  // from scan to scan (centimetres to decimetres away): wall pieces that moved, tracked as
+  // people walking (a robot yielding to one at a hallway's mouth, nobody there).
+  struct OdometrySample
+  {
+    int64_t utime = 0;
+    Pose2 pose;
+  };
+  std::deque<OdometrySample> odometry_;
+  Pose2 pose_at(time::Time stamp) const;
   double v_ = 0.0;
   time::Time last_scan_{};
   bool has_scan_ = false;

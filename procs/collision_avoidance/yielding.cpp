@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "collision_avoidance/collision_avoidance.h"
+#include "trajectory/construct.h"
 
 namespace rgnav::collision_avoidance {
 
@@ -72,6 +73,74 @@ Chain polyline(const Pose2& start, const std::vector<Eigen::Vector2d>& corners, 
 }
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// The same way with its corners between two legs rounded (smooth_turn, curvature `kappa`: the
+// drive goes on through them) where both legs are long enough; the first turn (from standing)
+// and the last stay turns on the spot. A person following the robot out of their way, or
+// waiting for it there, waits behind a robot that keeps driving away; at every stop for a turn
+// on the spot their patience runs (at a hallway's mouth, they turned back for good).
+Chain rounded_polyline(const Pose2& start, const std::vector<Eigen::Vector2d>& corners, double final_heading,
+                       double v_max, double kappa)
+{
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& corner : corners)
+    if ((corner - (points.empty() ? start.translation() : points.back())).norm() >= 1e-3) points.push_back(corner);
+  Chain c;
+  Pose2 from = start;
+  double consumed = 0.0;  // [m] of the next leg the last rounded corner drove already
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d d = points[i] - from.translation();
+    if (consumed == 0.0) {  // a corner not rounded (or the start): turn on the spot toward it
+      const double dth = geometry::normalize_angle(std::atan2(d.y(), d.x()) - from.theta());
+      if (std::fabs(dth) > 1e-3) {
+        c.push_back(Segment::turn(from, dth));
+        from = c.end();
+      }
+    }
+    double leg = d.norm();
+    // Round the corner at points[i] toward points[i + 1]: the turn's tangent lengths (from where
+    // it begins to the corner, from the corner to where it ends) must fit on both legs.
+    // (Nearly reversing corners stay turns on the spot: the rounded turn would swing wide.)
+    std::optional<Chain> turn;
+    double after = 0.0;
+    if (i + 1 < points.size()) {
+      const Eigen::Vector2d out = points[i + 1] - points[i];
+      const double dth = geometry::normalize_angle(std::atan2(out.y(), out.x()) - from.theta());
+      if (std::fabs(dth) > 0.05 && std::fabs(dth) < 2.5) {
+        Chain shape = trajectory::smooth_turn(Pose2(), dth, kappa);
+        const Pose2 e = shape.end();
+        const double before = e.x() - e.y() / std::tan(dth);
+        after = e.y() / std::sin(dth);
+        if (before > 0.0 && after > 0.0 && before <= leg - 0.05 && after <= out.norm() - 0.05) {
+          leg -= before;
+          turn = std::move(shape);
+        }
+      }
+    }
+    if (leg > 1e-3) {
+      Segment line = Segment::line(from, leg);
+      line.set_v_max(v_max);
+      c.push_back(line);
+      from = c.end();
+    }
+    consumed = 0.0;
+    if (turn) {
+      for (Segment seg : turn->segments()) {
+        seg.set_v_max(v_max);
+        c.append_at_end(seg);
+      }
+      // The turn ends on the line to the next corner, heading along it (up to rounding): the
+      // next leg starts there, no turn on the spot before it.
+      from = c.end();
+      consumed = after;
+      const Eigen::Vector2d next = points[i + 1] - from.translation();
+      from = Pose2(from.translation(), std::atan2(next.y(), next.x()));
+    }
+  }
+  const double dth = geometry::normalize_angle(final_heading - from.theta());
+  if (std::fabs(dth) > 1e-3) c.push_back(Segment::turn(c.empty() ? from : c.end(), dth));
+  return c;
+}
 
 // first_collision's rule from s0 on, on what is there now: where someone is only predicted to
 // walk does not count. The person the robot makes way for follows it down their path, and
@@ -283,7 +352,10 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::leave_path(time::Time 
     yield_.phase = YieldPhase::kWaiting;
     return stop(now, Mode::kYielding, kWaitingThere);
   }
-  Chain c = polyline(pose_, y->corners, facing, options_.yield_speed);
+  Chain c = rounded_polyline(pose_, y->corners, facing, options_.yield_speed, options_.planner.kappa_max);
+  // Rounded corners cut them: where that grazes something, turns on the spot.
+  if (first_collision(c, map_, clearance, options_.planner.check_step))
+    c = polyline(pose_, y->corners, facing, options_.yield_speed);
   if (auto hit = first_collision(c, map_, clearance, options_.planner.check_step)) {
     end_yield(now, false);
     return std::nullopt;
@@ -463,7 +535,9 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::return_to_way(time::Ti
   if (best < clearance) return std::nullopt;
   const auto corners = way_to(map_, here, goal, clearance, options_.give_way.yield);
   if (!corners) return std::nullopt;
-  Chain c = polyline(pose_, *corners, heading, options_.yield_speed);
+  Chain c = rounded_polyline(pose_, *corners, heading, options_.yield_speed, options_.planner.kappa_max);
+  if (blocked_now(map_, c, 0.0, clearance - kReturnMargin - kGrazeBack, options_.planner.check_step))
+    c = polyline(pose_, *corners, heading, options_.yield_speed);
   if (blocked_now(map_, c, 0.0, clearance - kReturnMargin - kGrazeBack, options_.planner.check_step)) return std::nullopt;
   const double t = manoeuvre_time(c);
   yield_.phase = YieldPhase::kReturning;

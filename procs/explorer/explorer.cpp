@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "explorer/opening.h"
 #include "explorer/view_point.h"
 #include "planner/no_path_reason.h"
 
@@ -20,11 +21,13 @@ constexpr double kSamePlace = 0.5;   // [m] a newly chosen goal whose frontier i
 constexpr double kMovedSinceFailure = 0.5;   // [m] the robot this far from the last failure's place is elsewhere
 constexpr double kTrackStep = 0.2;           // [m] the robot's track keeps a place every this far ...
 constexpr size_t kTrackPlaces = 100;         // ... the newest this many (20 m)
+constexpr double kLaneMargin = 0.05;         // [m] a lane through an opening is the robot's width and this each side
 constexpr double kNoViewAfter = 1e4;         // [m] a frontier without a view point counts as this much farther
 // How a goal ended (ExplorerStatus, last_end()).
 constexpr const char* kExplored = "explored";       // its frontier is gone from the map
 constexpr const char* kNoProgress = "no progress";  // the robot got no nearer in progress_timeout_s
 constexpr const char* kTimedOut = "timed out";
+constexpr const char* kNoOpening = "no opening: the map's lines close it to the robot";
 
 nlohmann::json point_json(const Vector2d& p) { return {p.x(), p.y()}; }
 
@@ -215,7 +218,9 @@ std::optional<ExploreGoal> Explorer::gateway_goal(int64_t utime)
     ExploreGoal g;
     g.kind = ExploreGoal::Kind::kGateway;
     g.region_id = rid;
-    g.map_point = e->beyond(options_.stack.beyond_m);
+    // Through the opening the map shows beside the detector's crossing point (opening.h).
+    const Vector2d crossing = opening_of(*e).value_or(e->crossing);
+    g.map_point = crossing + options_.stack.beyond_m * Vector2d(std::cos(e->heading), std::sin(e->heading));
     g.region_point = r->map_from_region.inverse() * g.map_point;
     g.heading = geometry::normalize_angle(e->heading - r->map_from_region.theta());
     g.tolerance = options_.gateway_goal_tolerance;
@@ -225,6 +230,30 @@ std::optional<ExploreGoal> Explorer::gateway_goal(int64_t utime)
     return g;
   }
   return std::nullopt;
+}
+
+std::optional<Vector2d> Explorer::opening_of(const StackEntry& e) const
+{
+  OpeningOptions aim;
+  aim.search_m = options_.stack.aim_search_m;
+  // As far past the crossing as the robot must go to have gone through, as wide as it is.
+  return aim_through_opening(*map_, e.crossing, e.heading, options_.stack.beyond_m + options_.stack.passed_m,
+                             2.0 * (options_.robot_radius + kLaneMargin), aim);
+}
+
+void Explorer::set_aside_closed_entries(int64_t utime)
+{
+  if (options_.stack.aim_search_m <= 0.0) return;
+  for (const StackEntry& e : stack_.entries()) {
+    // Pending, or due again (its retry time come, or the map near it changed since it was set
+    // aside for good: most such changes open nothing, and trying costs a goal's progress bound).
+    const bool due = e.state == StackEntry::State::kPending || (e.state == StackEntry::State::kSetAside && e.retry_utime > 0);
+    if (!due || opening_of(e)) continue;
+    // For good (no attempt would get through); looked at again once the map near it changes, as
+    // for a door that opens or a person who stood in a doorway and walked on.
+    stack_.failed(e.id, kNoOpening, utime, 0, 1, static_cast<int64_t>(map_->regions().size()),
+                  view_of_place(*map_, e.crossing, options_.changed));
+  }
 }
 
 std::optional<ExploreGoal> Explorer::other_region_goal(int64_t current, int64_t utime, bool untried_only)
@@ -477,6 +506,7 @@ Command Explorer::step(int64_t utime)
   }
 
   release_changed(utime);
+  set_aside_closed_entries(utime);
   std::optional<ExploreGoal> next = choose(utime);
   if (goal_) {
     // A gateway goal runs until it ends; a frontier goal gives way to a better choice: a region

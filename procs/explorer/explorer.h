@@ -3,8 +3,10 @@
 // (frontiers.h), nearest first, each looked at from a view point the planner can reach
 // (view_point.h; a frontier with none is no goal for now), until none is left (the region is complete); then it takes the
 // next untraversed gateway from the stack (gateway_stack.h), breadth-first, and drives through
-// it; a region left incomplete is gone back to once the current one is complete and no gateway
-// is waiting. It ends when no frontier of any region and no stacked gateway is left that it can
+// it, aimed through the opening the map's lines show beside the detector's crossing point (an
+// entry they show no opening for is set aside until the map near it changes: opening.h); a
+// region left incomplete is gone back to once the current one is complete and no gateway is
+// waiting. It ends when no frontier of any region and no stacked gateway is left that it can
 // still try. Goals go to the planner (NAV_GOAL); a goal beyond a gateway lies in unknown space
 // and is sent with beyond_known (the planner drives from the nearest known free place straight
 // on). Regions the robot has finished are offered for naming. The robot first looks behind (its
@@ -135,6 +137,13 @@ class Explorer
   // The nearest frontier of the region to look at (untried_only: none that failed before).
   std::optional<ExploreGoal> frontier_goal(int64_t region_id, int64_t utime, bool untried_only = false);
   std::optional<ExploreGoal> gateway_goal(int64_t utime);
+  // Where a goal through stack entry `e` crosses: the opening the map's lines show beside its
+  // crossing point; nothing when they show none the robot fits through (opening.h).
+  std::optional<Eigen::Vector2d> opening_of(const StackEntry& e) const;
+  // Entries pending or due again that the map shows no opening for are set aside for good (until
+  // the map near them changes): a gap between furniture, a wall or a corner taken for a door is
+  // no way on.
+  void set_aside_closed_entries(int64_t utime);
   // The nearest frontier of a live region other than `current` (kind kRegion).
   std::optional<ExploreGoal> other_region_goal(int64_t current, int64_t utime, bool untried_only);
   // The region's frontiers that are goals of its own: those at a stacked gateway's opening are not.

@@ -30,6 +30,7 @@ StackOptions load_stack(const config::Config& c)
   s.passed_m = c.number("passed_m", s.passed_m, 0.0, s.beyond_m);
   s.breadth_first = c.boolean("breadth_first", s.breadth_first);
   s.after_regions = c.boolean("after_regions", s.after_regions);
+  s.aim_search_m = c.number("aim_search_m", s.aim_search_m, 0.0, 3.0);
   return s;
 }
 

@@ -34,6 +34,9 @@ struct StackOptions
   // the robot stepped out of for a moment waits until the stack is empty). A frontier that failed
   // once, the current region's too, comes after the stack either way.
   bool after_regions = true;
+  // A goal through an entry is aimed through the opening the map's lines show beside its crossing
+  // point (opening.h), looked for this far to either side (0: the crossing point as seen).
+  double aim_search_m = 1.0;
 };
 
 // Where the robot looks at a frontier from (view_point.h): a place the planner's grid has room for

@@ -136,7 +136,22 @@ Run drive(const DoorwayEncounter& e, bool with_person, const lld::LldOptions& lo
           nearest = odi.pose.inverse() * p;
         }
       std::cerr << " clear " << best << " at " << nearest.x() << "," << nearest.y() << " moving "
-                << ca.map().clearance_moving(here, 1.0) << "\n";
+                << ca.map().clearance_moving(here, 1.0);
+      // What collision avoidance takes for people (odom frame): CB_DEBUG_TRACKS=1.
+      if (std::getenv("CB_DEBUG_TRACKS")) {
+        for (const auto& tr : ca.map().tracker().tracks())
+          if (!tr.centroids.empty())
+            std::cerr << " track" << tr.id << (tr.moved ? "m" : "") << " " << tr.centroids.back().second.x() << ","
+                      << tr.centroids.back().second.y() << " v " << tr.velocity.x() << "," << tr.velocity.y() << " steady "
+                      << tr.moving_steady;
+        for (const auto& m : ca.map().tracker().last_seen_movers())
+          if ((m.position - here).norm() < 4.0)
+            std::cerr << " stopped " << m.position.x() << "," << m.position.y() << " walking " << m.walking.x() << ","
+                      << m.walking.y() << " steady " << m.moving_steady;
+        std::cerr << " odom_from_world " << odom_from_world.x() << "," << odom_from_world.y() << ","
+                  << odom_from_world.theta();
+      }
+      std::cerr << "\n";
     }
     if (ca.mode() == collision_avoidance::Mode::kArrived) {
       r.arrived = true;

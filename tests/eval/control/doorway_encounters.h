@@ -31,7 +31,8 @@ constexpr double kResolveBound_s = 60.0;
 constexpr double kDeadlock_s = 20.0;
 constexpr double kProgress_m = 0.2;
 
-// `n` encounters (seeded); only >= 0: run that one alone (debugging; CB_DEBUG=1 traces it).
+// `n` encounters (seeded); only >= 0: run that one alone (debugging; CB_DEBUG=1 traces it,
+// CB_DEBUG_EVERY=N every N control periods, CB_DEBUG_TRACKS=1 with the people tracker's tracks).
 nlohmann::json doorway_encounters(const lld::LldOptions& lld_options, const collision_avoidance::CaOptions& ca_options,
                                   int n, uint64_t seed, int only);
 

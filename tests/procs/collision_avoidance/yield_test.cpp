@@ -285,5 +285,66 @@ TEST(YieldBeforeOneLane, OutOfTheirWayBeforeTheHallwayNotInIt)
 }
 
 
+// The way out of a person's path from inside a hallway, as collision avoidance sends it: it
+// turns round on the spot where it stands (it cannot drive backwards), but at the hallway's mouth
+// it drives on round the corner into the room beside it instead of stopping to turn there (the
+// corners of the way there are rounded where its legs leave room). The person following it out
+// (or waiting for it) loses patience only while it stands: people who waited through its first
+// turn turned back at its second, for good, and came again as it went back in.
+TEST(YieldManoeuvre, RoundsTheCornerAtTheHallwaysMouthWithoutStopping)
+{
+  CaOptions o;
+  CollisionAvoidance ca(o);
+  Targets t;
+  t.goal_id = 1;
+  for (double x = 3.0; x <= 9.0 + 1e-9; x += 1.0) t.poses.emplace_back(x, 0.0, 0.0);
+  ca.set_targets(t);
+  const std::vector<Wall> hallway = room_hallway_room(1.1);
+  Pose2 pose(2.3, 0.0, 0.0);  // in the hallway (x 1.5 to 5.5), 0.8 m past its mouth
+  int64_t us = 1'000'000;
+  std::optional<trajectory::Trajectory> leaving;
+  int64_t ended = 0;  // the manoeuvre the drive reports done (a turn on the spot: the pose turned)
+  // Standing a while (the walls turn static), then someone walks down the hallway at it.
+  for (int i = 0; i < 120 && !leaving; ++i) {
+    us += 100'000;
+    const double x = i < 20 ? 20.0 : std::max(3.4, 6.5 - 0.08 * (i - 20));
+    const auto w = i < 20 ? hallway : with_person(hallway, {x, 0.0});
+    ca.on_odometry(time::from_utime(us), pose, 0.0);
+    ca.on_scan(time::from_utime(us), testing::cast(pose * o.base_from_laser, w), 8.0);
+    ca.on_drive_feedback({ended, ended ? 2 : 0, 0.0, 0.0, 0.0});
+    const auto sent = ca.update(time::from_utime(us));
+    if (!sent || sent->chain.empty()) continue;
+    if (ca.mode() != Mode::kYielding) continue;
+    bool turns_only = true;
+    for (const auto& s : sent->chain.segments()) turns_only = turns_only && s.kind() == trajectory::Kind::kTurn;
+    if (!turns_only) {
+      leaving = sent;
+    } else {  // looking behind: the turn done at once
+      pose = sent->chain.end();
+      ended = sent->id;
+    }
+  }
+  ASSERT_TRUE(leaving.has_value()) << ca.status();
+  const auto& segs = leaving->chain.segments();
+  size_t first_line = segs.size(), last_line = 0;
+  for (size_t i = 0; i < segs.size(); ++i)
+    if (segs[i].kind() == trajectory::Kind::kLine) {
+      first_line = std::min(first_line, i);
+      last_line = i;
+    }
+  std::string shape;  // kind and end of every segment, for the messages
+  for (const auto& s : segs) {
+    const Pose2 e = s.end();
+    shape += std::to_string(static_cast<int>(s.kind())) + "(" + std::to_string(e.x()).substr(0, 5) + "," +
+             std::to_string(e.y()).substr(0, 5) + ") ";
+  }
+  ASSERT_LT(first_line, last_line) << "a way out round the mouth has more than one leg: " << shape;
+  EXPECT_LT(leaving->chain.end().x(), 1.5) << "out of the hallway: " << shape;
+  // From the first leg until it is out of the hallway and clear of its mouth, it keeps driving.
+  for (size_t i = first_line; i < segs.size() && segs[i].start().x() > 1.5 - kClearance; ++i)
+    EXPECT_NE(segs[i].kind(), trajectory::Kind::kTurn) << "a stop to turn on the spot at the mouth, segment " << i << ": " << shape;
+  EXPECT_FALSE(first_collision(leaving->chain, ca.map(), kClearance, 0.05).has_value());
+}
+
 }  // namespace
 }  // namespace rgnav::collision_avoidance

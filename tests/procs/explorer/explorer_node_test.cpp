@@ -204,7 +204,7 @@ TEST(ExplorerNode, TheFirstGoalIsALookBehind)
 TEST(ExplorerNode, NoPathLeadsToTheNextGoalAndAnUnreachableDoorIsSetAside)
 {
   Fixture f;
-  f.map(test_maps::one_room(false));
+  f.map(test_maps::one_room(false, 1, true));
   f.slam_pose(Pose2(1.0, 1.5, 0.0));
   f.door_sighting();
   f.node->step();
@@ -241,7 +241,7 @@ TEST(ExplorerNode, StateFileCarriesTheStackAcrossARestart)
   int64_t last_goal = 0;
   {
     Fixture f(files);
-    f.map(test_maps::one_room(false));
+    f.map(test_maps::one_room(false, 1, true));
     f.slam_pose(Pose2(1.0, 1.5, 0.0));
     f.door_sighting();
     f.node->step();
@@ -258,7 +258,7 @@ TEST(ExplorerNode, StateFileCarriesTheStackAcrossARestart)
   EXPECT_TRUE(g.node->restored());
   EXPECT_EQ(g.node->explorer().stack().to_json(), stack);
   g.t = kT0 + 1'000'000;
-  g.map(test_maps::one_room(false, 2));
+  g.map(test_maps::one_room(false, 2, true));
   g.slam_pose(Pose2(1.0, 1.5, 0.0));
   g.node->step();
   ASSERT_FALSE(g.goals().empty()) << g.status().activity;

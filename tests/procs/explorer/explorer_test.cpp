@@ -12,6 +12,7 @@
 #include "explorer/explorer.h"
 #include "explorer/frontiers.h"
 #include "explorer/gateway_stack.h"
+#include "explorer/opening.h"
 #include "explorer/place_view.h"
 #include "box_region.h"
 
@@ -34,11 +35,17 @@ rgmap::Region& add_region(rgmap::RgMap* map, const V& lo, const V& hi, const std
 }
 
 // A hallway [0, 6] x [0, 1.8]: walls along both sides and the left end; the right end open
-// unless `closed`.
-std::shared_ptr<rgmap::RgMap> hallway(bool closed)
+// unless `closed`; a 1 m door in the north wall centred at x = `door_x` if that is given.
+std::shared_ptr<rgmap::RgMap> hallway(bool closed, std::optional<double> door_x = std::nullopt)
 {
   auto map = std::make_shared<rgmap::RgMap>();
-  std::vector<Wall> walls = {{V(0, 0), V(6, 0)}, {V(0, 1.8), V(6, 1.8)}, {V(0, 0), V(0, 1.8)}};
+  std::vector<Wall> walls = {{V(0, 0), V(6, 0)}, {V(0, 0), V(0, 1.8)}};
+  if (door_x) {
+    walls.push_back({V(0, 1.8), V(*door_x - 0.5, 1.8)});
+    walls.push_back({V(*door_x + 0.5, 1.8), V(6, 1.8)});
+  } else {
+    walls.push_back({V(0, 1.8), V(6, 1.8)});
+  }
   if (closed) walls.push_back({V(6, 0), V(6, 1.8)});
   map->current_region = add_region(map.get(), V(0, 0), V(6, 1.8), walls).id;
   map->version = 1;
@@ -242,6 +249,49 @@ TEST(PlaceView, CountsFreeSpaceAndWallNearThePlace)
   EXPECT_THROW(place_view_from_json(nlohmann::json::array({1})), std::invalid_argument);
 }
 
+// A hallway [0, 6] x [0, 2] with a 1 m door in its north wall at x in [2, 3]; the rest walled.
+std::shared_ptr<rgmap::RgMap> hallway_with_a_door()
+{
+  auto map = std::make_shared<rgmap::RgMap>();
+  const std::vector<Wall> walls = {{V(0, 0), V(6, 0)}, {V(0, 0), V(0, 2)}, {V(6, 0), V(6, 2)},
+                                   {V(0, 2), V(2, 2)}, {V(3, 2), V(6, 2)}};
+  map->current_region = add_region(map.get(), V(0, 0), V(6, 2), walls).id;
+  map->version = 1;
+  return map;
+}
+
+// The detector's crossing of a door seen from the hallway lies along the wall from it: the goal
+// is aimed through the opening the lines show, with room for the robot; a crossing in the opening
+// stays, and one with no opening near stays where it was seen.
+TEST(Opening, AGoalIsAimedThroughTheOpeningBesideTheCrossing)
+{
+  const auto map = hallway_with_a_door();
+  const OpeningOptions o;
+  const double width = 0.62, depth = 1.4;
+  const auto aimed_at = aim_through_opening(*map, V(3.6, 1.0), M_PI / 2, depth, width, o);
+  ASSERT_TRUE(aimed_at);
+  const V aimed = *aimed_at;
+  EXPECT_GE(aimed.x(), 2.0 + 0.5 * width - 1e-9);
+  EXPECT_LE(aimed.x(), 3.0 - 0.5 * width + 1e-9);
+  EXPECT_NEAR(aimed.x(), 3.0 - 0.5 * width, 0.1) << "the nearest place with room, not the opening's middle";
+  EXPECT_DOUBLE_EQ(aimed.y(), 1.0);
+  EXPECT_EQ(aim_through_opening(*map, V(2.5, 1.0), M_PI / 2, depth, width, o), V(2.5, 1.0));
+  EXPECT_FALSE(aim_through_opening(*map, V(5.0, 1.0), M_PI / 2, depth, width, o)) << "no opening within 1 m";
+  EXPECT_FALSE(aim_through_opening(*map, V(2.5, 1.0), M_PI / 2, depth, 1.2, o)) << "an opening narrower than the lane";
+  EXPECT_EQ(aim_through_opening(*map, V(10.0, 1.0), M_PI / 2, depth, width, o), V(10.0, 1.0)) << "no line near: as seen";
+  OpeningOptions off;
+  off.search_m = 0.0;
+  EXPECT_EQ(aim_through_opening(*map, V(5.0, 1.0), M_PI / 2, depth, width, off), V(5.0, 1.0));
+
+  // A desk 0.8 m inside the room, across the door: the opening is in the wall, not beyond.
+  rgmap::LineSegment desk;
+  desk.a = V(1.8, 2.8);
+  desk.b = V(3.2, 2.8);
+  map->region(map->current_region)->segments.push_back(desk);
+  EXPECT_EQ(aim_through_opening(*map, V(2.5, 2.0), M_PI / 2, depth, width, o), V(2.5, 2.0));
+  EXPECT_EQ(aim_through_opening(*map, V(2.5, 1.0), M_PI / 2, depth, width, o), V(2.5, 1.0));
+}
+
 // A gateway set aside for good comes back when the map near it changes — a fragment of wall
 // across it dropped (a person who stood there walked on) — and not while nothing there changed.
 TEST(GatewayStack, SetAsideForGoodIsTriedAgainOnceTheMapNearItChanged)
@@ -277,6 +327,9 @@ TEST(GatewayStack, SetAsideForGoodIsTriedAgainOnceTheMapNearItChanged)
 }
 
 // Options of the tests that follow the goals of exploring: no look behind first.
+// Half the lane a gateway goal keeps through an opening: the robot's radius and a little (explorer.cpp).
+double ex_robot_lane_half() { return ExplorerOptions{}.robot_radius; }
+
 ExplorerOptions no_look()
 {
   ExplorerOptions o;
@@ -329,6 +382,73 @@ TEST(Explorer, FrontierThenThroughItThenDone)
   EXPECT_TRUE(ex.take_finished_regions().empty()) << "each region is offered for naming once";
 }
 
+// A door seen from the hallway, its crossing point half a metre along the wall from the opening
+// (the opening's frontier is the stacked door's): the gateway goal goes through the opening.
+TEST(Explorer, AGatewayGoalGoesThroughTheOpeningTheMapShows)
+{
+  Explorer ex(no_look());
+  const int64_t t = kUtime;
+  const auto map = hallway_with_a_door();
+  ex.set_map(map);
+  ex.set_pose({t, Pose2(1, 1, 0)});
+  ex.add_sightings({sighting(V(3.2, 1.5), M_PI / 2)}, t);
+  const Command c = ex.step(t);
+  ASSERT_TRUE(c.goal) << ex.status().activity;
+  ASSERT_EQ(c.goal->kind, ExploreGoal::Kind::kGateway);
+  EXPECT_GT(c.goal->map_point.x(), 2.0 + ex_robot_lane_half());
+  EXPECT_LT(c.goal->map_point.x(), 3.0 - ex_robot_lane_half()) << "through the opening, not at the wall beside it";
+  EXPECT_NEAR(c.goal->map_point.y(), 2.5, 1e-9);
+}
+
+// A door the detector saw where the map's lines show a wall with no opening the robot fits
+// (a gap between furniture, a corner): set aside for good, and exploring ends instead of driving
+// at the wall until the goal fails, over and over.
+TEST(Explorer, AnEntryTheMapShowsNoOpeningForIsSetAside)
+{
+  Explorer ex(no_look());
+  const int64_t t = kUtime;
+  const auto map = hallway(true);
+  ex.set_map(map);
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  ex.add_sightings({sighting(V(3, 1.2), M_PI / 2)}, t);
+  ASSERT_EQ(ex.stack().entries().size(), 1u);
+  const Command c = ex.step(t);
+  EXPECT_FALSE(c.goal) << c.goal->map_point.transpose();
+  EXPECT_EQ(ex.stack().count(StackEntry::State::kSetAside), 1);
+  EXPECT_EQ(ex.stack().entries()[0].reason.rfind("no opening", 0), 0u) << ex.stack().entries()[0].reason;
+  EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
+}
+
+// Set aside for good, the entry is looked at again when the map near it changes; still with no
+// opening, it is set aside again without a goal (the hallway's open end keeps exploring going).
+TEST(Explorer, AnEntryWithNoOpeningStaysAsideWhenTheMapNearItChanges)
+{
+  Explorer ex(no_look());
+  int64_t t = kUtime;
+  const auto map = hallway(false);
+  ex.set_map(map);
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  ex.add_sightings({sighting(V(3, 1.2), M_PI / 2)}, t);
+  Command c = ex.step(t);
+  ASSERT_TRUE(c.goal);
+  ASSERT_EQ(c.goal->kind, ExploreGoal::Kind::kFrontier);
+  ASSERT_EQ(ex.stack().count(StackEntry::State::kSetAside), 1);
+  ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "goal unreachable", t += kSecond);
+
+  auto changed = std::make_shared<rgmap::RgMap>(*map);
+  rgmap::LineSegment scrap;   // the map near the entry changes; still no opening
+  scrap.a = V(2.2, 1.0);
+  scrap.b = V(3.8, 1.0);
+  changed->region(changed->current_region)->segments.push_back(scrap);
+  ++changed->version;
+  ex.set_map(changed);
+  c = ex.step(t += static_cast<int64_t>(no_look().retry_after_s + 1) * kSecond);
+  ASSERT_TRUE(c.goal) << ex.status().activity;
+  EXPECT_NE(c.goal->kind, ExploreGoal::Kind::kGateway) << "no goal through a wall";
+  EXPECT_EQ(ex.stack().entries()[0].retry_utime, 0) << "for good again";
+  EXPECT_EQ(ex.stack().entries()[0].failed_utime, t) << "looked at again now";
+}
+
 // Every region entered before is complete before a new gateway (diss. ch. 7): the robot in a
 // finished room off a hallway whose far end is still open goes back to that end before the
 // room's other door, however the map's current region changed as it stood in the doorway.
@@ -337,7 +457,7 @@ TEST(Explorer, RegionsEnteredBeforeAreCompletedBeforeANewGateway)
   auto map = hallway(false);
   const int64_t hall = map->current_region;
   const int64_t room = add_region(map.get(), V(0, 1.8), V(3, 4),
-                                  {{V(0, 1.8), V(0, 4)}, {V(3, 1.8), V(3, 4)}, {V(0, 4), V(3, 4)}})
+                                  {{V(0, 1.8), V(0, 4)}, {V(3, 1.8), V(3, 4)}, {V(0, 4), V(1, 4)}, {V(2, 4), V(3, 4)}})
                            .id;
   rgmap::Gateway& door = map->add_gateway(rgmap::GatewayClass::kDoor, hall, kUtime);
   map->connect(door.id, room, Pose2(0, 1.8, 0));
@@ -499,7 +619,7 @@ TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
 // first goal, the hallway's open end, fails (no path) and is due again after retry_after_s.
 std::shared_ptr<rgmap::RgMap> open_end_fails_beside_a_door(Explorer& ex, int64_t t)
 {
-  auto map = hallway(false);
+  auto map = hallway(false, 3.0);
   ex.set_map(map);
   ex.set_pose({t, Pose2(1, 0.9, 0)});
   ex.add_sightings({sighting(V(3, 1.8), M_PI / 2)}, t);
