@@ -48,49 +48,25 @@ constexpr double kPersonRadius = 0.3;  // [m] a person's points lie this close t
 constexpr double kApart = 0.3;         // [m] beams beside a person reach this much farther
 constexpr double kOneLaneStep = 0.15;  // [m] a one-lane stretch this near the robot (the person) along the line: in it
 
-// Turns on the spot and straight legs through `corners`, then a turn to `final_heading`: a
-// synchro drive can always do this from standing, and the legs are the search's free lines.
-Chain polyline(const Pose2& start, const std::vector<Eigen::Vector2d>& corners, double final_heading, double v_max)
-{
-  Chain c;
-  Pose2 from = start;
-  for (const auto& corner : corners) {
-    const Eigen::Vector2d d = corner - from.translation();
-    if (d.norm() < 1e-3) continue;
-    const double dth = geometry::normalize_angle(std::atan2(d.y(), d.x()) - from.theta());
-    if (std::fabs(dth) > 1e-3) {
-      c.push_back(Segment::turn(from, dth));
-      from = c.end();
-    }
-    Segment leg = Segment::line(from, d.norm());
-    leg.set_v_max(v_max);
-    c.push_back(leg);
-    from = c.end();
-  }
-  const double dth = geometry::normalize_angle(final_heading - from.theta());
-  if (std::fabs(dth) > 1e-3) c.push_back(Segment::turn(from, dth));
-  return c;
-}
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// The same way with its corners between two legs rounded (smooth_turn, curvature `kappa`: the
-// drive goes on through them) where both legs are long enough; the first turn (from standing)
-// and the last stay turns on the spot. A person following the robot out of their way, or
-// waiting for it there, waits behind a robot that keeps driving away; at every stop for a turn
+// Straight legs through `corners`, then a turn to `final_heading`. Without `kappa`, a turn on the
+// spot before every leg: a synchro drive can always do this from standing, and the legs are the
+// search's free lines. With it, the corners between two legs are rounded (smooth_turn, curvature
+// kappa: the drive goes on through them) where both legs are long enough; the first turn (from
+// standing) and the last stay turns on the spot. A person following the robot out of their way,
+// or waiting for it there, waits behind a robot that keeps driving away; at every stop for a turn
 // on the spot their patience runs (at a hallway's mouth, they turned back for good).
-Chain rounded_polyline(const Pose2& start, const std::vector<Eigen::Vector2d>& corners, double final_heading,
-                       double v_max, double kappa)
+Chain polyline(const Pose2& start, const std::vector<Eigen::Vector2d>& corners, double final_heading, double v_max,
+               std::optional<double> kappa = std::nullopt)
 {
   std::vector<Eigen::Vector2d> points;
   for (const auto& corner : corners)
     if ((corner - (points.empty() ? start.translation() : points.back())).norm() >= 1e-3) points.push_back(corner);
   Chain c;
   Pose2 from = start;
-  double consumed = 0.0;  // [m] of the next leg the last rounded corner drove already
+  bool rounded_in = false;  // the last corner was rounded: `from` already heads along this leg
   for (size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector2d d = points[i] - from.translation();
-    if (consumed == 0.0) {  // a corner not rounded (or the start): turn on the spot toward it
+    if (!rounded_in) {
       const double dth = geometry::normalize_angle(std::atan2(d.y(), d.x()) - from.theta());
       if (std::fabs(dth) > 1e-3) {
         c.push_back(Segment::turn(from, dth));
@@ -102,15 +78,14 @@ Chain rounded_polyline(const Pose2& start, const std::vector<Eigen::Vector2d>& c
     // it begins to the corner, from the corner to where it ends) must fit on both legs.
     // (Nearly reversing corners stay turns on the spot: the rounded turn would swing wide.)
     std::optional<Chain> turn;
-    double after = 0.0;
-    if (i + 1 < points.size()) {
+    if (kappa && i + 1 < points.size()) {
       const Eigen::Vector2d out = points[i + 1] - points[i];
       const double dth = geometry::normalize_angle(std::atan2(out.y(), out.x()) - from.theta());
       if (std::fabs(dth) > 0.05 && std::fabs(dth) < 2.5) {
-        Chain shape = trajectory::smooth_turn(Pose2(), dth, kappa);
+        Chain shape = trajectory::smooth_turn(Pose2(), dth, *kappa);
         const Pose2 e = shape.end();
         const double before = e.x() - e.y() / std::tan(dth);
-        after = e.y() / std::sin(dth);
+        const double after = e.y() / std::sin(dth);
         if (before > 0.0 && after > 0.0 && before <= leg - 0.05 && after <= out.norm() - 0.05) {
           leg -= before;
           turn = std::move(shape);
@@ -123,7 +98,7 @@ Chain rounded_polyline(const Pose2& start, const std::vector<Eigen::Vector2d>& c
       c.push_back(line);
       from = c.end();
     }
-    consumed = 0.0;
+    rounded_in = turn.has_value();
     if (turn) {
       for (Segment seg : turn->segments()) {
         seg.set_v_max(v_max);
@@ -131,16 +106,16 @@ Chain rounded_polyline(const Pose2& start, const std::vector<Eigen::Vector2d>& c
       }
       // The turn ends on the line to the next corner, heading along it (up to rounding): the
       // next leg starts there, no turn on the spot before it.
-      from = c.end();
-      consumed = after;
-      const Eigen::Vector2d next = points[i + 1] - from.translation();
-      from = Pose2(from.translation(), std::atan2(next.y(), next.x()));
+      const Eigen::Vector2d next = points[i + 1] - c.end().translation();
+      from = Pose2(c.end().translation(), std::atan2(next.y(), next.x()));
     }
   }
   const double dth = geometry::normalize_angle(final_heading - from.theta());
   if (std::fabs(dth) > 1e-3) c.push_back(Segment::turn(c.empty() ? from : c.end(), dth));
   return c;
 }
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // first_collision's rule from s0 on, on what is there now: where someone is only predicted to
 // walk does not count. The person the robot makes way for follows it down their path, and
@@ -352,7 +327,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::leave_path(time::Time 
     yield_.phase = YieldPhase::kWaiting;
     return stop(now, Mode::kYielding, kWaitingThere);
   }
-  Chain c = rounded_polyline(pose_, y->corners, facing, options_.yield_speed, options_.planner.kappa_max);
+  Chain c = polyline(pose_, y->corners, facing, options_.yield_speed, options_.planner.kappa_max);
   // Rounded corners cut them: where that grazes something, turns on the spot.
   if (first_collision(c, map_, clearance, options_.planner.check_step))
     c = polyline(pose_, y->corners, facing, options_.yield_speed);
@@ -535,7 +510,7 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::return_to_way(time::Ti
   if (best < clearance) return std::nullopt;
   const auto corners = way_to(map_, here, goal, clearance, options_.give_way.yield);
   if (!corners) return std::nullopt;
-  Chain c = rounded_polyline(pose_, *corners, heading, options_.yield_speed, options_.planner.kappa_max);
+  Chain c = polyline(pose_, *corners, heading, options_.yield_speed, options_.planner.kappa_max);
   if (blocked_now(map_, c, 0.0, clearance - kReturnMargin - kGrazeBack, options_.planner.check_step))
     c = polyline(pose_, *corners, heading, options_.yield_speed);
   if (blocked_now(map_, c, 0.0, clearance - kReturnMargin - kGrazeBack, options_.planner.check_step)) return std::nullopt;

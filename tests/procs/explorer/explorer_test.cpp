@@ -327,9 +327,6 @@ TEST(GatewayStack, SetAsideForGoodIsTriedAgainOnceTheMapNearItChanged)
 }
 
 // Options of the tests that follow the goals of exploring: no look behind first.
-// Half the lane a gateway goal keeps through an opening: the robot's radius and a little (explorer.cpp).
-double ex_robot_lane_half() { return ExplorerOptions{}.robot_radius; }
-
 ExplorerOptions no_look()
 {
   ExplorerOptions o;
@@ -395,8 +392,10 @@ TEST(Explorer, AGatewayGoalGoesThroughTheOpeningTheMapShows)
   const Command c = ex.step(t);
   ASSERT_TRUE(c.goal) << ex.status().activity;
   ASSERT_EQ(c.goal->kind, ExploreGoal::Kind::kGateway);
-  EXPECT_GT(c.goal->map_point.x(), 2.0 + ex_robot_lane_half());
-  EXPECT_LT(c.goal->map_point.x(), 3.0 - ex_robot_lane_half()) << "through the opening, not at the wall beside it";
+  // Within the opening, the robot's body clear of both jambs.
+  const double radius = ExplorerOptions{}.robot_radius;
+  EXPECT_GT(c.goal->map_point.x(), 2.0 + radius);
+  EXPECT_LT(c.goal->map_point.x(), 3.0 - radius) << "through the opening, not at the wall beside it";
   EXPECT_NEAR(c.goal->map_point.y(), 2.5, 1e-9);
 }
 
