@@ -320,10 +320,6 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
   PlanStats local_stats;
   if (!stats) stats = &local_stats;
   *stats = {};
-  auto fail = [&](const std::string& text) -> std::optional<Route> {
-    if (why) *why = text;
-    return std::nullopt;
-  };
   for (auto it = places_.begin(); it != places_.end();) {
     if (it->until_s > request.now_s) {
       ++it;
@@ -332,6 +328,32 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
     forget_planner(map_.resolve(it->region));
     it = places_.erase(it);
   }
+  auto route = plan_round_places(request, why, stats);
+  if (route || request.strict_places || places_.empty()) return route;
+  // A blocked place is a reason to go round, not a wall: whoever stood there (people do) may
+  // have gone, and the robot was there a moment ago. With no way round, the route goes through
+  // it rather than nowhere; refused, a new goal behind a place a person blocked for a few
+  // seconds got "no route" from the robot's own region, and a place ahead of the robot cut it
+  // off its region's free space. (Planner::handle_stuck ends a goal held at a place with no way
+  // round after closed_after_s.)
+  std::vector<BlockedPlace> kept;
+  kept.swap(places_);
+  for (const auto& place : kept) forget_planner(place.region);
+  PlanStats open_stats;
+  route = plan_round_places(request, nullptr, &open_stats);
+  places_.swap(kept);
+  for (const auto& place : places_) forget_planner(place.region);
+  *stats += open_stats;
+  if (route && why) why->clear();
+  return route;
+}
+
+std::optional<Route> GlobalPlanner::plan_round_places(const PlanRequest& request, std::string* why, PlanStats* stats)
+{
+  auto fail = [&](const std::string& text) -> std::optional<Route> {
+    if (why) *why = text;
+    return std::nullopt;
+  };
   int64_t sr = map_.resolve(request.start_region);
   const int64_t gr = map_.resolve(request.goal_region);
   if (!is_live(sr)) return fail("start region " + std::to_string(request.start_region) + " is not in the map");
@@ -378,7 +400,7 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
       if (!rp) continue;
       const RegionGrid& grid = rp->grid();
       const auto cell = grid.nearest_free(grid.cell_of(there), 0.0);
-      if (cell && grid.component(*cell) == grid.main_component() && grid.clearance(*cell) >= options_.grid.robot_radius)
+      if (cell && grid.in_main_space(grid.component(*cell)) && grid.clearance(*cell) >= options_.grid.robot_radius)
         also.emplace_back(id, there);
     }
   }
@@ -521,7 +543,8 @@ std::optional<Route> GlobalPlanner::search(const PlanRequest& request, int64_t s
       std::string closed;
       for (const auto& [gid, gw] : map_.gateways())
         if (costs_.closed(gid, request.now_s)) closed += (closed.empty() ? "" : ", ") + std::to_string(gid);
-      const std::string route = "no route from region " + std::to_string(sr) + " to region " + std::to_string(gr);
+      std::string route = "no route from region " + std::to_string(sr) + " to region " + std::to_string(gr);
+      if (!places_.empty()) route += " (places collision avoidance could not pass: " + std::to_string(places_.size()) + ")";
       // Why, for the goal's sender: the robot's own place joins nothing (standing there, nothing
       // changes: the view must), or only gateways taken for closed for a while are in the way
       // (the same goal once they reopen), or the goal is out of reach from here.

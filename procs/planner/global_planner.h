@@ -55,6 +55,9 @@ struct PlanRequest
   double now_s = 0;                // message time, for closed gateways
   int64_t avoid_gateway = 0;       // a gateway not to cross (is there a way round it?)
   bool ignore_closed = false;      // plan as if no gateway were closed (is a closed one all that is in the way?)
+  // Blocked places (block_place) as walls: no route through one even when there is no other (is
+  // there a way round?). Otherwise a route goes round them where it can, through them where not.
+  bool strict_places = false;
   // The robot's own recent places, start region frame, newest first (Planner keeps them): its
   // body was there, so they are free whatever the map says. A start cut off from the region's
   // free space (yielding to a person into space the map never saw) goes back along them to the
@@ -68,6 +71,14 @@ struct PlanStats
   double region_ms = 0;            // region paths planned for this request
   int searches = 0;                // A* runs until the route was exact
   int region_paths = 0;            // region paths planned (cache misses)
+  PlanStats& operator+=(const PlanStats& o)
+  {
+    global_ms += o.global_ms;
+    region_ms += o.region_ms;
+    searches += o.searches;
+    region_paths += o.region_paths;
+    return *this;
+  }
 };
 
 class GlobalPlanner
@@ -110,7 +121,8 @@ class GlobalPlanner
   int64_t region_named(const std::string& name) const;
   // Collision avoidance could not pass at `point` (region frame) where the grid sees a way (what
   // the line map holds too thinly, people standing): an obstacle there until until_s (message
-  // time), routes planned round it. Places past their time are dropped at the next plan().
+  // time), routes planned round it where there is a way round (through it where there is none,
+  // unless PlanRequest::strict_places). Places past their time are dropped at the next plan().
   void block_place(int64_t region, const Eigen::Vector2d& point, double until_s);
   size_t blocked_places() const { return places_.size(); }
 
@@ -119,6 +131,8 @@ class GlobalPlanner
   // first, if any), or from the same place in the regions `also` (region, place in its frame),
   // to the request's goal; stats added to; *started: the index in `also` the route begins at (-1:
   // the robot's own region).
+  // plan() on the blocked places as they are (walls).
+  std::optional<Route> plan_round_places(const PlanRequest& request, std::string* why, PlanStats* stats);
   std::optional<Route> search(const PlanRequest& request, int64_t sr, const Eigen::Vector2d& start_point,
                               const std::vector<std::pair<int64_t, Eigen::Vector2d>>& also,
                               const std::optional<WayBack>& way_back, std::string* why, PlanStats* stats,

@@ -1,5 +1,6 @@
 #include "planner/planner.h"
 
+#include "planner/no_path_reason.h"
 #include "planner/route_time.h"
 #include "time/units.h"
 
@@ -81,6 +82,8 @@ void Planner::set_goal(const NavGoal& goal, int64_t utime)
   along_ = 0;
   replans_ = 0;
   last_replan_utime_ = utime;
+  strict_places_ = false;
+  held_at_place_since_ = -1;
   resolve_goal();
 }
 
@@ -299,6 +302,7 @@ PlanRequest Planner::request_from_pose(int64_t utime) const
   if (goal_->beyond_known) req.goal_reach = options_.grid.beyond_known_reach;
   req.now_s = utime * kUs;
   req.track = track_in(pose_->region_id);
+  req.strict_places = strict_places_;
   return req;
 }
 
@@ -319,7 +323,10 @@ void Planner::handle_stuck(int64_t utime)
     // the line map holds too thinly, people standing about): the place just ahead on the route
     // is taken for an obstacle for closed_retry_s and the route planned round it. Planning again
     // on the same grid gave the same route, and the robot stood until the goal's sender gave up.
-    const double ahead = std::min(along_ + options_.grid.robot_radius + options_.grid.blocked_radius, leg.length);
+    // (Its edge a cell farther than the robot's radius: the robot's own cell stays free, or
+    // the place would cut the robot off from its region's free space.)
+    const auto& g = options_.grid;
+    const double ahead = std::min(along_ + g.robot_radius + g.blocked_radius + g.resolution, leg.length);
     const Eigen::Vector2d at = point_along(leg, ahead);
     // Nothing ahead to block (a turn on the spot, the goal under the robot): the goal's sender decides.
     if ((at - pose_->region_from_base.translation()).norm() < options_.grid.robot_radius) return;
@@ -329,23 +336,57 @@ void Planner::handle_stuck(int64_t utime)
       replan_reason_ = "blocked";
       return;
     }
-    global_.block_place(leg.region_id, at, utime * kUs + options_.global.closed_retry_s);
+    // One place per time the robot is held (no progress since), however long it is held.
+    const int64_t held_since = std::max(blocked_since_, progress_utime_);
+    if (held_since != held_at_place_since_) {
+      global_.block_place(leg.region_id, at, utime * kUs + options_.global.closed_retry_s);
+      // A way round counts as at a gateway: no dearer than waiting here closed_after_s.
+      PlanRequest round = request_from_pose(utime);
+      round.strict_places = true;
+      const auto way = global_.plan(round, nullptr);
+      if (way && way->cost_s <= remaining_cost_s() + e.closed_after_s) {
+        replan_due_ = true;
+        replan_reason_ = fmt::format("blocked at ({:.2f}, {:.2f}) in region {}", at.x(), at.y(), leg.region_id);
+        return;
+      }
+      // No way round worth taking: the route stays through the place (people standing in the
+      // only hallway are waited for, as in a doorway), and other routes keep off it for
+      // closed_retry_s.
+      held_at_place_since_ = held_since;
+    }
+    if (stuck_s < e.closed_after_s) return;
+    // Held that long: from now on this goal's routes keep off blocked places (the way round,
+    // however long, or NO_PATH until the places' time is up).
+    strict_places_ = true;
+    held_at_place_since_ = -1;
     replan_due_ = true;
-    replan_reason_ = fmt::format("blocked at ({:.2f}, {:.2f}) in region {}", at.x(), at.y(), leg.region_id);
+    replan_reason_ = fmt::format("blocked at ({:.2f}, {:.2f}) in region {} for {:.0f} s", at.x(), at.y(), leg.region_id, stuck_s);
     return;
   }
   // Before the route's next gateway. With another way round it is left at once (marked closed
   // for a while, its cost raised); without one it counts as closed only after closed_after_s, so
   // that people in a doorway are waited for rather than reported as NO_PATH.
+  // A way round counts only if it costs no more than waiting here as long as the gateway may
+  // be waited for: people in a hallway's opening move on within that, and a long detour round
+  // them (across the building) cost more than the wait.
   PlanRequest around = request_from_pose(utime);
   around.avoid_gateway = gw->id;
   std::string why;
-  const bool way_round = global_.plan(around, &why).has_value();
+  const auto round = global_.plan(around, &why);
+  const bool way_round = round && round->cost_s <= remaining_cost_s() + e.closed_after_s;
   if (way_round || stuck_s >= e.closed_after_s) {
     global_.costs().gateway_failed(*gw, utime * kUs);
     replan_due_ = true;
     replan_reason_ = "gateway " + std::to_string(gw->id) + (way_round ? " cannot be passed" : " is closed");
   }
+}
+
+double Planner::remaining_cost_s() const
+{
+  double left = 0;
+  for (size_t j = leg_; j < route_.legs.size(); ++j) left += route_.legs[j].length;
+  left = std::max(0.0, left - along_);
+  return route_.length > 0 ? route_.cost_s * left / route_.length : 0.0;
 }
 
 std::optional<Route> Planner::turn_on_the_spot() const
@@ -408,13 +449,8 @@ bool Planner::replan(int64_t utime, const std::string& why)
     return true;
   }
   // Keep a still valid route unless the new one is clearly cheaper (no oscillation).
-  const bool keep_old = status_ == GoalStatus::kActive && route_valid() && why == "the map changed" && [&] {
-    double left = 0;
-    for (size_t j = leg_; j < route_.legs.size(); ++j) left += route_.legs[j].length;
-    left = std::max(0.0, left - along_);
-    const double old_left_s = route_.length > 0 ? route_.cost_s * left / route_.length : 0.0;
-    return route->cost_s >= (1.0 - options_.execution.switch_gain) * old_left_s;
-  }();
+  const bool keep_old = status_ == GoalStatus::kActive && route_valid() && why == "the map changed" &&
+                        route->cost_s >= (1.0 - options_.execution.switch_gain) * remaining_cost_s();
   ++replans_;
   if (keep_old) return false;
   status_ = GoalStatus::kActive;

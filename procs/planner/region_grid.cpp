@@ -106,6 +106,7 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
       cv::circle(mask, cv::Point(c.x(), c.y()), blocked_cells, cv::Scalar(0), cv::FILLED, cv::LINE_8);
     }
   };
+  const cv::Mat free_without_places = blocked.empty() ? cv::Mat() : free_mask.clone();
   draw_blocked(free_mask);
   cv::Mat dist;
   cv::distanceTransform(free_mask, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
@@ -114,14 +115,21 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
   cv::Mat walls(height_, width_, CV_8UC1, cv::Scalar(255)), wall_dist;
   cv::rectangle(walls, cv::Rect(0, 0, width_, height_), cv::Scalar(0), 1);
   for (const auto* seg : walls_drawn) draw(walls, seg->a, seg->b);
+  const cv::Mat walls_without_places = blocked.empty() ? cv::Mat() : walls.clone();
   draw_blocked(walls);
   cv::distanceTransform(walls, wall_dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  const double r = options_.robot_radius, m = options_.clearance_margin, w = options_.comfort_width;
+  // Where the robot's body fits, from the distances to anything not free and to the walls.
+  auto body_fits = [&](const cv::Mat& free_dist, const cv::Mat& walls_dist, int x, int y) {
+    const double c = free_dist.at<float>(y, x) * resolution_;
+    return options_.unknown_overlap > 0 ? !(c < r - options_.unknown_overlap || walls_dist.at<float>(y, x) * resolution_ < r)
+                                        : !(c < r);
+  };
 
   // Cost levels: 0 in open space; 1 in the comfort band [r + margin, r + margin + comfort)
   // (a slight push away from walls); 2 .. levels-1 split [r, r + margin) evenly, rising to
   // 1 + wall_cost at the blocked limit (clearance below the margin is paid for dearly, so paths
   // keep it wherever the passage allows and prefer wide passages to narrow ones).
-  const double r = options_.robot_radius, m = options_.clearance_margin, w = options_.comfort_width;
   const int levels = std::clamp(options_.cost_levels, 3, 254);
   const int tight = levels - 2;   // levels inside the margin
   level_cost_.assign(static_cast<size_t>(levels), 1.0);
@@ -138,10 +146,7 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
       const float c = dist.at<float>(y, x) * static_cast<float>(resolution_);
       clearance_[i] = c;
       wall_clearance_[i] = wall_dist.at<float>(y, x) * static_cast<float>(resolution_);
-      const bool blocked = options_.unknown_overlap > 0
-                               ? c < r - options_.unknown_overlap || wall_dist.at<float>(y, x) * resolution_ < r
-                               : c < r;
-      if (blocked) {
+      if (!body_fits(dist, wall_dist, x, y)) {
         level_[i] = kBlocked;
       } else if (c < r) {
         level_[i] = static_cast<uint8_t>(levels - 1);   // the body over unseen space: the dearest level
@@ -181,9 +186,42 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
         own_[index(Cell(x, y))] = own_label[static_cast<size_t>(l)];
         component_[index(Cell(x, y))] = l;
       }
-  for (int l = 1; l < n; ++l)
-    if (own_cells[static_cast<size_t>(l)] > (main_component_ ? own_cells[static_cast<size_t>(main_component_)] : 0))
-      main_component_ = l;
+  auto largest = [](const std::vector<int>& cells) {
+    int32_t best = 0;
+    for (size_t l = 1; l < cells.size(); ++l)
+      if (cells[l] > (best ? cells[static_cast<size_t>(best)] : 0)) best = static_cast<int32_t>(l);
+    return best;
+  };
+  main_component_ = largest(own_cells);
+  main_pieces_.assign(static_cast<size_t>(n), 0);
+  if (main_component_) main_pieces_[static_cast<size_t>(main_component_)] = 1;
+  if (blocked.empty()) return;
+  // Blocked places may cut the main space in pieces; each piece is still the region's space
+  // (the robot held before a place is not apart from it): the pieces of the largest piece of
+  // own free cells the grid would have without them.
+  cv::Mat open_dist, open_wall_dist;
+  cv::distanceTransform(free_without_places, open_dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  cv::distanceTransform(walls_without_places, open_wall_dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  cv::Mat open_traversable(height_, width_, CV_8UC1, cv::Scalar(0)), open_labels;
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x)
+      if (body_fits(open_dist, open_wall_dist, x, y)) open_traversable.at<uint8_t>(y, x) = 255;
+  const int open_n = cv::connectedComponents(open_traversable, open_labels, 8, CV_32S);
+  std::vector<int> open_own_cells(static_cast<size_t>(open_n), 0);
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x)
+      if (own.at<uint8_t>(y, x) && open_traversable.at<uint8_t>(y, x)) ++open_own_cells[static_cast<size_t>(open_labels.at<int>(y, x))];
+  const int32_t open_main = largest(open_own_cells);
+  if (!open_main) return;
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x)
+      if (traversable.at<uint8_t>(y, x) && open_labels.at<int>(y, x) == open_main)
+        main_pieces_[static_cast<size_t>(labels.at<int>(y, x))] = 1;
+}
+
+bool RegionGrid::in_main_space(int32_t piece) const
+{
+  return piece > 0 && static_cast<size_t>(piece) < main_pieces_.size() && main_pieces_[static_cast<size_t>(piece)];
 }
 
 bool RegionGrid::in_an_opening(const Eigen::Vector2d& a, const Eigen::Vector2d& b,

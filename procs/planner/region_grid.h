@@ -79,6 +79,8 @@ class RegionGrid
   int32_t component(const Cell& c) const { return in_bounds(c) ? component_[index(c)] : 0; }
   // The largest piece of the region's own free cells: where the region's ways on are.
   int32_t main_component() const { return main_component_; }
+  // The piece is the main one, or a part of the main space only blocked places cut from it.
+  bool in_main_space(int32_t piece) const;
   // [m] distance from the cell centre to the nearest line of the region's map (or the grid's edge).
   float wall_clearance(const Cell& c) const { return in_bounds(c) ? wall_clearance_[index(c)] : 0.f; }
   // The robot's body stands at `from` whatever the grid calls the cells around it (unknown space
@@ -109,6 +111,7 @@ class RegionGrid
   std::vector<uint8_t> own_;   // 1: free and connected to the region's own freespace
   std::vector<int32_t> component_;   // connected piece of free cells (0: blocked)
   int32_t main_component_ = 0;
+  std::vector<uint8_t> main_pieces_;   // per piece: in_main_space
   std::vector<float> wall_clearance_;   // [m] to the nearest line of the map
   std::vector<double> level_cost_;
 };

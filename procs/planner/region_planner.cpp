@@ -32,7 +32,7 @@ bool RegionPlanner::cut_off(const Eigen::Vector2d& p, double reach) const
 {
   const double r = reach < 0 ? grid_options_.adapt_distance : reach;
   const auto c = grid_.nearest_free(grid_.cell_of(p), r);
-  if (c && grid_.component(*c) == grid_.main_component()) return false;
+  if (c && grid_.in_main_space(grid_.component(*c))) return false;
   return !grid_.nearest_reachable_in(p, grid_.main_component(), r).has_value();
 }
 

@@ -71,4 +71,10 @@ bool pairwise_consistent(const PoseGraph& graph, const ClosureHypothesis& a, con
   return translation_norm(d) <= tol.trans_m && std::fabs(d.theta()) <= tol.rot_rad;
 }
 
+bool witnesses(const PoseGraph& graph, const ClosureHypothesis& a, const ClosureHypothesis& b,
+               const ConsistencyTolerance& tol, double min_travel_m)
+{
+  return std::fabs(b.path_m - a.path_m) >= min_travel_m && pairwise_consistent(graph, a, b, tol);
+}
+
 }  // namespace rgnav::scan_mapper

@@ -11,7 +11,8 @@
 //    partitioning, reduced to pairs): two closures found from different current scans must
 //    agree with each other through the locally accurate odometry/scan-matching chain between
 //    the two current scans and the old estimate between their two anchors. A look-alike place
-//    rarely yields two mutually consistent matches; the true place always does.
+//    rarely yields two mutually consistent matches from views far enough apart to differ (the
+//    next scan, a step on, repeats the first's match, look-alike or not); the true place always does.
 #pragma once
 
 #include <Eigen/Core>
@@ -55,6 +56,7 @@ struct ClosureHypothesis
   Pose2 anchor_from_node;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  // in the frame of anchor_from_node
   bool direct = false;  // agrees with a well-known relative pose: needs no witness
+  double path_m = 0.0;  // the node's odometry path length (ScanNode::path_m)
 };
 
 struct ConsistencyTolerance
@@ -68,5 +70,12 @@ struct ConsistencyTolerance
 // estimate between the two nodes.
 bool pairwise_consistent(const PoseGraph& graph, const ClosureHypothesis& a, const ClosureHypothesis& b,
                          const ConsistencyTolerance& tol);
+
+// Whether b is a witness for a: consistent with it, and found from a scan at least min_travel_m
+// along the path from a's. Two scans a step apart see the same walls from nearly the same spot;
+// whatever look-alike the first fitted, the second fits too, and the two agree by construction.
+// Agreement is evidence only between views that could have disagreed.
+bool witnesses(const PoseGraph& graph, const ClosureHypothesis& a, const ClosureHypothesis& b,
+               const ConsistencyTolerance& tol, double min_travel_m);
 
 }  // namespace rgnav::scan_mapper

@@ -477,6 +477,7 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
   ClosureHypothesis h;
   h.node = n;
   h.anchor = anchor;
+  h.path_m = cur.path_m;
   h.anchor_from_node = icp.map_from_scan;
   h.covariance = l.covariance_scale * rot3(-h.anchor_from_node.theta()) * icp.covariance * rot3(-h.anchor_from_node.theta()).transpose();
   if (icp.weakest_translation_points < loop_icp.degenerate_min_points) {
@@ -517,7 +518,7 @@ bool ScanMapper::try_loop_closure(int n, MapperUpdate* up)
     accept.push_back(*h);
   } else {
     for (const auto& p : pending_)
-      if (p.node != h->node && pairwise_consistent(graph_, p, *h, l.consistency)) accept.push_back(p);
+      if (p.node != h->node && witnesses(graph_, p, *h, l.consistency, l.witness_min_travel_m)) accept.push_back(p);
     if (accept.empty()) {
       pending_.push_back(*h);
       return false;

@@ -107,6 +107,7 @@ ScanMapperOptions load_scan_mapper_options(const config::Config& c, const config
   l.direct_max_sigma_m = lc.number("direct_max_sigma_m", l.direct_max_sigma_m, 0.0, 100.0);
   l.direct_max_chi2 = lc.number("direct_max_chi2", l.direct_max_chi2, 0.0, 1e6);
   l.confirm_within_nodes = static_cast<int>(lc.integer("confirm_within_nodes", l.confirm_within_nodes, 1, 100000));
+  l.witness_min_travel_m = lc.number("witness_min_travel_m", l.witness_min_travel_m, 0.0, 1e4);
   l.consistency.trans_m = lc.number("consistency_m", l.consistency.trans_m, 0.001, 10.0);
   l.consistency.rot_rad = lc.number("consistency_deg", l.consistency.rot_rad / kDeg, 0.01, 90.0) * kDeg;
   l.min_score = lc.number("min_score", l.min_score, 0.0, 1.0);

@@ -80,6 +80,17 @@ struct LoopClosureOptions
   double direct_max_sigma_m = 0.25;
   double direct_max_chi2 = 9.0;
   int confirm_within_nodes = 30;
+  // A witness must be found from a scan at least this far along the path [m] from the one whose
+  // hypothesis it confirms (loop_search.h, witnesses). The next scan, a step on (or turned on the
+  // spot), sees the place as the first did and fits a look-alike of it just as well: with both
+  // counted, a look-alike room seen from one spot confirmed itself, and such closures
+  // (consecutive scans, one anchor, 1-4 m off across the fit's held direction) broke maps of
+  // generated buildings whose loops were long enough that the chain bent for them within
+  // max_strain_chi2 (100 buildings, one lap each: 6 maps broken -> 0). The hypotheses a waiting
+  // one gathers meanwhile stay pending and may be confirmed with it: a hallway's repeated
+  // matches then count several times, which degenerate_keeps_graph_axis and
+  // degenerate_covariance_scale must absorb (without them, 0.6 -> 2 m along a hallway). 0: off.
+  double witness_min_travel_m = 1.0;
   ConsistencyTolerance consistency;
   double max_residual_chi2 = 25.0; // after optimising, a closure this inconsistent is removed
   // ... and so is a batch that strains the rest of the graph: the cost of the edges it did

@@ -116,6 +116,24 @@ TEST(RegionGrid, BlocksNearWallsAndUnknown)
   EXPECT_GT(grid.level(grid.cell_of(V(0.35, 2))), 0);   // near a wall it does
 }
 
+// A blocked place in the only way between the room's halves cuts its free space in two: no
+// way between them, but a robot on either side stands in the region's space, not apart from it
+// (a robot held before a place was "cut off", and its goals got the wrong cause).
+TEST(RegionPlanner, ABlockedPlaceCutsTheWayButNobodyOff)
+{
+  const auto map = one_room_with_wall();
+  GridOptions o = options().grid;
+  o.blocked_radius = 0.25;
+  const RegionPlanner rp(map.regions().begin()->second, o, {}, {}, {V(4, 4.3)});
+  EXPECT_FALSE(rp.plan(V(2, 1), V(6, 1), nullptr));
+  const auto& g = rp.grid();
+  EXPECT_NE(g.component(g.cell_of(V(2, 1))), g.component(g.cell_of(V(6, 1))));
+  EXPECT_FALSE(rp.cut_off(V(2, 1)));
+  EXPECT_FALSE(rp.cut_off(V(6, 1)));
+  // A scrap the map itself cuts off stays cut off: outside the room.
+  EXPECT_TRUE(rp.cut_off(V(9.5, 1)));
+}
+
 TEST(RegionPlanner, GoesAroundTheWallWithClearance)
 {
   const auto map = one_room_with_wall();
@@ -597,8 +615,15 @@ TEST(GlobalPlanner, ABlockedPlaceIsGoneRoundUntilItsTime)
   const double straight = route->length;
   EXPECT_LT(straight, 4.5) << "over the top of the inner wall";
   gp.block_place(room, V(4, 4.3), 30.0);
+  PlanRequest strict = req;
+  strict.strict_places = true;
+  EXPECT_FALSE(gp.plan(strict, &why)) << "the only way, between the wall's end and the room's: blocked";
+  // No way round: through the place rather than nowhere (whoever stood there may have gone);
+  // the place is kept for routes that have a way round it.
   route = gp.plan(req, &why);
-  EXPECT_FALSE(route) << "the only way, between the wall's end and the room's: blocked";
+  ASSERT_TRUE(route) << why;
+  EXPECT_NEAR(route->length, straight, 1e-6);
+  EXPECT_EQ(gp.blocked_places(), 1u);
   PlanRequest later = req;
   later.now_s = 31.0;
   route = gp.plan(later, &why);
@@ -734,13 +759,14 @@ NavGoal pose_goal(int64_t id, int64_t region, double x, double y)
   return goal;
 }
 
-GoalStatus drive_goal(Planner* planner, const Ring& r, FollowingRobot* robot, int64_t* utime, double seconds)
+GoalStatus drive_goal(Planner* planner, const std::function<RobotPose(const FollowingRobot&, int64_t)>& pose_of_robot,
+                      FollowingRobot* robot, int64_t* utime, double seconds)
 {
   TargetList last;
   bool blocked = false;
   for (int i = 0; i < seconds * 10; ++i) {
     *utime += 100'000;
-    planner->on_pose(pose_of(r, *robot, *utime));
+    planner->on_pose(pose_of_robot(*robot, *utime));
     planner->on_blocked(*utime, blocked);
     const auto out = planner->update(*utime);
     if (out.targets) last = *out.targets;
@@ -751,6 +777,12 @@ GoalStatus drive_goal(Planner* planner, const Ring& r, FollowingRobot* robot, in
     blocked = !robot->drive(last, 0.1);
   }
   return planner->status();
+}
+
+GoalStatus drive_goal(Planner* planner, const Ring& r, FollowingRobot* robot, int64_t* utime, double seconds)
+{
+  return drive_goal(
+      planner, [&r](const FollowingRobot& robot, int64_t utime) { return pose_of(r, robot, utime); }, robot, utime, seconds);
 }
 
 TEST(Planner, DrivesToANamedRoomThroughTheDoor)
@@ -824,6 +856,68 @@ TEST(Planner, WaitsAtTheOnlyDoorBeforeCallingItClosed)
   EXPECT_GE(waited, options().execution.closed_after_s);
   EXPECT_LT(waited, options().execution.closed_after_s + 15.0);
   EXPECT_TRUE(planner.global().costs().closed(r.door, utime * 1e-6));
+}
+
+// A person stands in the doorway a while: the way round through the hallway costs more than
+// waiting as long as a gateway is waited for (closed_after_s, short here), so the robot waits
+// and goes through the door once they have gone (before, any way round was taken at once).
+TEST(Planner, WaitsAtAGatewayRatherThanTakeAWayRoundDearerThanTheWait)
+{
+  Ring r = ring();
+  PlannerOptions o = options();
+  o.execution.closed_after_s = 10.0;
+  Planner planner(o);
+  planner.set_map(r.map);
+  int64_t utime = kUtime;
+  const int64_t start = utime;
+  FollowingRobot robot;
+  robot.map_from_base = Pose2(2, 1.5, 0);
+  robot.wall = [&](const V& p) { return (utime - start) * 1e-6 < 12.0 && p.x() > 3.7 && p.x() < 5.3 && p.y() > 0.5; };
+  planner.set_goal(pose_goal(4, r.b, 2.5, 1.5), utime);
+  double lowest_y = robot.map_from_base.y();
+  const auto pose_and_lowest = [&](const FollowingRobot& robot, int64_t utime) {
+    lowest_y = std::min(lowest_y, robot.map_from_base.y());
+    return pose_of(r, robot, utime);
+  };
+  EXPECT_EQ(drive_goal(&planner, pose_and_lowest, &robot, &utime, 60), GoalStatus::kReached) << planner.reason();
+  EXPECT_GT(lowest_y, 0.5) << "went round through the hallway";
+  EXPECT_GT((utime - start) * 1e-6, 12.0);
+}
+
+// A person stands in the only way (the gap between the inner wall's end and the room's wall),
+// away from any gateway: the place is blocked for routes with a way round, but there is none,
+// so the robot stays on its route and gets through once they have gone (before, the goal had
+// NO_PATH after blocked_after_s); one who stays is NO_PATH after closed_after_s, as a door.
+TEST(Planner, WaitsAtABlockedPlaceWithNoWayRound)
+{
+  const auto map = one_room_with_wall();
+  const int64_t room = map.regions().begin()->first;
+  PlannerOptions o = options();
+  o.grid.blocked_radius = 0.25;
+  const auto in_room = [room](const FollowingRobot& robot, int64_t utime) {
+    return RobotPose{utime, room, robot.map_from_base, robot.odom_from_map * robot.map_from_base};
+  };
+  for (const double stays_s : {15.0, 1000.0}) {
+    Planner planner(o);
+    planner.set_map(map);
+    int64_t utime = kUtime;
+    const int64_t start = utime;
+    FollowingRobot robot;
+    robot.map_from_base = Pose2(2, 4.2, 0);
+    robot.wall = [&](const V& p) { return (utime - start) * 1e-6 < stays_s && p.x() > 3.2 && p.x() < 4.8 && p.y() > 3.5; };
+    planner.set_goal(pose_goal(1, room, 6, 4.2), utime);
+    const GoalStatus status = drive_goal(&planner, in_room, &robot, &utime, 60);
+    const double took = (utime - start) * 1e-6;
+    if (stays_s < 60) {
+      EXPECT_EQ(status, GoalStatus::kReached) << planner.reason();
+      EXPECT_GT(robot.map_from_base.x(), 5.5);
+    } else {
+      EXPECT_EQ(status, GoalStatus::kNoPath);
+      EXPECT_EQ(no_path_cause(planner.reason()), NoPathCause::kGoalUnreachable) << planner.reason();
+      EXPECT_GE(took, o.execution.closed_after_s);
+      EXPECT_LT(took, o.execution.closed_after_s + 5.0);
+    }
+  }
 }
 
 // A goal where the robot stands that asks only for another heading (the explorer's look

@@ -56,3 +56,26 @@ TEST(LoopSearch, PairwiseConsistencySeparatesAgreeingFromLookAlikeClosures)
   const sm::ClosureHypothesis turned{35, 5, sm::Pose2{6.0, 0.0, 0.17}};
   EXPECT_FALSE(sm::pairwise_consistent(g, a, turned, tol));
 }
+
+TEST(LoopSearch, TheNextScansMatchIsNoWitness)
+{
+  // Two hypotheses that agree: node 31's match repeats node 30's (0.2 m on, the same anchor, the
+  // same error), node 36's comes from a view 1.2 m further on. The first pair is one look at the
+  // place counted twice: were the match a look-alike's, the next scan would fit it as well.
+  sm::PoseGraph g;
+  for (int i = 0; i < 40; ++i) g.add_node(sm::Pose2{0.2 * i, i >= 30 ? 0.5 : 0.0, 0.0});
+  const sm::ConsistencyTolerance tol{0.2, 0.05};
+  const sm::ClosureHypothesis a{30, 0, sm::Pose2{6.0, 0.0, 0.0}, Eigen::Matrix3d::Identity(), false, 6.0};
+  const sm::ClosureHypothesis next{31, 0, sm::Pose2{6.2, 0.0, 0.0}, Eigen::Matrix3d::Identity(), false, 6.2};
+  const sm::ClosureHypothesis later{36, 5, sm::Pose2{6.2, 0.0, 0.0}, Eigen::Matrix3d::Identity(), false, 7.2};
+  ASSERT_TRUE(sm::pairwise_consistent(g, a, next, tol));
+  ASSERT_TRUE(sm::pairwise_consistent(g, a, later, tol));
+  EXPECT_FALSE(sm::witnesses(g, a, next, tol, 1.0));
+  EXPECT_TRUE(sm::witnesses(g, a, later, tol, 1.0));
+  // The order they were found in does not matter, and agreement is still needed.
+  EXPECT_TRUE(sm::witnesses(g, later, a, tol, 1.0));
+  const sm::ClosureHypothesis wrong{36, 5, sm::Pose2{7.2, 0.0, 0.0}, Eigen::Matrix3d::Identity(), false, 7.2};
+  EXPECT_FALSE(sm::witnesses(g, a, wrong, tol, 1.0));
+  // Switched off (0 m), the next scan's match confirms the first, as before the rule.
+  EXPECT_TRUE(sm::witnesses(g, a, next, tol, 0.0));
+}
