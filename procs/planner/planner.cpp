@@ -83,7 +83,6 @@ void Planner::set_goal(const NavGoal& goal, int64_t utime)
   replans_ = 0;
   last_replan_utime_ = utime;
   strict_places_ = false;
-  held_at_place_since_ = -1;
   resolve_goal();
 }
 
@@ -336,31 +335,14 @@ void Planner::handle_stuck(int64_t utime)
       replan_reason_ = "blocked";
       return;
     }
-    // One place per time the robot is held (no progress since), however long it is held.
-    const int64_t held_since = std::max(blocked_since_, progress_utime_);
-    if (held_since != held_at_place_since_) {
-      global_.block_place(leg.region_id, at, utime * kUs + options_.global.closed_retry_s);
-      // A way round counts as at a gateway: no dearer than waiting here closed_after_s.
-      PlanRequest round = request_from_pose(utime);
-      round.strict_places = true;
-      const auto way = global_.plan(round, nullptr);
-      if (way && way->cost_s <= remaining_cost_s() + e.closed_after_s) {
-        replan_due_ = true;
-        replan_reason_ = fmt::format("blocked at ({:.2f}, {:.2f}) in region {}", at.x(), at.y(), leg.region_id);
-        return;
-      }
-      // No way round worth taking: the route stays through the place (people standing in the
-      // only hallway are waited for, as in a doorway), and other routes keep off it for
-      // closed_retry_s.
-      held_at_place_since_ = held_since;
-    }
-    if (stuck_s < e.closed_after_s) return;
-    // Held that long: from now on this goal's routes keep off blocked places (the way round,
-    // however long, or NO_PATH until the places' time is up).
+    // This goal's routes keep off the place from now on: round it where there is a way, else
+    // NO_PATH (mostly furniture the line map holds too thinly: it does not move, and waiting
+    // there only costs time). Other goals may still be routed through it where they have no
+    // other way (GlobalPlanner::plan).
+    global_.block_place(leg.region_id, at, utime * kUs + options_.global.closed_retry_s);
     strict_places_ = true;
-    held_at_place_since_ = -1;
     replan_due_ = true;
-    replan_reason_ = fmt::format("blocked at ({:.2f}, {:.2f}) in region {} for {:.0f} s", at.x(), at.y(), leg.region_id, stuck_s);
+    replan_reason_ = fmt::format("blocked at ({:.2f}, {:.2f}) in region {}", at.x(), at.y(), leg.region_id);
     return;
   }
   // Before the route's next gateway. With another way round it is left at once (marked closed

@@ -8,15 +8,15 @@
 //     and every resend period.
 // Execution monitoring: a gateway crossed is timed and learned (EdgeCosts), so is a region
 // crossed between two gateways. When collision avoidance reports it cannot pass and the robot
-// made no progress for blocked_after_s, a way round is looked for: near the route's next
-// gateway, round that gateway (marked closed, its cost raised); elsewhere, round the place just
-// ahead on the route (an obstacle for a while, GlobalPlanner::block_place). A way round is taken
-// only if it costs no more than waiting closed_after_s; else the robot waits on its route (a
-// person standing in a doorway or the only hallway moves on), and after closed_after_s takes the
-// way round, or the goal has NO_PATH; the goal stays, so that it is planned again when the
-// closed mark expires or the map changes. Replans happen at most once per min_replan_period_s;
-// a new route replaces a still valid one only when it is switch_gain cheaper than what is left
-// of the old, so the robot does not oscillate between
+// made no progress for blocked_after_s: away from gateways, the place just ahead on the route is
+// taken for an obstacle for a while (GlobalPlanner::block_place) and the goal's routes keep off
+// it (round it, or NO_PATH); near the route's next gateway, a way round that gateway is taken
+// (the gateway marked closed, its cost raised) only if it costs no more than waiting
+// closed_after_s; else the robot waits on its route (a person standing in a doorway moves on),
+// and after closed_after_s takes the way round, or the goal has NO_PATH; the goal stays, so that
+// it is planned again when the closed mark expires or the map changes. Replans happen at most
+// once per min_replan_period_s; a new route replaces a still valid one only when it is
+// switch_gain cheaper than what is left of the old, so the robot does not oscillate between
 // two routes. A goal where the robot stands that asks only for another heading is a turn on the
 // spot (no path to plan: the robot may be cut off from its region's free space). Runs on message
 // time (utime), never the wall clock.
@@ -157,10 +157,7 @@ class Planner
   int64_t gateway_reached_utime_ = 0;     // when the robot came within reach of the leg's exit
   bool blocked_ = false;
   int64_t blocked_since_ = 0;
-  // The time (max of blocked_since_, progress_utime_) the robot has been held at a blocked place
-  // with no way round since; -1: not held so.
-  int64_t held_at_place_since_ = -1;
-  // Held at a blocked place for closed_after_s: this goal's routes keep off blocked places.
+  // Held at a blocked place: this goal's routes keep off blocked places (round them, or NO_PATH).
   bool strict_places_ = false;
   int64_t last_replan_utime_ = 0;
   int64_t progress_utime_ = 0;            // when the robot last got kProgressStep further along the route
