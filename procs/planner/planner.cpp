@@ -1,6 +1,5 @@
 #include "planner/planner.h"
 
-#include "planner/no_path_reason.h"
 #include "planner/route_time.h"
 #include "time/units.h"
 
@@ -345,12 +344,10 @@ void Planner::handle_stuck(int64_t utime)
     replan_reason_ = fmt::format("blocked at ({:.2f}, {:.2f}) in region {}", at.x(), at.y(), leg.region_id);
     return;
   }
-  // Before the route's next gateway. With another way round it is left at once (marked closed
-  // for a while, its cost raised); without one it counts as closed only after closed_after_s, so
-  // that people in a doorway are waited for rather than reported as NO_PATH.
-  // A way round counts only if it costs no more than waiting here as long as the gateway may
-  // be waited for: people in a hallway's opening move on within that, and a long detour round
-  // them (across the building) cost more than the wait.
+  // Before the route's next gateway. With a way round that costs no more than waiting here
+  // closed_after_s, it is left at once (marked closed for a while, its cost raised); else it
+  // counts as closed only after closed_after_s, so that people in a doorway or a hallway's
+  // opening are waited for rather than gone round across the building or reported as NO_PATH.
   PlanRequest around = request_from_pose(utime);
   around.avoid_gateway = gw->id;
   std::string why;
