@@ -333,9 +333,8 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
   // A blocked place is a reason to go round, not a wall: whoever stood there (people do) may
   // have gone, and the robot was there a moment ago. With no way round, the route goes through
   // it rather than nowhere; refused, a new goal behind a place a person blocked for a few
-  // seconds got "no route" from the robot's own region, and a place ahead of the robot cut it
-  // off its region's free space. (Planner::handle_stuck ends a goal held at a place with no way
-  // round after closed_after_s.)
+  // seconds got "no route" from the robot's own region. (The goal held at the place plans with
+  // strict_places: round it, or NO_PATH; Planner::handle_stuck.)
   std::vector<BlockedPlace> kept;
   kept.swap(places_);
   for (const auto& place : kept) forget_planner(place.region);

@@ -127,12 +127,12 @@ class GlobalPlanner
   size_t blocked_places() const { return places_.size(); }
 
  private:
+  // plan() with the blocked places as they are (walls).
+  std::optional<Route> plan_round_places(const PlanRequest& request, std::string* why, PlanStats* stats);
   // The cheapest route from the robot at start_point in region sr (its way back along the track
   // first, if any), or from the same place in the regions `also` (region, place in its frame),
   // to the request's goal; stats added to; *started: the index in `also` the route begins at (-1:
   // the robot's own region).
-  // plan() on the blocked places as they are (walls).
-  std::optional<Route> plan_round_places(const PlanRequest& request, std::string* why, PlanStats* stats);
   std::optional<Route> search(const PlanRequest& request, int64_t sr, const Eigen::Vector2d& start_point,
                               const std::vector<std::pair<int64_t, Eigen::Vector2d>>& also,
                               const std::optional<WayBack>& way_back, std::string* why, PlanStats* stats,

@@ -162,61 +162,54 @@ RegionGrid::RegionGrid(const rgmap::Region& region, const GridOptions& options,
   }
   // The robot's space in this region: free cells connected to the region's own freespace (a
   // start or goal is moved onto these only, never into a room behind a wall seen from beside).
-  cv::Mat traversable(height_, width_, CV_8UC1, cv::Scalar(0));
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x)
-      if (level_[index(Cell(x, y))] != kBlocked) traversable.at<uint8_t>(y, x) = 255;
-  cv::Mat labels;
-  const int n = cv::connectedComponents(traversable, labels, 8, CV_32S);
-  std::vector<uint8_t> own_label(static_cast<size_t>(n), 0);
-  std::vector<int> own_cells(static_cast<size_t>(n), 0);
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x)
-      if (own.at<uint8_t>(y, x) && traversable.at<uint8_t>(y, x)) {
-        const auto l = static_cast<size_t>(labels.at<int>(y, x));
-        own_label[l] = 1;
-        ++own_cells[l];
-      }
+  // Pieces: the 8-connected cells where the body fits, each piece's count of the region's own
+  // freespace cells, and the piece with the most of them.
+  struct Pieces
+  {
+    cv::Mat fits, labels;
+    std::vector<int> own_cells;
+    int32_t main = 0;
+  };
+  auto pieces_of = [&](const cv::Mat& free_dist, const cv::Mat& walls_dist) {
+    Pieces p;
+    p.fits = cv::Mat(height_, width_, CV_8UC1, cv::Scalar(0));
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x)
+        if (body_fits(free_dist, walls_dist, x, y)) p.fits.at<uint8_t>(y, x) = 255;
+    p.own_cells.assign(static_cast<size_t>(cv::connectedComponents(p.fits, p.labels, 8, CV_32S)), 0);
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x)
+        if (own.at<uint8_t>(y, x) && p.fits.at<uint8_t>(y, x)) ++p.own_cells[static_cast<size_t>(p.labels.at<int>(y, x))];
+    for (size_t l = 1; l < p.own_cells.size(); ++l)
+      if (p.own_cells[l] > (p.main ? p.own_cells[static_cast<size_t>(p.main)] : 0)) p.main = static_cast<int32_t>(l);
+    return p;
+  };
+  const Pieces here = pieces_of(dist, wall_dist);
   own_.assign(level_.size(), 0);
   component_.assign(level_.size(), 0);
   for (int y = 0; y < height_; ++y)
     for (int x = 0; x < width_; ++x)
-      if (traversable.at<uint8_t>(y, x)) {
-        const int l = labels.at<int>(y, x);
-        own_[index(Cell(x, y))] = own_label[static_cast<size_t>(l)];
+      if (here.fits.at<uint8_t>(y, x)) {
+        const int l = here.labels.at<int>(y, x);
+        own_[index(Cell(x, y))] = here.own_cells[static_cast<size_t>(l)] > 0 ? 1 : 0;
         component_[index(Cell(x, y))] = l;
       }
-  auto largest = [](const std::vector<int>& cells) {
-    int32_t best = 0;
-    for (size_t l = 1; l < cells.size(); ++l)
-      if (cells[l] > (best ? cells[static_cast<size_t>(best)] : 0)) best = static_cast<int32_t>(l);
-    return best;
-  };
-  main_component_ = largest(own_cells);
-  main_pieces_.assign(static_cast<size_t>(n), 0);
+  main_component_ = here.main;
+  main_pieces_.assign(here.own_cells.size(), 0);
   if (main_component_) main_pieces_[static_cast<size_t>(main_component_)] = 1;
   if (blocked.empty()) return;
   // Blocked places may cut the main space in pieces; each piece is still the region's space
-  // (the robot held before a place is not apart from it): the pieces of the largest piece of
-  // own free cells the grid would have without them.
+  // (the robot held before a place is not apart from it): the pieces of the main piece the
+  // grid would have without them.
   cv::Mat open_dist, open_wall_dist;
   cv::distanceTransform(free_without_places, open_dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
   cv::distanceTransform(walls_without_places, open_wall_dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-  cv::Mat open_traversable(height_, width_, CV_8UC1, cv::Scalar(0)), open_labels;
+  const Pieces open = pieces_of(open_dist, open_wall_dist);
+  if (!open.main) return;
   for (int y = 0; y < height_; ++y)
     for (int x = 0; x < width_; ++x)
-      if (body_fits(open_dist, open_wall_dist, x, y)) open_traversable.at<uint8_t>(y, x) = 255;
-  const int open_n = cv::connectedComponents(open_traversable, open_labels, 8, CV_32S);
-  std::vector<int> open_own_cells(static_cast<size_t>(open_n), 0);
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x)
-      if (own.at<uint8_t>(y, x) && open_traversable.at<uint8_t>(y, x)) ++open_own_cells[static_cast<size_t>(open_labels.at<int>(y, x))];
-  const int32_t open_main = largest(open_own_cells);
-  if (!open_main) return;
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x)
-      if (traversable.at<uint8_t>(y, x) && open_labels.at<int>(y, x) == open_main)
-        main_pieces_[static_cast<size_t>(labels.at<int>(y, x))] = 1;
+      if (here.fits.at<uint8_t>(y, x) && open.labels.at<int>(y, x) == open.main)
+        main_pieces_[static_cast<size_t>(here.labels.at<int>(y, x))] = 1;
 }
 
 bool RegionGrid::in_main_space(int32_t piece) const
