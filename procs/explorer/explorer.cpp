@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "explorer/opening.h"
+#include "explorer/view_gain.h"
 #include "explorer/view_point.h"
 #include "planner/no_path_reason.h"
 
@@ -137,14 +138,24 @@ std::vector<Frontier> Explorer::open_frontiers(int64_t region_id) const
   std::vector<Frontier> open;
   const rgmap::Region* r = map_->region(region_id);
   if (!r) return open;
+  const GainOptions& gain = options_.frontier.gain;
   for (auto& f : find_frontiers(*map_, region_id, options_.frontier).frontiers) {
-    // The opening of a gateway waiting on the stack (or gone through) is the stack's, not the
-    // region's: it is taken when the region is complete.
+    // The opening of a gateway waiting on the stack is the stack's, not the region's: it is taken
+    // when the region is complete. One gone through or set aside is a frontier like any other if a
+    // look past it still shows something: a hallway goes on past a junction whose branch the
+    // robot took for a metre, a gap taken for a door may show the room beyond. (Without the gain
+    // rule every entry claims its opening: the scraps of freespace edge a gateway gone through
+    // leaves would be goals.)
     const Vector2d at = r->map_from_region * f.goal;
     const bool stacked = std::any_of(stack_.entries().begin(), stack_.entries().end(), [&](const StackEntry& e) {
-      return (e.crossing - at).norm() < options_.stack.merge_distance;
+      return (e.state == StackEntry::State::kPending || gain.min_m2 <= 0.0) &&
+             (e.crossing - at).norm() < options_.stack.merge_distance;
     });
-    if (!stacked) open.push_back(std::move(f));
+    if (stacked) continue;
+    // Nothing left to see past it: no goal (the region counts as complete there).
+    if (gain.min_m2 > 0.0 && unknown_area_beyond(*map_, at, r->map_from_region.rotation() * f.outward, gain) < gain.min_m2)
+      continue;
+    open.push_back(std::move(f));
   }
   return open;
 }
@@ -348,17 +359,20 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
   // Evidence the robot can drive: it arrived at a goal (not a frontier the map filled in while it
   // stood, nor a turn on the spot).
   if (reached && reason != kExplored && goal_->kind != ExploreGoal::Kind::kLook) arrived_since_failure_ = true;
-  // A gateway taken for closed for a while: the goal is due again later, no attempt of its own.
+  // A gateway taken for closed for a while: the goal is due again later, no attempt of its own
+  // (but a bounded number of such failures, each waiting twice as long as the one before).
   if (behind_closed) counts = false;
+  const auto retry_after_us = static_cast<int64_t>(options_.retry_after_s * 1e6);
   if (goal_->kind == ExploreGoal::Kind::kGateway) {
+    const StackEntry* e = stack_.entry(goal_->entry_id);
     if (reached) {
-      const StackEntry* e = stack_.entry(goal_->entry_id);
       if (e && e->state != StackEntry::State::kDone) stack_.done(goal_->entry_id, reason);
     } else {
-      const StackEntry* e = stack_.entry(goal_->entry_id);
       const PlaceView view = e && map_ ? view_of_place(*map_, e->crossing, options_.changed) : PlaceView{};
-      stack_.failed(goal_->entry_id, reason, utime, utime + static_cast<int64_t>(options_.retry_after_s * 1e6),
-                    options_.max_attempts, static_cast<int64_t>(map_ ? map_->regions().size() : 0), view, counts);
+      const int64_t wait = behind_closed && e ? closed_retry_wait_us(e->closed_failures + 1) : retry_after_us;
+      stack_.failed(goal_->entry_id, reason, utime, utime + wait, options_.max_attempts,
+                    static_cast<int64_t>(map_ ? map_->regions().size() : 0), view, counts,
+                    behind_closed ? options_.max_closed_retries : 0);
     }
   } else if (reached) {
     visited_.push_back(goal_->frontier_point);
@@ -371,13 +385,25 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
       place.map_point = goal_->frontier_point;
       it = failed_.insert(failed_.end(), place);
     }
-    if (counts) ++it->attempts;
-    it->retry_utime = utime + static_cast<int64_t>(options_.retry_after_s * 1e6);
+    if (behind_closed) {
+      ++it->closed_failures;
+      it->retry_utime = utime + closed_retry_wait_us(it->closed_failures);
+      if (it->closed_failures >= options_.max_closed_retries) it->attempts = std::max(it->attempts, options_.max_attempts);
+    } else {
+      if (counts) ++it->attempts;
+      it->retry_utime = utime + retry_after_us;
+    }
     it->failed_utime = utime;
     if (map_) it->view_at_failure = view_of_place(*map_, it->map_point, options_.changed);
   }
   goal_.reset();
   decide_now_ = true;
+}
+
+int64_t Explorer::closed_retry_wait_us(int k) const
+{
+  // Capped at a day: a wait past any run, and no overflow.
+  return static_cast<int64_t>(std::min(86400.0, options_.retry_after_s * std::pow(2.0, std::max(0, k - 1))) * 1e6);
 }
 
 Explorer::Recovery Explorer::recovery_from(const Vector2d& here) const
@@ -605,6 +631,7 @@ nlohmann::json Explorer::save() const
     failed.push_back({{"at", point_json(f.map_point)},
                       {"retry_utime", f.retry_utime},
                       {"attempts", f.attempts},
+                      {"closed_failures", f.closed_failures},
                       {"failed_utime", f.failed_utime},
                       {"view_at_failure", place_view_json(f.view_at_failure)}});
   return {{"phase", to_string(phase_)},
@@ -636,6 +663,8 @@ void Explorer::restore(const nlohmann::json& j)
     place.map_point = point_from(f.at("at"));
     place.retry_utime = f.at("retry_utime").get<int64_t>();
     place.attempts = f.at("attempts").get<int>();
+    // Absent in state files written before closed-gateway failures were bounded.
+    place.closed_failures = f.value("closed_failures", 0);
     // Absent in state files written before places were tried again when the map near them changed.
     place.failed_utime = f.value("failed_utime", int64_t{0});
     if (f.contains("view_at_failure")) place.view_at_failure = place_view_from_json(f.at("view_at_failure"));

@@ -1,7 +1,8 @@
 // The explorer (diss. 5.0's high-level planning, ch. 7): explores an unknown building region by
 // region. Inside the current region it goes to the frontiers of the region's freespace
 // (frontiers.h), nearest first, each looked at from a view point the planner can reach
-// (view_point.h; a frontier with none is no goal for now), until none is left (the region is complete); then it takes the
+// (view_point.h; a frontier with none is no goal for now, nor one a look past would show little
+// unknown through: view_gain.h), until none is left (the region is complete); then it takes the
 // next untraversed gateway from the stack (gateway_stack.h), breadth-first, and drives through
 // it, aimed through the opening the map's lines show beside the detector's crossing point (an
 // entry they show no opening for is set aside until the map near it changes: opening.h); a
@@ -14,10 +15,11 @@
 // ("start cut off", planner/no_path_reason.h), or when everything left failed from where it
 // stands, it looks behind again, then steps back along its own track (RecoveryOptions), instead
 // of standing where nothing changes; a goal only a gateway taken for closed is in the way of
-// counts no failed attempt. A goal the robot gets no nearer to in progress_timeout_s fails; such a
-// failure counts against the goal only if the robot arrived somewhere since the last one (a robot
-// held where it stands fails every goal, and is not done for that). A frontier that failed, the
-// current region's too, waits until the stack is empty.
+// counts no failed attempt (but waits longer each time, and max_closed_retries set it aside). A
+// goal the robot gets no nearer to in progress_timeout_s fails; such a failure counts against
+// the goal only if the robot arrived somewhere since the last one (a robot held where it stands
+// fails every goal, and is not done for that). A frontier that failed, the current region's too,
+// waits until the stack is empty.
 //
 // Pure algorithm, message time only: the node feeds it the RG map, the robot's pose, the
 // detector's gateway sightings and the planner's goal status, and calls step() at its own pace.
@@ -123,6 +125,8 @@ class Explorer
   const std::string& last_end() const { return last_end_; }
   // Goals reached and failed so far (status() has them too, but works out every region's frontiers).
   std::pair<int, int> goal_counts() const { return {goals_reached_, goals_failed_}; }
+  // The region's frontiers that are goals of its own: those at a stacked gateway's opening are not.
+  std::vector<Frontier> open_frontiers(int64_t region_id) const;
   // Regions finished since the last call (complete and left, or all at the end), for naming.
   std::vector<int64_t> take_finished_regions();
 
@@ -146,9 +150,9 @@ class Explorer
   void set_aside_closed_entries(int64_t utime);
   // The nearest frontier of a live region other than `current` (kind kRegion).
   std::optional<ExploreGoal> other_region_goal(int64_t current, int64_t utime, bool untried_only);
-  // The region's frontiers that are goals of its own: those at a stacked gateway's opening are not.
-  std::vector<Frontier> open_frontiers(int64_t region_id) const;
   bool goal_still_open() const;
+  // [us] How long a goal waits after its k-th failure behind a gateway held closed (k >= 1).
+  int64_t closed_retry_wait_us(int k) const;
   // Numbers `g` and makes it the running goal (its progress counted from now).
   void start_goal(ExploreGoal* g, int64_t utime);
   // kStartCutOff: the robot's own place joins nothing (not the goal's fault); kClosedGateway: only
@@ -199,6 +203,7 @@ class Explorer
     Eigen::Vector2d map_point;
     int64_t retry_utime = 0;
     int attempts = 0;
+    int closed_failures = 0;        // failures only a gateway held closed was in the way of (no attempts)
     int64_t failed_utime = 0;       // the last failure ...
     PlaceView view_at_failure;      // ... and the map around the place then
   };

@@ -16,6 +16,10 @@ FrontierOptions load_frontier(const config::Config& c)
   f.wall_distance = c.number("wall_distance_m", f.wall_distance, 0.0, 2.0);
   f.min_width = c.number("min_width_m", f.min_width, 0.0, 10.0);
   f.gateway_distance = c.number("gateway_distance_m", f.gateway_distance, 0.0, 5.0);
+  f.gain.range_m = c.number("gain_range_m", f.gain.range_m, 0.0, 10.0);
+  f.gain.fan_rad = c.number("gain_fan_rad", f.gain.fan_rad, 0.0, M_PI);
+  f.gain.step_m = c.number("gain_step_m", f.gain.step_m, 0.01, 1.0);
+  f.gain.min_m2 = c.number("min_gain_m2", f.gain.min_m2, 0.0, 100.0);
   return f;
 }
 
@@ -82,6 +86,7 @@ ExplorerOptions load_explorer_options(const config::Config& cfg, const config::R
   o.visited_radius = g.number("visited_radius_m", o.visited_radius, 0.0, 20.0);
   o.retry_after_s = g.number("retry_after_s", o.retry_after_s, 0.0, 86400.0);
   o.max_attempts = static_cast<int>(g.integer("max_attempts", o.max_attempts, 1, 100));
+  o.max_closed_retries = static_cast<int>(g.integer("max_closed_retries", o.max_closed_retries, 1, 100));
   o.goal_timeout_s = g.number("timeout_s", o.goal_timeout_s, 1.0, 86400.0);
   o.progress_timeout_s = g.number("progress_timeout_s", o.progress_timeout_s, 1.0, 86400.0);
   o.progress_m = g.number("progress_m", o.progress_m, 0.0, 10.0);

@@ -11,6 +11,16 @@ namespace rgnav::config { class Config; struct RobotDescription; }
 
 namespace rgnav::explorer {
 
+// What a look past a frontier can still show (view_gain.h): the unknown area in a fan of rays.
+struct GainOptions
+{
+  double range_m = 2.0;            // [m] rays this long (a look from the view point sees farther: this is what a frontier
+                                   // must at least offer near it)
+  double fan_rad = 1.0;            // [rad] rays this far to either side of the frontier's outward direction
+  double step_m = 0.1;             // [m] samples along a ray, and rays this far apart at the fan's rim
+  double min_m2 = 0.0;             // [m^2] a frontier with less unknown area than this in its fan is no goal (0: every one)
+};
+
 // Where a region's freespace ends in unknown space (frontiers.h).
 struct FrontierOptions
 {
@@ -18,6 +28,7 @@ struct FrontierOptions
                                    // the wall that ends the freespace there (not a frontier)
   double min_width = 0.6;          // [m] a frontier narrower than this is a shadow (behind a table leg, a corner)
   double gateway_distance = 0.8;   // [m] a freespace edge this near a traversed door's line is its opening
+  GainOptions gain;                // a frontier offering less unknown area than gain.min_m2 is no goal (the explorer's rule)
 };
 
 // Untraversed gateways (gateway_stack.h): the gateway detector's sightings, kept in the map frame.
@@ -89,6 +100,11 @@ struct ExplorerOptions
   int max_attempts = 3;            // ... at most this many times (a failure counts only if the robot moved or the map
                                    // changed since the last one); then it is set aside for good (with its reason) until
                                    // the map near it changes (`changed`), at least retry_after_s after its last failure
+  // A goal only a gateway the planner holds closed is in the way of: no attempt of its own (the
+  // door may open), tried again after retry_after_s, twice as long after each such failure, and
+  // after this many set aside for good like one out of attempts (a door shut for good would
+  // otherwise be tried every minute, and exploring would never end).
+  int max_closed_retries = 4;
   double goal_timeout_s = 180.0;   // [s] a goal not reached in this long counts as failed
   double progress_timeout_s = 60.0;// [s] a goal the robot got no nearer to (by progress_m) in this long counts as failed
   double progress_m = 0.3;         // [m] (explore_lite's progress rule: a robot held by something it cannot see)

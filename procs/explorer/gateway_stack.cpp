@@ -186,18 +186,20 @@ void GatewayStack::done(int64_t id, const std::string& reason)
 }
 
 void GatewayStack::failed(int64_t id, const std::string& reason, int64_t utime, int64_t retry_utime, int max_attempts,
-                          int64_t map_regions, const PlaceView& view, bool counts)
+                          int64_t map_regions, const PlaceView& view, bool counts, int max_closed_retries)
 {
   for (auto& e : entries_) {
     if (e.id != id) continue;
-    if (counts) ++e.attempts;
+    const bool closed = max_closed_retries > 0;
+    if (closed) ++e.closed_failures;
+    else if (counts) ++e.attempts;
     e.state = StackEntry::State::kSetAside;
     e.reason = reason;
     e.map_regions_at_failure = map_regions;
     e.failed_utime = utime;
     e.view_at_failure = view;
     // For good after max_attempts: retry_utime 0 is never due (until release_changed).
-    e.retry_utime = e.attempts >= max_attempts ? 0 : retry_utime;
+    e.retry_utime = e.attempts >= max_attempts || (closed && e.closed_failures >= max_closed_retries) ? 0 : retry_utime;
   }
 }
 
@@ -240,6 +242,7 @@ nlohmann::json GatewayStack::to_json() const
                     {"utime", e.utime},
                     {"state", state_name(e.state)},
                     {"attempts", e.attempts},
+                    {"closed_failures", e.closed_failures},
                     {"retry_utime", e.retry_utime},
                     {"map_regions_at_failure", e.map_regions_at_failure},
                     {"failed_utime", e.failed_utime},
@@ -268,6 +271,9 @@ void GatewayStack::from_json(const nlohmann::json& j)
     e.utime = x.at("utime").get<int64_t>();
     e.state = state_from(x.at("state").get<std::string>());
     e.attempts = x.at("attempts").get<int>();
+    // Absent in state files written before closed-gateway failures were bounded.
+    e.closed_failures = x.value("closed_failures", 0);
+    if (e.attempts < 0 || e.closed_failures < 0) throw std::invalid_argument("stack entry attempts or closed_failures < 0");
     e.retry_utime = x.at("retry_utime").get<int64_t>();
     e.map_regions_at_failure = x.at("map_regions_at_failure").get<int64_t>();
     // Absent in state files written before entries were released when the map near them changed.

@@ -162,6 +162,7 @@ void Supervisor::adopt(Entry& e, pid_t pid, uint64_t start_ticks, Clock::time_po
   e.started = now;
   e.last_heartbeat.reset();
   e.progress = -1;
+  e.seq = -1;
   e.intent = StopIntent::kNone;
   set_state(e, e.cmd->spec.heartbeat ? ProcState::kStarting : ProcState::kRunning);
 }
@@ -302,6 +303,7 @@ void Supervisor::spawn(Entry& e, Clock::time_point now)
   e.started = now;
   e.last_heartbeat.reset();
   e.progress = -1;
+  e.seq = -1;
   e.intent = StopIntent::kNone;
   e.killed = false;
   if (c.spec.heartbeat) {
@@ -315,6 +317,7 @@ void Supervisor::spawn(Entry& e, Clock::time_point now)
 void Supervisor::begin_stop(Entry& e, StopIntent intent, Clock::time_point now)
 {
   if (e.pid == 0) return;
+  release_silence(e);
   if (e.state == ProcState::kStopping || e.state == ProcState::kHung) {
     // Already on its way out; an operator stop during a restart must not restart it.
     if (intent == StopIntent::kOperator || intent == StopIntent::kShutdown) e.intent = intent;
@@ -341,7 +344,7 @@ void Supervisor::begin_stop(Entry& e, StopIntent intent, Clock::time_point now)
 }
 
 void Supervisor::on_heartbeat(const std::string& name, pid_t pid, Clock::time_point now, bool same_machine,
-                              int64_t progress)
+                              int64_t progress, int64_t seq)
 {
   auto it = std::find_if(seen_.begin(), seen_.end(), [&](const auto& s) { return s.first == name; });
   if (it == seen_.end()) {
@@ -358,7 +361,36 @@ void Supervisor::on_heartbeat(const std::string& name, pid_t pid, Clock::time_po
                  e->cmd->spec.name, pid, name, e->cmd->spec.name);
     e->name_warned = true;
   }
+  const auto silent_ms = e->last_heartbeat ? std::chrono::duration_cast<std::chrono::milliseconds>(now - *e->last_heartbeat).count() : 0;
   e->last_heartbeat = now;
+  // Its heartbeats are numbered: a jump means some were sent and never reached us (the bus or
+  // our receive queue lost them), not that the process was silent.
+  int64_t lost = 0;
+  if (seq >= 0 && e->seq >= 0 && seq > e->seq + 1) lost = seq - e->seq - 1;
+  if (seq > e->seq) e->seq = seq;
+  heartbeats_lost_ += lost;
+  if (lost >= 2 && !e->silence_held)
+    spdlog::warn("{} (pid {}): {} heartbeats lost on the way to the supervisor ({} ms without one): the bus, not the process",
+                 e->cmd->spec.name, pid, lost, silent_ms);
+  if (e->silence_held) {
+    // Back within the hold: its silence was the stall it shared, not its own.
+    e->silence_held = false;
+    if (const auto length = silence_.heard(now)) {
+      ++stalls_.heard;
+      count_stall(*length);
+      const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(*length).count();
+      if (lost > 0) {
+        ++stalls_.heard_lost;
+        spdlog::warn("host stalled for {} ms (heard, not felt: the heartbeats of {} stopped together and came back; {} "
+                     "of {}'s were sent and lost on the way: the bus or the supervisor's receive queue): no process blamed",
+                     ms, silence_.names(), lost, e->cmd->spec.name);
+      } else {
+        spdlog::warn("host stalled for {} ms (heard, not felt: the heartbeats of {} stopped together and came back): no "
+                     "process blamed",
+                     ms, silence_.names());
+      }
+    }
+  }
   if (progress != e->progress) {
     e->progress = progress;
     e->progress_at = now;
@@ -379,12 +411,60 @@ bool Supervisor::waiting_on_disk(Entry& e, Clock::time_point now)
   return true;
 }
 
+void Supervisor::count_stall(Clock::duration length)
+{
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(length);
+  ++stalls_.count;
+  stalls_.total += ms;
+  stalls_.longest = std::max(stalls_.longest, ms);
+  changed_ = true;
+}
+
+void Supervisor::judge_silence(Entry& e, Clock::time_point now)
+{
+  const auto ms = [](Clock::duration d) { return std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(d).count()); };
+  const Clock::time_point last = *e.last_heartbeat;
+  if (e.silence_held) {
+    if (now - last <= e.heartbeat_timeout + options_.stall_hold) return;
+    e.hung_reason = "heartbeat timeout (still silent " + ms(options_.stall_hold) + " ms past the bound, held for the silence of " +
+                    silence_.names() + ")";
+    begin_stop(e, StopIntent::kHung, now);
+    return;
+  }
+  if (options_.stall_hold > Clock::duration::zero() && options_.stall_window > Clock::duration::zero()) {
+    const auto window = silence_window(options_.stall_window, e.heartbeat_timeout);
+    std::string with;
+    Clock::time_point newest = last;
+    for (const auto& x : entries_) {
+      if (&x == &e || x.state != ProcState::kRunning || !x.cmd->spec.heartbeat || !x.last_heartbeat) continue;
+      if (!began_together(*x.last_heartbeat, last, window)) continue;
+      with += (with.empty() ? "" : ", ") + x.cmd->spec.name + " (silent " + ms(now - *x.last_heartbeat) + " ms)";
+      newest = std::max(newest, *x.last_heartbeat);
+    }
+    if (!with.empty()) {
+      e.silence_held = true;
+      silence_.hold(e.cmd->spec.name, newest);
+      spdlog::warn("{} (pid {}) silent {} ms, past its {} ms, together with {}: a stall of the host or the bus? verdict held "
+                   "up to {} ms more",
+                   e.cmd->spec.name, e.pid, ms(now - last), e.heartbeat_timeout.count(), with, options_.stall_hold.count());
+      return;
+    }
+  }
+  e.hung_reason = "heartbeat timeout";
+  begin_stop(e, StopIntent::kHung, now);
+}
+
+void Supervisor::release_silence(Entry& e)
+{
+  if (!e.silence_held) return;
+  e.silence_held = false;
+  silence_.release();
+}
+
 void Supervisor::on_host_stall(Clock::duration gap, Clock::time_point now)
 {
   if (gap <= Clock::duration::zero()) return;
-  ++stalls_.count;
-  stalls_.total += std::chrono::duration_cast<std::chrono::milliseconds>(gap);
-  stalls_.longest = std::max(stalls_.longest, std::chrono::duration_cast<std::chrono::milliseconds>(gap));
+  count_stall(gap);
   spdlog::warn("host stalled for {} ms (the supervisor's own tick was late): deadlines moved on by that much",
                std::chrono::duration_cast<std::chrono::milliseconds>(gap).count());
   // Every clock the hang checks read moves on by the gap, never past now.
@@ -395,6 +475,7 @@ void Supervisor::on_host_stall(Clock::duration gap, Clock::time_point now)
     e.started = later(e.started);
   }
   for (auto& s : seen_) s.second = later(s.second);
+  silence_.shift(gap, now);
 }
 
 void Supervisor::running_again(Entry& e)
@@ -430,11 +511,13 @@ void Supervisor::exited(Entry& e, const std::string& how, Clock::time_point now)
 {
   spdlog::info("{} (pid {}) ended: {}", e.cmd->spec.name, e.pid, how);
   cpu_.forget(e.pid);
+  release_silence(e);
   e.pid = 0;
   e.start_ticks = 0;
   e.adopted = false;
   e.last_heartbeat.reset();
   e.progress = -1;
+  e.seq = -1;
   const StopIntent intent = std::exchange(e.intent, StopIntent::kNone);
   save();
   switch (intent) {
@@ -533,8 +616,8 @@ void Supervisor::tick(Clock::time_point now)
         break;
       case ProcState::kRunning:
         if (e.cmd->spec.heartbeat && e.last_heartbeat && now - *e.last_heartbeat > e.heartbeat_timeout) {
-          e.hung_reason = "heartbeat timeout";
-          begin_stop(e, StopIntent::kHung, now);
+          // Silent: hung, or held while its silence is shared (no progress comes without heartbeats either).
+          judge_silence(e, now);
         } else if (e.cmd->spec.heartbeat && e.progress > 0 && now - e.progress_at > e.work_timeout &&
                    !waiting_on_disk(e, now)) {
           // Heartbeats come (beside the loop) but the loop has not moved on: stuck in its work.

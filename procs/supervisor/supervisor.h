@@ -17,6 +17,7 @@
 #include "launch_plan.h"
 #include "proc_info.h"
 #include "restart_policy.h"
+#include "shared_silence.h"
 #include "supervisor_options.h"
 
 namespace rgnav::supervisor {
@@ -70,19 +71,26 @@ class Supervisor
   // name the process gives itself; its name alone also counts as a (remote) dependency's.
   // progress: the heartbeat's work counter (0 until the process's loop first turns); standing
   // still longer than the command's work_timeout while heartbeats go on is a hang, and so is
-  // still 0 after startup_timeout.
+  // still 0 after startup_timeout. seq: the heartbeat's sequence number (-1: unknown); a jump
+  // counts heartbeats lost on the way (heartbeats_lost()).
   void on_heartbeat(const std::string& name, pid_t pid, Clock::time_point now, bool same_machine = true,
-                    int64_t progress = 0);
+                    int64_t progress = 0, int64_t seq = -1);
   // The supervisor's own schedule was `gap` late (the host stalled, everyone with it): no
   // process is blamed for it. The node measures the gap; counted in host_stalls().
+  // Stalls it did not feel show as heartbeats of several processes stopping together: those
+  // are held, not judged, and counted there too (shared_silence.h).
   void on_host_stall(Clock::duration gap, Clock::time_point now);
   struct HostStalls
   {
     int count = 0;
     std::chrono::milliseconds longest{0};
     std::chrono::milliseconds total{0};
+    int heard = 0;       // of count: shared silences of heartbeats (not felt in the supervisor's tick)
+    int heard_lost = 0;  // of heard: the first one back had sent heartbeats that were lost (its seq jumped)
   };
   const HostStalls& host_stalls() const { return stalls_; }
+  // Heartbeats of our processes sent but never received (gaps in their sequence numbers).
+  int64_t heartbeats_lost() const { return heartbeats_lost_; }
   void on_child_exit(pid_t pid, int wait_status, Clock::time_point now);
   // Reaps exited children (waitpid, non-blocking).
   void reap(Clock::time_point now);
@@ -127,6 +135,8 @@ class Supervisor
     std::optional<Clock::time_point> last_heartbeat;
     int64_t progress = -1;           // the newest heartbeat's work counter (-1: none yet)
     Clock::time_point progress_at{};  // when it last moved on
+    bool silence_held = false;        // silent past its bound together with others: verdict held
+    int64_t seq = -1;                 // the newest heartbeat's sequence number (-1: none yet)
     bool disk_wait_logged = false;    // since then
     StopIntent intent = StopIntent::kNone;
     Clock::time_point kill_at{};
@@ -164,6 +174,11 @@ class Supervisor
   void set_state(Entry& e, ProcState s);
   void running_again(Entry& e);
   void raise_alert(const std::string& text);
+  // Its heartbeats have been silent past its bound: hung, or held while others' silences
+  // began together with its own (shared_silence.h).
+  void judge_silence(Entry& e, Clock::time_point now);
+  void release_silence(Entry& e);
+  void count_stall(Clock::duration length);
   // Its loop stands still in a disk wait (slow, not stuck), within disk_wait_timeout.
   bool waiting_on_disk(Entry& e, Clock::time_point now);
   void save();
@@ -183,6 +198,8 @@ class Supervisor
   Clock::time_point last_adopted_check_{};
   CpuMeter cpu_;
   HostStalls stalls_;
+  SharedSilence silence_;
+  int64_t heartbeats_lost_ = 0;
 };
 
 }  // namespace rgnav::supervisor

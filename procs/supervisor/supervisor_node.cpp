@@ -23,7 +23,7 @@ SupervisorNode::SupervisorNode(runtime::Node& node, std::unique_ptr<Supervisor> 
   gethostname(buf, sizeof buf - 1);
   hostname_ = buf;
   node_.subscribe<heartbeat_t>(channels_.heartbeat, [this](const heartbeat_t& hb) {
-    sup_->on_heartbeat(hb.name, hb.pid, Clock::now(), hb.host == hostname_, hb.progress);
+    sup_->on_heartbeat(hb.name, hb.pid, Clock::now(), hb.host == hostname_, hb.progress, hb.seq);
   });
   node_.subscribe<supervisor_order_t>(channels_.orders, [this](const supervisor_order_t& o) {
     if (!o.host.empty() && o.host != sup_->host()) return;

@@ -18,6 +18,12 @@ SupervisorOptions load_supervisor_options(const config::Config& s)
   o.work_timeout = config::milliseconds(s, "work_timeout_ms", o.work_timeout, 50, 600000);
   o.disk_wait_timeout = config::milliseconds(s, "disk_wait_timeout_ms", o.disk_wait_timeout, 0, 600000);
   o.stall_threshold = config::milliseconds(s, "stall_threshold_ms", o.stall_threshold, 5, 60000);
+  o.stall_window = config::milliseconds(s, "stall_window_ms", o.stall_window, 0, 60000);
+  // Wider, a healthy process's newest heartbeat would fall in it (shared_silence.h).
+  if (o.stall_window * 2 > o.heartbeat_timeout)
+    s.fail("stall_window_ms", "must be at most half of heartbeat_timeout_ms (" + std::to_string(o.heartbeat_timeout.count()) +
+                                  "): a healthy process's newest heartbeat would lie within it");
+  o.stall_hold = config::milliseconds(s, "stall_hold_ms", o.stall_hold, 0, 10000);
   o.hung_grace = config::milliseconds(s, "hung_grace_ms", o.hung_grace, 0, 60000);
   o.tick = config::milliseconds(s, "tick_ms", o.tick, 1, 1000);
   o.status_period = config::milliseconds(s, "status_period_ms", o.status_period, 50, 60000);

@@ -22,6 +22,15 @@ struct SupervisorOptions
   // A gap in the supervisor's own tick this much longer than the tick is a stall of the
   // whole host: its length is added to every process's deadlines.
   std::chrono::milliseconds stall_threshold{50};
+  // A stall the supervisor did not feel (the processes starved while it ran, the bus late):
+  // heartbeats of several processes silent past the bound whose newest beats lie within
+  // stall_window of each other began their silence together; the verdict is held up to
+  // stall_hold longer, and one still silent then is hung (shared_silence.h). The window must be
+  // wider than a heartbeat period (5 Hz: 200 ms) and is at most half of heartbeat_timeout; the
+  // longest silence a hang can hide in is heartbeat_timeout + stall_hold (issue 35: <= 1 s).
+  // stall_window 0 or stall_hold 0: every silence past its bound is a hang, as before.
+  std::chrono::milliseconds stall_window{250};
+  std::chrono::milliseconds stall_hold{300};
   std::chrono::milliseconds hung_grace{300};          // stop signal → SIGKILL for a hung process
   std::chrono::milliseconds tick{10};                 // exit reaping and timeout checks
   std::chrono::milliseconds status_period{1000};      // SUPERVISOR_STATUS

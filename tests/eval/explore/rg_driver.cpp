@@ -186,7 +186,23 @@ class RgDriver final : public ExploreDriver
         aside.push_back({{"id", e.id}, {"crossing", {e.crossing.x(), e.crossing.y()}}, {"reason", e.reason}, {"attempts", e.attempts}});
     j["set_aside"] = aside;
     // Traced runs keep the whole stack (every entry's state and reason) for a look afterwards.
-    if (trace_) j["stack"] = explorer_.stack().to_json();
+    if (trace_) {
+      j["stack"] = explorer_.stack().to_json();
+      // What is left: every live region's open frontiers (map frame) and the explorer's state.
+      nlohmann::json left = nlohmann::json::array();
+      if (map_)
+        for (const auto& [id, r] : map_->regions()) {
+          if (r.state == rgmap::Region::State::kMerged) continue;
+          for (const auto& f : explorer_.open_frontiers(id)) {
+            const Eigen::Vector2d at = r.map_from_region * f.goal;
+            const Eigen::Vector2d out = r.map_from_region.rotation() * f.outward;
+            left.push_back({{"region", id}, {"at", {at.x(), at.y()}}, {"outward", {out.x(), out.y()}}, {"width", f.width},
+                            {"cells", f.cells.size()}});
+          }
+        }
+      j["frontiers_left"] = left;
+      j["explorer_state"] = explorer_.save();
+    }
     return j;
   }
 

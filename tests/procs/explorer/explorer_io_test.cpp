@@ -40,6 +40,10 @@ TEST(ExplorerConfig, ShippedConfigHasTheHeadersDefaults)
   EXPECT_EQ(o.frontier.wall_distance, d.frontier.wall_distance);
   EXPECT_EQ(o.frontier.min_width, d.frontier.min_width);
   EXPECT_EQ(o.frontier.gateway_distance, d.frontier.gateway_distance);
+  EXPECT_EQ(o.frontier.gain.range_m, d.frontier.gain.range_m);
+  EXPECT_EQ(o.frontier.gain.fan_rad, d.frontier.gain.fan_rad);
+  EXPECT_EQ(o.frontier.gain.step_m, d.frontier.gain.step_m);
+  EXPECT_EQ(o.frontier.gain.min_m2, d.frontier.gain.min_m2);
   EXPECT_EQ(o.stack.min_observations, d.stack.min_observations);
   EXPECT_EQ(o.stack.merge_distance, d.stack.merge_distance);
   EXPECT_EQ(o.stack.merge_angle, d.stack.merge_angle);
@@ -53,6 +57,7 @@ TEST(ExplorerConfig, ShippedConfigHasTheHeadersDefaults)
   EXPECT_EQ(o.visited_radius, d.visited_radius);
   EXPECT_EQ(o.retry_after_s, d.retry_after_s);
   EXPECT_EQ(o.max_attempts, d.max_attempts);
+  EXPECT_EQ(o.max_closed_retries, d.max_closed_retries);
   EXPECT_EQ(o.goal_timeout_s, d.goal_timeout_s);
   EXPECT_EQ(o.decide_period_s, d.decide_period_s);
   EXPECT_EQ(o.switch_gain, d.switch_gain);
@@ -115,6 +120,9 @@ TEST(ExplorerConfig, BadValuesAreRefusedNamingFileAndKey)
   refused("stack:\n  breadth_first: maybe\n", "stack.breadth_first");
   refused("stack:\n  after_regions: maybe\n", "stack.after_regions");
   refused("goals:\n  max_attempts: 0\n", "goals.max_attempts");
+  refused("goals:\n  max_closed_retries: 0\n", "goals.max_closed_retries");
+  refused("frontier:\n  min_gain_m2: -1\n", "frontier.min_gain_m2");
+  refused("frontier:\n  gain_step_m: 0\n", "frontier.gain_step_m");
   refused("goals:\n  switch_gain: 1.5\n", "goals.switch_gain");
   refused("goals:\n  timeout_s: nan\n", "goals.timeout_s");
   refused("goals:\n  progress_timeout_s: 0\n", "goals.progress_timeout_s");

@@ -14,6 +14,7 @@
 #include "explorer/gateway_stack.h"
 #include "explorer/opening.h"
 #include "explorer/place_view.h"
+#include "explorer/view_gain.h"
 #include "box_region.h"
 
 namespace rgnav::explorer {
@@ -91,6 +92,22 @@ TEST(Frontiers, AGapNarrowerThanMinWidthIsAShadow)
   o.min_width = 1.2;
   EXPECT_TRUE(find_frontiers(*map, map->current_region, o).frontiers.empty());
   EXPECT_GT(find_frontiers(*map, map->current_region, o).frontier_cells, 0) << "a shadow still counts as incomplete";
+}
+
+// A look past the hallway's open end sees the whole fan unknown; with the hallway beyond it
+// known as another region, nothing; a wall across the fan hides what lies behind it.
+TEST(ViewGain, TheFanSeesWhatNoRegionHoldsUpToTheFirstWall)
+{
+  GainOptions o;   // 2 m rays, +-1 rad: a fan of 4 m^2
+  auto map = hallway(false);
+  const double open = unknown_area_beyond(*map, V(5.95, 0.9), V(1, 0), o);
+  EXPECT_GT(open, 3.5);
+  EXPECT_LT(open, 4.2);
+  auto walled = hallway(false);
+  walled->region(walled->current_region)->segments.push_back({V(6.5, -2), V(6.5, 4), 0.01, 50});
+  EXPECT_LT(unknown_area_beyond(*walled, V(5.95, 0.9), V(1, 0), o), 1.0) << "the fan ends 0.55 m on";
+  add_region(map.get(), V(6, 0), V(9, 1.8), {{V(6, 0), V(9, 0)}, {V(6, 1.8), V(9, 1.8)}, {V(9, 0), V(9, 1.8)}});
+  EXPECT_LT(unknown_area_beyond(*map, V(5.95, 0.9), V(1, 0), o), 0.05);
 }
 
 // A crossing traversed between two regions explains nothing of its other branches: the
@@ -812,21 +829,112 @@ TEST(Explorer, ACutOffPlaceIsLookedRoundAndSteppedAwayFrom)
   EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kLook);
 }
 
+// A frontier the map already knows the far side of (the next region's freespace begins a
+// strip narrower than a robot farther on) offers nothing to look at: no goal, and with nothing
+// else the explorer is done. With every frontier a goal (min_m2 0) it drives there.
+TEST(Explorer, AFrontierWithLittleUnknownBeyondIsNoGoal)
+{
+  for (const double min_gain : {0.25, 0.0}) {
+    ExplorerOptions o = no_look();
+    o.frontier.gain.min_m2 = min_gain;
+    Explorer ex(o);
+    auto map = hallway(false);
+    add_region(map.get(), V(6.2, 0), V(9, 1.8), {{V(6.2, 0), V(9, 0)}, {V(6.2, 1.8), V(9, 1.8)}, {V(9, 0), V(9, 1.8)}});
+    const int64_t first = map->regions().begin()->first;
+    ASSERT_EQ(find_frontiers(*map, first, o.frontier).frontiers.size(), 1u) << "the 0.2 m strip is unexplained";
+    ex.set_map(map);
+    ex.set_pose({kUtime, Pose2(1, 0.9, 0)});
+    const auto g = next_goal(ex, kUtime);
+    if (min_gain > 0) {
+      EXPECT_FALSE(g) << "goal at (" << g->map_point.transpose() << ")";
+      EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
+    } else {
+      ASSERT_TRUE(g);
+      EXPECT_EQ(g->kind, ExploreGoal::Kind::kFrontier);
+    }
+  }
+}
+
+// A gateway gone through claims its opening only while a look past it would show nothing: the
+// robot went a metre through a junction's branch at the hallway's open end, and the hallway
+// still ends in the unknown there (its map took nothing in): the end is a frontier again. Without
+// the gain rule (min_m2 0) the entry gone through claims it, and exploring ends.
+TEST(Explorer, AFrontierAtAGatewayGoneThroughIsAGoalWhileThereIsSomethingToSee)
+{
+  for (const double min_gain : {0.25, 0.0}) {
+    ExplorerOptions o = no_look();
+    o.frontier.gain.min_m2 = min_gain;
+    Explorer ex(o);
+    const int64_t t = kUtime;
+    ex.set_map(hallway(false));
+    ex.add_sightings({sighting(V(5.8, 0.9), 0.0)}, t);
+    ex.set_pose({t, Pose2(6.3, 0.9, 0)});   // 0.5 m through it
+    const Command c = ex.step(t);
+    EXPECT_EQ(ex.stack().count(StackEntry::State::kDone), 1);
+    if (min_gain > 0) {
+      ASSERT_TRUE(c.goal) << ex.status().activity;
+      EXPECT_EQ(c.goal->kind, ExploreGoal::Kind::kFrontier);
+      EXPECT_NEAR(c.goal->frontier_point.x(), 5.9, 0.1);
+    } else {
+      EXPECT_FALSE(c.goal);
+      EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
+    }
+  }
+}
+
 // Only a gateway the planner took for closed for a while is in the way: the goal is due again
-// later, and such failures never set it aside for good.
-TEST(Explorer, AGoalBehindAClosedGatewayIsNoFailedAttempt)
+// later and counts no attempt; each such failure waits twice as long as the one before, and
+// max_closed_retries of them set it aside for good (a door shut for good is not tried for ever).
+// One attempt before a goal is set aside, a retry after 10 s, `max_closed_retries`; no look behind first.
+ExplorerOptions closed_retrying(int max_closed_retries)
 {
   ExplorerOptions o = no_look();
   o.max_attempts = 1;
   o.retry_after_s = 10;
-  Explorer ex(o);
+  o.max_closed_retries = max_closed_retries;
+  return o;
+}
+
+TEST(Explorer, AGoalBehindAClosedGatewayWaitsLongerEachTimeAndIsSetAsideAfterMaxClosedRetries)
+{
+  Explorer ex(closed_retrying(3));
+  int64_t t = kUtime;
+  auto map = hallway(false);
+  ex.set_map(map);
+  const std::string closed = "behind a closed gateway: no route (closed gateways: 4)";
+  ex.set_pose({t, Pose2(1, 0.9, 0)});
+  Command c = ex.step(t);
+  ASSERT_TRUE(c.goal);
+  ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, closed, t);
+  // The k-th such failure waits 10 * 2^(k-1) s (from elsewhere each time: any other failure would count).
+  double x = 1;
+  for (const int wait_s : {10, 20}) {
+    const int64_t failed = t;
+    ex.set_pose({failed, Pose2(x += 0.6, 0.9, 0)});
+    EXPECT_FALSE(ex.step(failed + (wait_s - 1) * kSecond).goal) << "due only after " << wait_s << " s";
+    EXPECT_EQ(ex.phase(), Phase::kExploring) << ex.status().activity;
+    c = ex.step(t = failed + (wait_s + 1) * kSecond);
+    ASSERT_TRUE(c.goal) << "due again after " << wait_s << " s: " << ex.status().activity;
+    ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, closed, t);
+  }
+  // The third: set aside for good, nothing else left: the end.
+  ex.set_pose({t, Pose2(x += 0.6, 0.9, 0)});
+  EXPECT_FALSE(next_goal(ex, t += 1000 * kSecond));
+  EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
+}
+
+// A goal behind a closed gateway counts no attempt: failing for another cause from elsewhere
+// still sets it aside (max_attempts 1).
+TEST(Explorer, AGoalBehindAClosedGatewayIsNoFailedAttempt)
+{
+  Explorer ex(closed_retrying(10));
   int64_t t = kUtime;
   auto map = hallway(false);
   ex.set_map(map);
   for (int k = 0; k < 4; ++k) {
     ex.set_pose({t, Pose2(1 + 0.6 * k, 0.9, 0)});   // from elsewhere each time: each would count
     ++map->version;
-    const Command c = ex.step(t += 11 * kSecond);
+    const Command c = ex.step(t += (10 << k) * kSecond + kSecond);   // the k-th waited 10 * 2^(k-1) s
     ASSERT_TRUE(c.goal) << k << ": " << ex.status().activity;
     ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "behind a closed gateway: no route (closed gateways: 4)", t);
   }
@@ -834,7 +942,7 @@ TEST(Explorer, AGoalBehindAClosedGatewayIsNoFailedAttempt)
   // The same from yet another place with another cause sets it aside (max_attempts 1): the end.
   ex.set_pose({t, Pose2(4, 0.9, 0)});
   ++map->version;
-  const Command c = ex.step(t += 11 * kSecond);
+  const Command c = ex.step(t += 81 * kSecond);
   ASSERT_TRUE(c.goal);
   ex.goal_report(c.goal->goal_id, GoalOutcome::kNoPath, "goal unreachable: the goal is blocked in region 1", t);
   ex.step(t += 100 * kSecond);
