@@ -99,6 +99,10 @@ PY
 done
 explore_s=$(( $(date +%s) - start ))
 [[ "$phase" == done ]] && explored="explored" || explored="exploration NOT finished"
+# An explorer still exploring would replace the visits' goals with its own (the planner drives to
+# one NAV_GOAL at a time, the newest): it stops here (`./rgnav start explorer` resumes it from its
+# state file).
+if [[ "$phase" != done ]]; then ctl stop explorer --wait --timeout-ms 10000 >/dev/null 2>&1 || echo "demo: could not stop the explorer" >&2; fi
 
 # The explorer asks for every unnamed region once it is done: give the operator a moment.
 sleep 8
