@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "explorer/frontiers.h"
 #include "geometry/segment2.h"
 
 namespace rgnav::explorer {
@@ -14,26 +15,15 @@ using Eigen::Vector2d;
 double unknown_area_beyond(const rgmap::RgMap& map, const Vector2d& from, const Vector2d& outward, const GainOptions& o)
 {
   if (o.range_m <= 0.0 || outward.norm() < 1e-9) return 0.0;
-  // The live regions (their frames) and the lines near enough to cut a ray, map frame.
-  std::vector<const rgmap::Region*> regions;
-  std::vector<geometry::Pose2> region_from_map;
+  // The lines near enough to cut a ray, map frame (what lies free is frontiers.h's known_free).
   std::vector<std::pair<Vector2d, Vector2d>> lines;
   for (const auto& [id, r] : map.regions()) {
     if (r.state == rgmap::Region::State::kMerged) continue;
-    if (r.freespace.width() > 0) {
-      regions.push_back(&r);
-      region_from_map.push_back(r.map_from_region.inverse());
-    }
     for (const auto& s : r.segments) {
       const Vector2d a = r.map_from_region * s.a, b = r.map_from_region * s.b;
       if (geometry::point_segment_distance(from, a, b) <= o.range_m) lines.emplace_back(a, b);
     }
   }
-  const auto known_free = [&](const Vector2d& p) {
-    for (size_t i = 0; i < regions.size(); ++i)
-      if (regions[i]->freespace.is_free(region_from_map[i] * p)) return true;
-    return false;
-  };
   // Rays as far apart at the fan's rim as the samples along them: each sample stands for a patch
   // of about step x step there, and r * dtheta * step nearer in.
   const int rays = std::max(3, static_cast<int>(std::ceil(2.0 * o.fan_rad * o.range_m / o.step_m)) + 1);
@@ -50,7 +40,7 @@ double unknown_area_beyond(const rgmap::RgMap& map, const Vector2d& from, const 
         reach = std::min(reach, hit->along_ray);
     }
     for (double r = o.step_m; r <= reach; r += o.step_m)
-      if (!known_free(from + r * dir)) area += r * dtheta * o.step_m;
+      if (!known_free(map, from + r * dir)) area += r * dtheta * o.step_m;
   }
   return area;
 }

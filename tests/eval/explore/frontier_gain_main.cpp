@@ -8,6 +8,7 @@
 
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "config/config.h"
 #include "config/robot_description.h"
@@ -25,10 +26,14 @@ int main(int argc, char** argv)
   app.add_option("map", map_path, "rgmap.json")->required()->check(CLI::ExistingFile);
   app.add_option("--explorer-config", explorer_config, "explorer config (frontier section)")->check(CLI::ExistingFile);
   app.add_option("--robot", robot, "robot description")->check(CLI::ExistingFile);
+  std::optional<double> min_gain;
+  app.add_option("--min-gain", min_gain, "[m^2] the rule's threshold (default: the config's frontier.min_gain_m2)")
+      ->check(CLI::Range(0.0, 100.0));
   CLI11_PARSE(app, argc, argv);
   try {
-    const auto options =
+    auto options =
         explorer::load_explorer_options(config::Config::load(explorer_config), config::load_robot_description_file(robot));
+    if (min_gain) options.frontier.gain.min_m2 = *min_gain;
     nlohmann::json j;
     std::ifstream(map_path) >> j;
     const rgmap::RgMap map = rgmap::from_json(j);
