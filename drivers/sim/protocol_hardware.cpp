@@ -40,7 +40,7 @@ ProtocolHardware::ProtocolHardware(const ProtocolOptions& options, Simulator& si
   if (options_.files.internal_broker) {
     if (options_.can_bus_path[0] != '@') make_parent_dir(options_.can_bus_path);
     broker_ = std::make_unique<can::VcanBroker>(options_.can_bus_path);
-    broker_->start();
+    broker_->start(options_.bus_realtime_priority);
   }
   translation_bus_ = connect(options_, options_.axes.translation.node_id);
   rotation_bus_ = connect(options_, options_.axes.rotation.node_id);

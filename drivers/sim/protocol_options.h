@@ -18,6 +18,9 @@ struct ProtocolOptions
   std::string laser_port;    // stable path (symlink) of the emulated LMS's pty
   std::string can_bus_path;  // virtual CAN bus socket ('@name': abstract namespace)
   DriveAxes axes;
+  // SCHED_FIFO for the in-process bus's thread (0: normal): the stepping thread's priority, set
+  // by the process (sim.realtime_priority), since the emulated drives and their bus stall alike.
+  int bus_realtime_priority = 0;
 };
 
 // Reads the driver configs `files` names. Their own errors name their files; a config the

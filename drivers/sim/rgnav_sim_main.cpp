@@ -37,7 +37,8 @@ int main(int argc, char** argv)
         sim::SimNode::HardwareFactory hardware;
         if (process.interface == sim::InterfaceMode::kProtocol) {
 #if RGNAV_SIM_PROTOCOL
-          const auto protocol = sim::load_protocol_options(protocol_files, ctx.config.section("protocol"), ctx.robot);
+          auto protocol = sim::load_protocol_options(protocol_files, ctx.config.section("protocol"), ctx.robot);
+          protocol.bus_realtime_priority = process.realtime_priority;
           // --check-config validates the protocol options but opens no pseudo-terminal or bus.
           if (!ctx.checking_only)
             hardware = [protocol](sim::Simulator& s) { return std::make_unique<sim::ProtocolHardware>(protocol, s); };

@@ -23,8 +23,9 @@ struct ProcessOptions
   double time_scale = 1.0;        // realtime: simulated seconds per wall second
   std::chrono::microseconds fast_chunk{13333};  // fast: simulated time per loop turn
   std::chrono::milliseconds tick{2};            // realtime: wall period of the stepping timer
-  // realtime: SCHED_FIFO for the stepping thread when permitted (0: normal). The emulated
-  // drives' CAN heartbeats come from it, watched by base_driver to 60 ms.
+  // realtime: SCHED_FIFO for the stepping thread and the in-process CAN bus when permitted (0:
+  // normal). The emulated drives' CAN heartbeats come from them, watched by base_driver to
+  // drives.heartbeat_timeout_ms.
   int realtime_priority = 30;
 };
 

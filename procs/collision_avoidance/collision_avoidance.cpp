@@ -79,8 +79,10 @@ void CollisionAvoidance::on_odometry(time::Time stamp, const Pose2& odom_from_ba
   v_ = v;
   has_pose_ = true;
   const int64_t us = time::to_utime(stamp);
-  // Out of order or a jump back (a restarted source): start the history anew.
-  if (!odometry_.empty() && us <= odometry_.back().utime) odometry_.clear();
+  // The same encoder sample again (published at the driver's rate with no new sample) adds
+  // nothing; out of order or a jump back (a restarted source): start the history anew.
+  if (!odometry_.empty() && us == odometry_.back().utime) return;
+  if (!odometry_.empty() && us < odometry_.back().utime) odometry_.clear();
   odometry_.push_back({us, odom_from_base});
   while (odometry_.size() > 2 && us - odometry_.front().utime > static_cast<int64_t>(kOdometryKept * 1e6))
     odometry_.pop_front();

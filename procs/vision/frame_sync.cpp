@@ -27,7 +27,15 @@ FrameSync::FrameSync(VisionPipeline& pipeline, const FrameSyncOptions& options, 
 
 bool FrameSync::on_odometry(int64_t utime, int64_t seq, const geometry::Pose2& odom_from_base)
 {
-  const bool restarted = !odometry_.empty() && (utime <= odometry_.back().utime || seq < last_odometry_seq_);
+  // The base driver publishes at its own rate: a message with no new encoder sample since the
+  // last repeats that sample's stamp (a loaded host delays the drives' samples). It adds nothing,
+  // and is no restart: taking it for one emptied the map of the table tops it held.
+  const bool repeat = !odometry_.empty() && utime == odometry_.back().utime && seq > last_odometry_seq_;
+  if (repeat) {
+    last_odometry_seq_ = seq;
+    return false;
+  }
+  const bool restarted = !odometry_.empty() && (utime < odometry_.back().utime || seq < last_odometry_seq_);
   if (restarted) {
     // A new odometry frame: the map's coordinates mean nothing in it.
     spdlog::warn("odometry went back (seq {} -> {}): the map starts afresh", last_odometry_seq_, seq);

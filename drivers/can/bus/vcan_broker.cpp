@@ -14,6 +14,7 @@
 #include "bus/can_interface.h"
 #include "bus/unix_socket.h"
 #include "bus/vcan_protocol.h"
+#include "runtime/realtime.h"
 
 namespace rgnav::can {
 
@@ -66,11 +67,19 @@ VcanBroker::~VcanBroker()
   if (unlink_on_close_) ::unlink(path_.c_str());
 }
 
-void VcanBroker::start()
+void VcanBroker::start(int realtime_priority)
 {
   if (thread_.joinable()) return;
   stop_ = false;
-  thread_ = std::thread([this] {
+  thread_ = std::thread([this, realtime_priority] {
+    if (realtime_priority > 0) {
+      bool granted = false;
+      const std::string what = runtime::request_realtime(realtime_priority, false, &granted);
+      if (granted)
+        spdlog::info("virtual CAN bus thread: {}", what);
+      else
+        spdlog::warn("virtual CAN bus thread: {} (frames may stall under load)", what);
+    }
     while (!stop_) run_once(std::chrono::milliseconds(100));
   });
 }

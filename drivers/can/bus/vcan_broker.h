@@ -43,8 +43,11 @@ class VcanBroker
 
   // Serves in the caller's thread: accepts, forwards, runs timers; waits up to `timeout`.
   void run_once(std::chrono::milliseconds timeout);
-  // Or serves in a background thread until stop() / destruction.
-  void start();
+  // Or serves in a background thread until stop() / destruction. realtime_priority > 0 asks
+  // SCHED_FIFO for that thread: the bus stands in for wires, which no load delays, and a
+  // starved broker holds back every heartbeat on it at once (the master then takes healthy
+  // drives for lost).
+  void start(int realtime_priority = 0);
   void stop();
 
   // --- test hooks (thread-safe) ---

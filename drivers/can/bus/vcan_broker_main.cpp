@@ -10,6 +10,7 @@
 #include "bus/vcan_broker.h"
 #include "bus/vcan_protocol.h"
 #include "log/log.h"
+#include "runtime/realtime.h"
 
 namespace {
 volatile std::sig_atomic_t g_stop = 0;
@@ -22,9 +23,13 @@ int main(int argc, char** argv)
   std::string bus = "base";
   std::string path;
   std::string log_level = "info";
+  int realtime_priority = 0;
   app.add_option("--bus", bus, "bus name: socket /tmp/rgnav-vcan-<bus>.sock");
   app.add_option("--path", path, "socket path (overrides --bus); '@name' = abstract namespace");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error");
+  app.add_option("--realtime-priority", realtime_priority,
+                 "SCHED_FIFO priority when permitted (0: normal); a starved broker holds back every frame at once")
+      ->check(CLI::Range(0, 99));
   CLI11_PARSE(app, argc, argv);
   try {
     rgnav::log::init("vcan_broker", log_level);
@@ -40,6 +45,14 @@ int main(int argc, char** argv)
   try {
     rgnav::can::VcanBroker broker(path);
     spdlog::info("serving virtual CAN bus on {}", path);
+    if (realtime_priority > 0) {
+      bool granted = false;
+      const std::string what = rgnav::runtime::request_realtime(realtime_priority, false, &granted);
+      if (granted)
+        spdlog::info("{}", what);
+      else
+        spdlog::warn("{} (frames may stall under load)", what);
+    }
     while (!g_stop) broker.run_once(std::chrono::milliseconds(200));
     const auto s = broker.stats();
     spdlog::info("stopped: {} frames in, {} deliveries, {} dropped by hooks, {} overflow drops", s.frames_in,

@@ -42,5 +42,24 @@ TEST(ScanPose, AScanTakenDuringATurnLiesWhereItsWallIs)
   EXPECT_LT(worst, 0.02);
 }
 
+// The base driver repeats its last sample's stamp when no new one came (a loaded host delays the
+// drives): the history stays, so a scan between two samples still gets its own pose.
+TEST(ScanPose, TheSameOdometrySampleRepeatedKeepsTheHistory)
+{
+  CaOptions o;
+  CollisionAvoidance ca(o);
+  const std::vector<testing::Wall> wall = {{{3.0, -3.0}, {3.0, 3.0}}};
+  const Pose2 then(0.0, 0.0, 0.0), now(0.0, 0.0, 0.1);
+  ca.on_odometry(time::from_utime(1'000'000), then, 0.0);
+  ca.on_odometry(time::from_utime(1'050'000), now, 0.0);
+  ca.on_odometry(time::from_utime(1'050'000), now, 0.0);
+  ca.on_scan(time::from_utime(1'000'000), testing::cast(then * o.base_from_laser, wall), 8.0);
+  ca.update(time::from_utime(1'050'000));
+  ASSERT_FALSE(ca.map().points().empty());
+  double worst = 0.0;
+  for (const auto& p : ca.map().points()) worst = std::max(worst, std::fabs(p.x() - 3.0));
+  EXPECT_LT(worst, 0.02) << "the wall's points lie up to " << worst << " m off it";
+}
+
 }  // namespace
 }  // namespace rgnav::collision_avoidance

@@ -125,5 +125,23 @@ TEST(FrameSync, OdometryGoingBackStartsTheMapAfresh)
   EXPECT_EQ(h.pipeline.map().leaf_count(), 0u);
 }
 
+// The base driver publishes at its own rate; when the drives' samples are late (a loaded host) a
+// message repeats the last sample's stamp under a new sequence number. The map stays.
+TEST(FrameSync, TheSameOdometrySampleRepeatedKeepsTheMap)
+{
+  Harness h;
+  h.sync.on_odometry(kT0, 1, Pose2());
+  for (int i = 0; i < 3; ++i) h.sync.on_laser(scan(kT0 + i * 100'000));
+  h.sync.on_odometry(kT0 + 300'000, 2, Pose2());
+  const auto leaves = h.pipeline.map().leaf_count();
+  ASSERT_GT(leaves, 0u);
+  EXPECT_FALSE(h.sync.on_odometry(kT0 + 300'000, 3, Pose2()));
+  EXPECT_FALSE(h.sync.on_odometry(kT0 + 300'000, 4, Pose2()));
+  EXPECT_EQ(h.sync.map_resets(), 0);
+  EXPECT_EQ(h.pipeline.map().leaf_count(), leaves);
+  EXPECT_TRUE(h.sync.on_odometry(kT0 + 300'000, 2, Pose2()));   // its sequence went back: a restart
+  EXPECT_EQ(h.sync.map_resets(), 1);
+}
+
 }  // namespace
 }  // namespace rgnav::vision
