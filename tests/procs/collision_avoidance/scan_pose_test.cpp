@@ -6,7 +6,10 @@
 // hallway's mouth.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "collision_avoidance/collision_avoidance.h"
 #include "scan_fixture.h"
@@ -14,51 +17,39 @@
 namespace rgnav::collision_avoidance {
 namespace {
 
-TEST(ScanPose, AScanTakenDuringATurnLiesWhereItsWallIs)
+const std::vector<testing::Wall> kWall = {{{3.0, -3.0}, {3.0, 3.0}}};
+
+// How far the wall's points lie from it once a scan taken at `scan_us` from `taken_from` is in
+// the map, after the odometry messages `odometry` (stamp, pose).
+double worst_wall_error(const std::vector<std::pair<int64_t, Pose2>>& odometry, int64_t scan_us, const Pose2& taken_from)
 {
   CaOptions o;
   CollisionAvoidance ca(o);
-  const std::vector<testing::Wall> wall = {{{3.0, -3.0}, {3.0, 3.0}}};
-  // Turning on the spot at 2 rad/s: heading 0 at 1.00 s, 0.1 at 1.05 s; the scan was taken at
-  // 1.00 s (heading 0) and arrives after both odometry messages.
-  const Pose2 then(0.0, 0.0, 0.0), now(0.0, 0.0, 0.1);
-  ca.on_odometry(time::from_utime(1'000'000), then, 0.0);
-  ca.on_odometry(time::from_utime(1'050'000), now, 0.0);
-  ca.on_scan(time::from_utime(1'000'000), testing::cast(then * o.base_from_laser, wall), 8.0);
-  ca.update(time::from_utime(1'050'000));
-  ASSERT_FALSE(ca.map().points().empty());
+  for (const auto& [us, pose] : odometry) ca.on_odometry(time::from_utime(us), pose, 0.0);
+  ca.on_scan(time::from_utime(scan_us), testing::cast(taken_from * o.base_from_laser, kWall), 8.0);
+  ca.update(time::from_utime(std::max(scan_us, odometry.back().first)));
+  if (ca.map().points().empty()) return 1e9;
   double worst = 0.0;
   for (const auto& p : ca.map().points()) worst = std::max(worst, std::fabs(p.x() - 3.0));
-  EXPECT_LT(worst, 0.02) << "the wall's points lie up to " << worst << " m off it";
+  return worst;
+}
 
+// Turning on the spot at 2 rad/s: heading 0 at 1.00 s, 0.1 at 1.05 s.
+const Pose2 kThen(0.0, 0.0, 0.0), kNow(0.0, 0.0, 0.1);
+
+TEST(ScanPose, AScanTakenDuringATurnLiesWhereItsWallIs)
+{
+  // The scan was taken at 1.00 s (heading 0) and arrives after both odometry messages.
+  EXPECT_LT(worst_wall_error({{1'000'000, kThen}, {1'050'000, kNow}}, 1'000'000, kThen), 0.02);
   // A scan newer than every odometry message: the newest pose (nothing later to go by).
-  CollisionAvoidance late(o);
-  late.on_odometry(time::from_utime(1'000'000), now, 0.0);
-  late.on_scan(time::from_utime(1'020'000), testing::cast(now * o.base_from_laser, wall), 8.0);
-  late.update(time::from_utime(1'020'000));
-  ASSERT_FALSE(late.map().points().empty());
-  worst = 0.0;
-  for (const auto& p : late.map().points()) worst = std::max(worst, std::fabs(p.x() - 3.0));
-  EXPECT_LT(worst, 0.02);
+  EXPECT_LT(worst_wall_error({{1'000'000, kNow}}, 1'020'000, kNow), 0.02);
 }
 
 // The base driver repeats its last sample's stamp when no new one came (a loaded host delays the
 // drives): the history stays, so a scan between two samples still gets its own pose.
 TEST(ScanPose, TheSameOdometrySampleRepeatedKeepsTheHistory)
 {
-  CaOptions o;
-  CollisionAvoidance ca(o);
-  const std::vector<testing::Wall> wall = {{{3.0, -3.0}, {3.0, 3.0}}};
-  const Pose2 then(0.0, 0.0, 0.0), now(0.0, 0.0, 0.1);
-  ca.on_odometry(time::from_utime(1'000'000), then, 0.0);
-  ca.on_odometry(time::from_utime(1'050'000), now, 0.0);
-  ca.on_odometry(time::from_utime(1'050'000), now, 0.0);
-  ca.on_scan(time::from_utime(1'000'000), testing::cast(then * o.base_from_laser, wall), 8.0);
-  ca.update(time::from_utime(1'050'000));
-  ASSERT_FALSE(ca.map().points().empty());
-  double worst = 0.0;
-  for (const auto& p : ca.map().points()) worst = std::max(worst, std::fabs(p.x() - 3.0));
-  EXPECT_LT(worst, 0.02) << "the wall's points lie up to " << worst << " m off it";
+  EXPECT_LT(worst_wall_error({{1'000'000, kThen}, {1'050'000, kNow}, {1'050'000, kNow}}, 1'000'000, kThen), 0.02);
 }
 
 }  // namespace
