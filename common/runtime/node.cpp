@@ -11,6 +11,7 @@
 #include "bus/lcm_bus.h"
 #include "rgnav/heartbeat_t.hpp"
 #include "runtime/fault_injection.h"
+#include "runtime/realtime.h"
 
 namespace rgnav::runtime {
 
@@ -25,6 +26,7 @@ NodeOptions load_node_options(const config::Config& node_section, const std::str
   o.input_stale_after = std::chrono::milliseconds(
       node_section.integer("input_stale_after_ms", o.input_stale_after.count(), 0, 3'600'000));
   o.max_stamp_jump = std::chrono::milliseconds(node_section.integer("max_stamp_jump_ms", o.max_stamp_jump.count(), 100, 3'600'000));
+  o.realtime_priority = static_cast<int>(node_section.integer("realtime_priority", o.realtime_priority, 0, 99));
   return o;
 }
 
@@ -52,6 +54,16 @@ int64_t steady_ns(Node::Clock::time_point t)
 Node::Node(NodeOptions options)
     : options_(std::move(options)), signals_(std::make_unique<SignalWatcher>()), clock_(options_.max_stamp_jump)
 {
+  if (options_.realtime_priority > 0) {
+    // Before the bus: LCM's receive thread and the heartbeat thread inherit it (LCM 1.3 reads the
+    // socket in a thread of its own, which at normal priority held ODOMETRY back under load).
+    bool granted = false;
+    const std::string what = request_realtime(options_.realtime_priority, false, &granted);
+    if (granted)
+      spdlog::info("event loop and LCM threads: {}", what);
+    else
+      spdlog::warn("event loop and LCM threads: {} (messages may come late under load)", what);
+  }
   bus_ = std::make_unique<bus::LcmBus>(options_.lcm_url);
   host_ = host_name();
   attach_fault_injection(*bus_, options_.name);  // only under the fault harness (fault_injection.h)

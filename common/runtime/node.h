@@ -44,6 +44,13 @@ struct NodeOptions
   // The message clock takes a stamp this far ahead of it only once a second input confirms it
   // (time::MessageClock); a node whose inputs come at tens of Hz takes a tighter bound.
   std::chrono::milliseconds max_stamp_jump{5000};
+  // SCHED_FIFO priority when permitted (0: normal) for the thread that creates the node (the
+  // event loop: input, timers, output) and the threads started from then on, LCM's receive
+  // thread among them (Node's LCM constructor only). For the drive chain's processes: their
+  // real-time threads are no help when a message they need waits in a starved event loop (under
+  // load the base driver's ODOMETRY came late and the low-level drive stopped for stale odometry
+  // with nothing wrong). A thread that asks for its own priority keeps it.
+  int realtime_priority = 0;
 };
 
 // Reads the `node:` section every process config has.

@@ -123,6 +123,17 @@ void LocalizerNode::on_odometry(const odometry_t& m)
   if (!stamp_ok(m.utime) || !(m.seq >= 0 && m.seq < kMaxStamp))
     return node_.drops().drop(ch.odometry, "odometry utime or seq out of range");
   const OdometrySample sample{m.utime, msg::to_pose2(m.odom_from_base)};
+  // The base driver publishes at its own rate and repeats the last sample's stamp, under a newer
+  // sequence number, when the drives' next sample is late (a loaded host): nothing new and
+  // nothing wrong, so neither a drop nor, while a sample is held, a sample that fails to continue it.
+  if (held_ && m.utime == held_->sample.utime && m.seq > held_->seq) {
+    held_->seq = m.seq;
+    return;
+  }
+  if (!held_ && !odometry_.empty() && m.utime == odometry_.back().utime && m.seq > last_odometry_seq_) {
+    last_odometry_seq_ = m.seq;
+    return;
+  }
   // A sample that broke the sequence or the time is believed once the next one continues from
   // it: a restarted driver (sequence from the start, new frame) or a real pause in the time,
   // but not a stray or corrupted sample, which would otherwise hold all odometry after it.

@@ -202,8 +202,13 @@ TEST(NodeOptions, LoadedAndValidated)
   const auto o = load_node_options(c.section("node"), "default");
   EXPECT_EQ(o.name, "x");
   EXPECT_DOUBLE_EQ(o.heartbeat_hz, 10);
+  EXPECT_EQ(o.realtime_priority, 0);   // normal scheduling unless asked
   const auto bad = config::Config::parse("node:\n  heartbeat_hz: 1000\n", "n.yaml");
   EXPECT_THROW(load_node_options(bad.section("node"), "d"), config::ConfigError);
+  const auto rt = config::Config::parse("node:\n  realtime_priority: 43\n", "n.yaml");
+  EXPECT_EQ(load_node_options(rt.section("node"), "d").realtime_priority, 43);
+  const auto bad_rt = config::Config::parse("node:\n  realtime_priority: 100\n", "n.yaml");
+  EXPECT_THROW(load_node_options(bad_rt.section("node"), "d"), config::ConfigError);
 }
 
 }  // namespace

@@ -316,6 +316,29 @@ TEST(LocalizerNode, OdometryThatBreaksItsSequenceOrTimeIsUsedOnlyWhenTheNextSamp
   EXPECT_LE(f.drops_on("LASER_FRONT"), 1);   // at most the scan that waited across the restart
 }
 
+// Under load the base driver repeats its last sample (same stamp, newer sequence number) when the
+// drives' next one is late: no drop, also not after a pause in the time that holds a sample.
+TEST(LocalizerNode, TheSameOdometrySampleRepeatedIsNoDrop)
+{
+  Fixture f;
+  f.publish_map();
+  f.odometry(kT0);
+  f.request(pose_request(f.world.room_a, "", Pose2(1.0, 1.5, 0.0)));
+  f.drive(1.0);
+  f.odometry(f.t);
+  f.odometry(f.t);
+  f.drive(0.5);
+  EXPECT_EQ(f.drops_on("ODOMETRY"), 0);
+  f.t += 1'500'000;   // a pause longer than max_odometry_gap_s: the sample after it is held ...
+  f.odometry(f.t);
+  f.odometry(f.t);    // ... and repeated before the next one continues it
+  f.drive(0.5);
+  EXPECT_EQ(f.drops_on("ODOMETRY"), 0);
+  const auto poses = f.poses();
+  ASSERT_FALSE(poses.empty());
+  EXPECT_EQ(f.node->localizer().mode(), Mode::kTracking);
+}
+
 TEST(LocalizerNode, SavesTheEstimateAndResumesFromItAfterARestart)
 {
   testing::TempDir dir("localizer_node");
