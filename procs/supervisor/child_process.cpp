@@ -1,6 +1,7 @@
 #include "child_process.h"
 
 #include <fcntl.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -124,6 +125,10 @@ SpawnResult spawn_child(const SpawnRequest& request)
     sigemptyset(&none);
     sigprocmask(SIG_SETMASK, &none, nullptr);
     for (int s = 1; s < NSIG; ++s) signal(s, SIG_DFL);
+    // Normal scheduling, whatever the supervisor's thread runs at (node.realtime_priority): a
+    // process asks for its own real-time threads.
+    const sched_param normal{};
+    sched_setscheduler(0, SCHED_OTHER, &normal);
     if (lock_fd >= 0) {
       const int flags = fcntl(lock_fd, F_GETFD);
       fcntl(lock_fd, F_SETFD, flags & ~FD_CLOEXEC);  // the child keeps the lock after exec

@@ -2,6 +2,7 @@
 // test. Bounds are generous: these tests check behaviour, the fault bench measures timing.
 #include "supervisor.h"
 
+#include <sched.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,6 +13,7 @@
 #include <thread>
 
 #include "child_process.h"
+#include "runtime/realtime.h"
 #include "proc_info.h"
 #include "state_file.h"
 
@@ -268,6 +270,26 @@ TEST_F(SupervisorTest, AnotherInstanceHoldingTheLockBlocksTheStart)
   s->start_all(Clock::now());
   ASSERT_TRUE(run_until(*s, [&] { return view(*s, "dev").state == ProcState::kFailed; }, milliseconds(2000)));
   EXPECT_NE(view(*s, "dev").last_exit.find("pid " + std::to_string(stranger.pid)), std::string::npos) << view(*s, "dev").last_exit;
+}
+
+// The supervisor's own thread may run real-time (node.realtime_priority); what it starts does not
+// inherit that: a process asks for its own real-time threads.
+TEST_F(SupervisorTest, AChildRunsAtNormalPriorityWhateverTheSupervisorRunsAt)
+{
+  SpawnResult child;
+  bool granted = false;
+  std::thread spawner([&] {   // a thread of its own: the test's main thread keeps its scheduling
+    runtime::request_realtime(5, false, &granted);
+    if (granted) child = spawn_child({"/bin/sleep", {"sleep", "30"}, {}, ""});
+  });
+  spawner.join();
+  if (!granted) GTEST_SKIP() << "SCHED_FIFO not permitted here: nothing to reset";
+  ASSERT_NE(child.pid, 0) << child.error;
+  spawned_.push_back(child.pid);
+  sched_param p{};
+  EXPECT_EQ(sched_getscheduler(child.pid), SCHED_OTHER);
+  EXPECT_EQ(sched_getparam(child.pid, &p), 0);
+  EXPECT_EQ(p.sched_priority, 0);
 }
 
 TEST_F(SupervisorTest, ShutdownStopsDependentsFirst)
