@@ -57,12 +57,8 @@ Node::Node(NodeOptions options)
   if (options_.realtime_priority > 0) {
     // Before the bus: LCM's receive thread and the heartbeat thread inherit it (LCM 1.3 reads the
     // socket in a thread of its own, which at normal priority held ODOMETRY back under load).
-    bool granted = false;
-    const std::string what = request_realtime(options_.realtime_priority, false, &granted);
-    if (granted)
-      spdlog::info("event loop and LCM threads: {}", what);
-    else
-      spdlog::warn("event loop and LCM threads: {} (messages may come late under load)", what);
+    request_realtime_logged("event loop and LCM threads", options_.realtime_priority, false,
+                            "messages may come late under load");
   }
   bus_ = std::make_unique<bus::LcmBus>(options_.lcm_url);
   host_ = host_name();

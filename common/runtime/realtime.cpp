@@ -4,6 +4,8 @@
 #include <sched.h>
 #include <sys/mman.h>
 
+#include <spdlog/spdlog.h>
+
 #include <cerrno>
 #include <cstring>
 
@@ -33,6 +35,19 @@ std::string request_realtime(int priority, bool lock_memory, bool* granted)
   }
   if (granted) *granted = ok;
   return what;
+}
+
+bool request_realtime_logged(std::string_view thread, int priority, bool lock_memory, std::string_view if_refused)
+{
+  bool granted = false;
+  const std::string what = request_realtime(priority, lock_memory, &granted);
+  if (granted)
+    spdlog::info("{}: {}", thread, what);
+  else if (if_refused.empty())
+    spdlog::warn("{}: {}", thread, what);
+  else
+    spdlog::warn("{}: {} ({})", thread, what, if_refused);
+  return granted;
 }
 
 }  // namespace rgnav::runtime

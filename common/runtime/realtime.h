@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 namespace rgnav::runtime {
 
@@ -13,5 +14,10 @@ namespace rgnav::runtime {
 // lock_memory, locks the process's memory (mlockall). Returns a one-line description of
 // what was granted or refused, for the caller to log once; *granted tells whether all was.
 std::string request_realtime(int priority, bool lock_memory, bool* granted);
+
+// request_realtime for the calling thread, logged once as "<thread>: <what>": at info level when
+// granted, else as a warning with `if_refused` (what may go wrong without it) in brackets.
+// Returns whether all was granted.
+bool request_realtime_logged(std::string_view thread, int priority, bool lock_memory, std::string_view if_refused = {});
 
 }  // namespace rgnav::runtime

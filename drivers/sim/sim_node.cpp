@@ -39,12 +39,7 @@ SimNode::SimNode(runtime::Node& node, std::unique_ptr<Simulator> sim, const Proc
   if (manual) return;
   if (options_.clock == ClockMode::kRealtime && options_.realtime_priority > 0) {
     // Never in fast mode: its loop never sleeps and would starve the machine.
-    bool granted = false;
-    const std::string what = runtime::request_realtime(options_.realtime_priority, false, &granted);
-    if (granted)
-      spdlog::info("rgnav_sim stepping thread: {}", what);
-    else
-      spdlog::warn("rgnav_sim stepping thread: {}", what);
+    runtime::request_realtime_logged("rgnav_sim stepping thread", options_.realtime_priority, false);
   }
   if (options_.clock == ClockMode::kRealtime)
     node_.every(std::chrono::duration_cast<std::chrono::microseconds>(options_.tick), [this] { on_tick(); });

@@ -137,14 +137,10 @@ time::Time LldNode::message_now() const
 
 void LldNode::control_thread()
 {
-  bool granted = false;
-  if (options_.loop.realtime_priority > 0 || options_.loop.lock_memory) {
-    const std::string what = runtime::request_realtime(options_.loop.realtime_priority, options_.loop.lock_memory, &granted);
-    if (granted)
-      spdlog::info("control loop at {:.0f} Hz: {}", options_.loop.rate_hz, what);
-    else
-      spdlog::warn("control loop at {:.0f} Hz without real-time guarantees: {}", options_.loop.rate_hz, what);
-  }
+  if (options_.loop.realtime_priority > 0 || options_.loop.lock_memory)
+    runtime::request_realtime_logged(fmt::format("control loop at {:.0f} Hz", options_.loop.rate_hz),
+                                     options_.loop.realtime_priority, options_.loop.lock_memory,
+                                     "no real-time guarantees");
   PeriodicLoop::Tick tick;
   while (loop_.wait(&tick)) {
     const double dt = tick.index == 0 ? 1.0 / options_.loop.rate_hz : tick.dt;

@@ -89,14 +89,9 @@ void BaseDriver::step(Clock::time_point now)
 
 void BaseDriver::run()
 {
-  if (options_.realtime_priority > 0 || options_.lock_memory) {
-    bool granted = false;
-    const std::string what = runtime::request_realtime(options_.realtime_priority, options_.lock_memory, &granted);
-    if (granted)
-      spdlog::info("base driver CAN thread: {}", what);
-    else
-      spdlog::warn("base driver CAN thread: {} (heartbeat supervision may trip under load)", what);
-  }
+  if (options_.realtime_priority > 0 || options_.lock_memory)
+    runtime::request_realtime_logged("base driver CAN thread", options_.realtime_priority, options_.lock_memory,
+                                     "heartbeat supervision may trip under load");
   std::optional<Clock::time_point> stop_deadline;
   for (;;) {
     // Wake on frames, and at least every 2 ms for SYNC, heartbeats and the deadman.

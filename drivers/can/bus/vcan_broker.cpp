@@ -72,14 +72,8 @@ void VcanBroker::start(int realtime_priority)
   if (thread_.joinable()) return;
   stop_ = false;
   thread_ = std::thread([this, realtime_priority] {
-    if (realtime_priority > 0) {
-      bool granted = false;
-      const std::string what = runtime::request_realtime(realtime_priority, false, &granted);
-      if (granted)
-        spdlog::info("virtual CAN bus thread: {}", what);
-      else
-        spdlog::warn("virtual CAN bus thread: {} (frames may stall under load)", what);
-    }
+    if (realtime_priority > 0)
+      runtime::request_realtime_logged("virtual CAN bus thread", realtime_priority, false, "frames may stall under load");
     while (!stop_) run_once(std::chrono::milliseconds(100));
   });
 }

@@ -45,14 +45,9 @@ int main(int argc, char** argv)
   try {
     rgnav::can::VcanBroker broker(path);
     spdlog::info("serving virtual CAN bus on {}", path);
-    if (realtime_priority > 0) {
-      bool granted = false;
-      const std::string what = rgnav::runtime::request_realtime(realtime_priority, false, &granted);
-      if (granted)
-        spdlog::info("{}", what);
-      else
-        spdlog::warn("{} (frames may stall under load)", what);
-    }
+    if (realtime_priority > 0)
+      rgnav::runtime::request_realtime_logged("virtual CAN bus thread", realtime_priority, false,
+                                              "frames may stall under load");
     while (!g_stop) broker.run_once(std::chrono::milliseconds(200));
     const auto s = broker.stats();
     spdlog::info("stopped: {} frames in, {} deliveries, {} dropped by hooks, {} overflow drops", s.frames_in,
