@@ -21,12 +21,22 @@ EdgeCosts::RegionKey EdgeCosts::region_key(int64_t region, int64_t a, int64_t b)
   return {region, std::min(a, b), std::max(a, b)};
 }
 
-std::optional<double> EdgeCosts::gateway_cost(const rgmap::Gateway& g, double now_s) const
+bool EdgeCosts::held(const GatewayRecord& r, double now_s, ClosedHold hold) const
+{
+  switch (hold) {
+    case ClosedHold::kWhole: return now_s < r.closed_until;
+    case ClosedHold::kBase: return now_s < std::min(r.closed_until, r.failed_at + options_.closed_retry_s);
+    case ClosedHold::kNone: return false;
+  }
+  return false;
+}
+
+std::optional<double> EdgeCosts::gateway_cost(const rgmap::Gateway& g, double now_s, ClosedHold hold) const
 {
   double cost = options_.crossing_time;
   const auto it = gateways_.find(g.id);
   if (it != gateways_.end()) {
-    if (now_s < it->second.closed_until) return std::nullopt;
+    if (held(it->second, now_s, hold)) return std::nullopt;
     if (it->second.time > 0) cost = it->second.time;
   }
   if (g.cls == rgmap::GatewayClass::kDoor) {
@@ -74,15 +84,16 @@ void EdgeCosts::gateway_failed(const rgmap::Gateway& g, double now_s)
                              g.cls == rgmap::GatewayClass::kUnknown;
   const int doublings = can_stay_shut ? std::min(r.failures_in_a_row, kMaxDoublings) : 0;
   r.closed_until = now_s + options_.closed_retry_s * (1 << doublings);
+  r.failed_at = now_s;
   ++r.failures_in_a_row;
   if (g.cls == rgmap::GatewayClass::kDoor) r.extra += options_.door_failed_time;
   ++changes_;
 }
 
-bool EdgeCosts::closed(int64_t gateway_id, double now_s) const
+bool EdgeCosts::closed(int64_t gateway_id, double now_s, ClosedHold hold) const
 {
   const auto it = gateways_.find(gateway_id);
-  return it != gateways_.end() && now_s < it->second.closed_until;
+  return it != gateways_.end() && held(it->second, now_s, hold);
 }
 
 void EdgeCosts::region_traversed(int64_t region, int64_t gateway_from, int64_t gateway_to, double seconds)
@@ -101,7 +112,7 @@ nlohmann::json EdgeCosts::to_json() const
   for (const auto& [id, r] : gateways_) {
     j["gateways"].push_back({{"id", id}, {"time_s", r.time}, {"passes", r.passes}, {"failures", r.failures},
                              {"extra_s", r.extra}, {"closed_until_s", r.closed_until},
-                             {"failures_in_a_row", r.failures_in_a_row}});
+                             {"failures_in_a_row", r.failures_in_a_row}, {"failed_at_s", r.failed_at}});
   }
   j["regions"] = nlohmann::json::array();
   for (const auto& [key, t] : region_times_) {
@@ -137,6 +148,8 @@ void EdgeCosts::from_json(const nlohmann::json& j)
     r.extra = std::max(0.0, number(gs[i], "extra_s", where));
     r.closed_until = number(gs[i], "closed_until_s", where);
     r.failures_in_a_row = static_cast<int>(number(gs[i], "failures_in_a_row", where));
+    // Saved before the base hold was kept: the whole hold counts as its base.
+    r.failed_at = gs[i].contains("failed_at_s") ? number(gs[i], "failed_at_s", where) : r.closed_until;
     gateways[id] = r;
   }
   const auto& rs = array("regions");

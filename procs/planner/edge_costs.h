@@ -3,8 +3,13 @@
 // door, an extra cost raised by a fixed amount whenever it could not be passed and lowered when
 // it could, never below its real crossing time; a gateway found closed is left out of planning
 // until a retry time (doubling with every failure in a row: a door shut for the night is not
-// tried every half minute, one blocked by people for a moment is soon tried again). Keys are map ids (stable across map versions and
-// restarts), so the node saves this beside its state and a restarted planner keeps it.
+// tried every half minute, one blocked by people for a moment is soon tried again). The doubled
+// part of that hold only steers routes round the gateway: where held gateways are all that is in
+// the way, one closed_retry_s past its last failure is planned through again (ClosedHold::kBase).
+// Before, a robot whose only way on had failed a few times in a row (collision avoidance under
+// load, a door shut for a while) waited up to 32 x closed_retry_s with nothing else to do. Keys are
+// map ids (stable across map versions and restarts), so the node saves this beside its state
+// and a restarted planner keeps it.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -19,13 +24,18 @@
 
 namespace rgnav::planner {
 
+// How a gateway found closed is left out of planning: for its whole hold (doubled with every
+// failure in a row), for closed_retry_s after its last failure only, or not at all.
+enum class ClosedHold : int8_t { kWhole = 0, kBase = 1, kNone = 2 };
+
 class EdgeCosts
 {
  public:
   explicit EdgeCosts(const GlobalOptions& options) : options_(options) {}
 
-  // [s] cost of crossing gateway g at message time now_s; nullopt while it counts as closed.
-  std::optional<double> gateway_cost(const rgmap::Gateway& g, double now_s) const;
+  // [s] cost of crossing gateway g at message time now_s; nullopt while it counts as closed
+  // (under `hold`).
+  std::optional<double> gateway_cost(const rgmap::Gateway& g, double now_s, ClosedHold hold = ClosedHold::kWhole) const;
   // [s] cost of crossing `region` between the crossing points of two gateways (0: the robot's
   // start or goal inside it), given the planned path length: the learned time once measured.
   double region_cost(int64_t region, int64_t gateway_from, int64_t gateway_to, double planned_length) const;
@@ -36,7 +46,7 @@ class EdgeCosts
   void gateway_passed(const rgmap::Gateway& g, double seconds);
   // Gateway g could not be passed at now_s: its extra raised (doors), closed until the retry time.
   void gateway_failed(const rgmap::Gateway& g, double now_s);
-  bool closed(int64_t gateway_id, double now_s) const;
+  bool closed(int64_t gateway_id, double now_s, ClosedHold hold = ClosedHold::kWhole) const;
   // The robot crossed `region` between two gateways' crossing points taking `seconds`.
   void region_traversed(int64_t region, int64_t gateway_from, int64_t gateway_to, double seconds);
 
@@ -54,7 +64,9 @@ class EdgeCosts
     int failures_in_a_row = 0;   // since the last pass: each doubles the time it stays closed
     double extra = 0;         // [s] door extra beyond the base door_extra_time, >= 0
     double closed_until = 0;  // [s] message time; 0: not closed
+    double failed_at = 0;     // [s] message time of the last failure
   };
+  bool held(const GatewayRecord& r, double now_s, ClosedHold hold) const;
   using RegionKey = std::tuple<int64_t, int64_t, int64_t>;   // region, smaller gateway, larger gateway
   static RegionKey region_key(int64_t region, int64_t a, int64_t b);
 

@@ -481,8 +481,7 @@ std::optional<Route> GlobalPlanner::search(const PlanRequest& request, int64_t s
     if (a.gateway) {
       if (a.gateway_id == request.avoid_gateway) return std::nullopt;
       const auto* g = map_.gateway(a.gateway_id);
-      const double now_s = request.ignore_closed ? std::numeric_limits<double>::infinity() : request.now_s;
-      return g ? costs_.gateway_cost(*g, now_s) : std::nullopt;
+      return g ? costs_.gateway_cost(*g, request.now_s, request.closed_hold) : std::nullopt;
     }
     const auto& u = nodes[static_cast<size_t>(a.from)];
     const auto& v = nodes[static_cast<size_t>(a.to)];
@@ -549,9 +548,14 @@ std::optional<Route> GlobalPlanner::search(const PlanRequest& request, int64_t s
       // (the same goal once they reopen), or the goal is out of reach from here.
       if (region_planner(sr)->cut_off(start_point))
         return fail(no_path_reason(NoPathCause::kStartCutOff, route + ": the robot stands apart from the region's free space"));
-      if (!closed.empty() && !request.ignore_closed) {
+      if (!closed.empty() && request.closed_hold == ClosedHold::kWhole) {
+        // A hold beyond closed_retry_s only steers routes round a gateway: with no other way
+        // left, one whose last failure is that old is tried again (EdgeCosts).
+        PlanRequest retry = request;
+        retry.closed_hold = ClosedHold::kBase;
+        if (auto again = search(retry, sr, start_point, also, way_back, nullptr, stats, started)) return again;
         PlanRequest open = request;
-        open.ignore_closed = true;
+        open.closed_hold = ClosedHold::kNone;
         if (plan(open, nullptr)) return fail(no_path_reason(NoPathCause::kClosedGateway, route + " (closed gateways: " + closed + ")"));
       }
       return fail(no_path_reason(NoPathCause::kGoalUnreachable, route + (closed.empty() ? "" : " (closed gateways: " + closed + ")")));

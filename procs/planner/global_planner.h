@@ -54,7 +54,10 @@ struct PlanRequest
   double goal_reach = -1;
   double now_s = 0;                // message time, for closed gateways
   int64_t avoid_gateway = 0;       // a gateway not to cross (is there a way round it?)
-  bool ignore_closed = false;      // plan as if no gateway were closed (is a closed one all that is in the way?)
+  // Gateways found closed: left out for their whole hold; where that leaves no route, one
+  // closed_retry_s past its last failure is planned through (the search's own retry, kBase);
+  // kNone: as if none were closed (is a closed one all that is in the way?).
+  ClosedHold closed_hold = ClosedHold::kWhole;
   // Blocked places (block_place) as walls: no route through one even when there is no other (is
   // there a way round?). Otherwise a route goes round them where it can, through them where not.
   bool strict_places = false;

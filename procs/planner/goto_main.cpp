@@ -2,9 +2,10 @@
 // NAV_GOAL (again every second until the planner answers on GLOBAL_PATH, --answer-timeout), then
 // prints the goal's progress from GLOBAL_PATH until it is reached, cancelled or has no path
 // (--no-wait: returns once the planner has it). Ctrl-C (and
-// --timeout) cancel the goal. A goal with no path is cancelled too, unless --keep-trying: the
-// planner plans it again when the map changes or a closed gateway's retry time comes, and the
-// robot should not set off later with nobody watching.
+// --timeout) cancel the goal. A goal with no path is cancelled too, unless only gateways taken
+// for closed are in the way (the planner tries them again after their hold: a door is tried
+// again later) or --keep-trying: the planner plans it again when the map changes or a closed
+// gateway's retry time comes, and the robot should not set off later with nobody watching.
 //   rgnav_goto NAME|ID [X Y THETA_DEG] [--tolerance M] [--heading-tolerance DEG] [--timeout S]
 // Exit codes: 0 reached, 3 cancelled (Ctrl-C, --timeout, or by someone else), 4 no path,
 // 2 bad arguments or a goal the bus checks refuse, 1 no planner answered or a bus failure.
@@ -21,6 +22,7 @@
 
 #include "bus/lcm_bus.h"
 #include "bus/typed.h"
+#include "planner/no_path_reason.h"
 #include "rgnav/global_path_t.hpp"
 #include "rgnav/nav_goal_t.hpp"
 #include "runtime/signal_watcher.h"
@@ -86,7 +88,7 @@ int main(int argc, char** argv)
   app.add_flag("--no-wait", no_wait, "exit 0 as soon as the planner has the goal (its first GLOBAL_PATH for it); the rest is the planner's");
   app.add_option("--answer-timeout", answer_timeout_s, "[s] the goal is re-sent every second until the planner answers, this long")
       ->check(CLI::Range(0.5, 600.0));
-  app.add_flag("--keep-trying", keep_trying, "on no path, keep the goal and wait (until reached, cancelled or --timeout)");
+  app.add_flag("--keep-trying", keep_trying, "on any no path, keep the goal and wait (until reached, cancelled or --timeout); behind a closed gateway it waits anyway");
   app.add_option("--lcm-url", url, "LCM URL (default: LCM_DEFAULT_URL or LCM's default)");
   app.add_option("--goal-channel", goal_channel, "the planner's channels.nav_goal");
   app.add_option("--path-channel", path_channel, "the planner's channels.global_path");
@@ -206,7 +208,10 @@ int main(int argc, char** argv)
         case rgnav::global_path_t::STATUS_GOAL_REACHED: return kReached;
         case rgnav::global_path_t::STATUS_CANCELLED: return kCancelled;
         case rgnav::global_path_t::STATUS_NO_PATH:
-          if (!keep_trying) return send_cancel("no path", kNoPath);
+          // Behind a gateway held closed, the goal is waited for (until --timeout): the planner
+          // tries the gateway again once its hold is over.
+          if (!keep_trying && rgnav::planner::no_path_cause(p.reason) != rgnav::planner::NoPathCause::kClosedGateway)
+            return send_cancel("no path", kNoPath);
           break;
         default: break;
       }

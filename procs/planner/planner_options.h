@@ -46,7 +46,7 @@ struct GlobalOptions
   double door_failed_time = 30.0;      // [s] added to a door's cost each time it could not be passed
   double door_passed_time = -10.0;     // [s] added each time it could (never below door_extra_time)
   double closed_retry_s = 30.0;        // [s] a gateway found closed is not planned through for this long (doubled
-                                       // with every further failure in a row, up to 32 times)
+                                       // with every further failure in a row, up to 32 times, while another way is left)
   double learning_rate = 0.3;          // weight of a new measured time in a region or gateway edge
   double crossing_reach = 2.0;         // [m] a crossing point outside a region's free cells joins the nearest one
                                        // this near (the middle of a crossing's square, seen from the region beside it)

@@ -632,6 +632,35 @@ TEST(GlobalPlanner, ABlockedPlaceIsGoneRoundUntilItsTime)
   EXPECT_EQ(gp.blocked_places(), 0u);
 }
 
+// A hold beyond closed_retry_s steers routes round a gateway: while another way is left it is
+// kept, and where held gateways are all that is in the way, the one whose last failure is
+// closed_retry_s old is planned through again (a robot whose only door failed three times in a
+// row waited four times as long with nothing else to do).
+TEST(GlobalPlanner, AGatewayHeldLongIsTriedAfterTheBaseHoldWhenNoOtherWayIsLeft)
+{
+  Ring r = ring();
+  const double retry = options().global.closed_retry_s;
+  GlobalPlanner gp(options());
+  gp.set_map(r.map);
+  for (double t : {0.0, 100.0, 200.0}) gp.costs().gateway_failed(*r.map.gateway(r.door), t);
+  PlanRequest req{r.a, V(2, 1.5), r.b, V(2.5, 1.5)};
+  req.now_s = 200.0 + retry + 1;
+  ASSERT_TRUE(gp.costs().closed(r.door, req.now_s));
+  std::string why;
+  auto route = gp.plan(req, &why);
+  ASSERT_TRUE(route) << why;
+  EXPECT_NE(route->legs[0].exit_gateway, r.door) << "another way is left: round the door";
+  // The hallway's opening held too (just now): the door is the way again.
+  gp.costs().gateway_failed(*r.map.gateway(r.ha), req.now_s);
+  route = gp.plan(req, &why);
+  ASSERT_TRUE(route) << why;
+  EXPECT_EQ(route->legs[0].exit_gateway, r.door);
+  // Within closed_retry_s of the door's last failure it is not tried: no route, for that reason.
+  req.now_s = 200.0 + 0.5 * retry;
+  EXPECT_FALSE(gp.plan(req, &why));
+  EXPECT_EQ(no_path_cause(why), NoPathCause::kClosedGateway) << why;
+}
+
 TEST(EdgeCosts, OnlyWhatCanStayShutIsClosedLongerWithEveryFailure)
 {
   Ring r = ring();
