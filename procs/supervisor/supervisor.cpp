@@ -395,6 +395,7 @@ void Supervisor::on_heartbeat(const std::string& name, pid_t pid, Clock::time_po
     e->progress = progress;
     e->progress_at = now;
     e->disk_wait_logged = false;
+    e->disk_wait_seen.reset();
   }
   if (e->state == ProcState::kStarting) running_again(*e);
 }
@@ -402,7 +403,8 @@ void Supervisor::on_heartbeat(const std::string& name, pid_t pid, Clock::time_po
 bool Supervisor::waiting_on_disk(Entry& e, Clock::time_point now)
 {
   if (now - e.progress_at > e.work_timeout + options_.disk_wait_timeout) return false;
-  if (main_thread_state(e.pid) != 'D') return false;
+  if (thread_state_(e.pid) == 'D') e.disk_wait_seen = now;
+  if (!e.disk_wait_seen || now - *e.disk_wait_seen > e.work_timeout) return false;
   if (!e.disk_wait_logged)
     spdlog::warn("{} (pid {}) has made no progress for {} ms, waiting on the disk: allowed {} ms more", e.cmd->spec.name,
                  e.pid, std::chrono::duration_cast<std::chrono::milliseconds>(now - e.progress_at).count(),

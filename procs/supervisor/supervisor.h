@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -113,6 +114,8 @@ class Supervisor
   const LaunchPlan& plan() const { return plan_; }
   std::string state_path() const { return state_dir_ + "/supervisor.json"; }
   std::string lock_path(const std::string& name) const { return state_dir_ + "/" + name + ".lock"; }
+  // How a process's main thread state is read (proc_info.h's main_thread_state; tests stand in).
+  void set_thread_state_reader(std::function<char(pid_t)> read) { thread_state_ = std::move(read); }
 
  private:
   enum class StopIntent { kNone, kOperator, kRestart, kHung, kShutdown };
@@ -138,6 +141,7 @@ class Supervisor
     bool silence_held = false;        // silent past its bound together with others: verdict held
     int64_t seq = -1;                 // the newest heartbeat's sequence number (-1: none yet)
     bool disk_wait_logged = false;    // since then
+    std::optional<Clock::time_point> disk_wait_seen;   // its main thread last seen in a disk wait, since then
     StopIntent intent = StopIntent::kNone;
     Clock::time_point kill_at{};
     bool killed = false;
@@ -179,7 +183,9 @@ class Supervisor
   void judge_silence(Entry& e, Clock::time_point now);
   void release_silence(Entry& e);
   void count_stall(Clock::duration length);
-  // Its loop stands still in a disk wait (slow, not stuck), within disk_wait_timeout.
+  // Its loop stands still in a disk wait (slow, not stuck), within disk_wait_timeout: in one now,
+  // or seen in one within its work bound (a loop writing to a loaded disk leaves the wait for a
+  // moment between writes: sampled then, it was taken for hung).
   bool waiting_on_disk(Entry& e, Clock::time_point now);
   void save();
 
@@ -200,6 +206,7 @@ class Supervisor
   HostStalls stalls_;
   SharedSilence silence_;
   int64_t heartbeats_lost_ = 0;
+  std::function<char(pid_t)> thread_state_ = main_thread_state;
 };
 
 }  // namespace rgnav::supervisor
