@@ -3,8 +3,8 @@
 # The pose is in the region's frame (x, y in metres, theta in degrees); without one the planner
 # picks a roomy place near its middle. Prints progress from the planner's GLOBAL_PATH until
 # the goal is reached (exit 0), cancelled (exit 3: Ctrl-C and --timeout cancel it) or has no
-# path (exit 4; the goal is cancelled unless --keep-trying; behind a gateway held closed it is
-# waited for, as the planner tries the gateway again). --no-wait returns once the planner
+# path (exit 4; the goal is cancelled unless --keep-trying; behind a gateway held closed or a
+# blocked place it is waited for, as the planner tries again). --no-wait returns once the planner
 # has the goal; --lcm-url U as for every tool. Exit 2: bad arguments; 1: no planner answered.
 set -euo pipefail
 BUILD="${RGNAV_BUILD:-$(cd "$(dirname "$0")/../.." && pwd)/build}"

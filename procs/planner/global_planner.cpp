@@ -329,12 +329,16 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
     it = places_.erase(it);
   }
   auto route = plan_round_places(request, why, stats);
-  if (route || request.strict_places || places_.empty()) return route;
+  if (route || places_.empty()) return route;
   // A blocked place is a reason to go round, not a wall: whoever stood there (people do) may
   // have gone, and the robot was there a moment ago. With no way round, the route goes through
   // it rather than nowhere; refused, a new goal behind a place a person blocked for a few
   // seconds got "no route" from the robot's own region. (The goal held at the place plans with
-  // strict_places: round it, or NO_PATH; Planner::handle_stuck.)
+  // strict_places: round it, or NO_PATH; Planner::handle_stuck. Where the places are all that
+  // is in the way, its NO_PATH says so: the same goal can be planned once they are let go, and
+  // its sender should not take it for out of reach.)
+  const bool tell_blocked = request.strict_places && why && no_path_cause(*why) == NoPathCause::kGoalUnreachable;
+  if (request.strict_places && !tell_blocked) return route;
   std::vector<BlockedPlace> kept;
   kept.swap(places_);
   for (const auto& place : kept) forget_planner(place.region);
@@ -343,6 +347,10 @@ std::optional<Route> GlobalPlanner::plan(const PlanRequest& request, std::string
   places_.swap(kept);
   for (const auto& place : places_) forget_planner(place.region);
   *stats += open_stats;
+  if (tell_blocked) {
+    if (route) *why = no_path_reason(NoPathCause::kBlockedPlace, why->substr(kGoalUnreachableReason.size()));
+    return std::nullopt;
+  }
   if (route && why) why->clear();
   return route;
 }

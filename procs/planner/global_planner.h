@@ -96,7 +96,8 @@ class GlobalPlanner
   const EdgeCosts& costs() const { return costs_; }
 
   // The cheapest route; nullopt with *why set when there is none, beginning with its cause
-  // (no_path_reason.h: "start cut off: ...", "goal unreachable: ...", "behind a closed gateway: ...").
+  // (no_path_reason.h: "start cut off: ...", "goal unreachable: ...", "behind a closed gateway: ...",
+  // "behind a blocked place: ...").
   std::optional<Route> plan(const PlanRequest& request, std::string* why, PlanStats* stats = nullptr);
 
   // The region planner of a live region (built on first use); nullptr for an unknown region.

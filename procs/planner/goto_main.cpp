@@ -1,11 +1,11 @@
 // rgnav_goto: the operator sends the robot somewhere (./rgnav goto). Publishes a nav_goal_t on
 // NAV_GOAL (again every second until the planner answers on GLOBAL_PATH, --answer-timeout), then
 // prints the goal's progress from GLOBAL_PATH until it is reached, cancelled or has no path
-// (--no-wait: returns once the planner has it). Ctrl-C (and
-// --timeout) cancel the goal. A goal with no path is cancelled too, unless only gateways taken
-// for closed are in the way (the planner tries them again after their hold: a door is tried
-// again later) or --keep-trying: the planner plans it again when the map changes or a closed
-// gateway's retry time comes, and the robot should not set off later with nobody watching.
+// (--no-wait: returns once the planner has it). Ctrl-C (and --timeout) cancel the goal. A goal
+// with no path is cancelled too (the planner would plan it again when the map changes, and the
+// robot should not set off later with nobody watching), unless --keep-trying, or only gateways
+// taken for closed or places collision avoidance could not pass are in the way: the planner tries
+// those again after their hold (a door is tried again later), and the tool waits for it.
 //   rgnav_goto NAME|ID [X Y THETA_DEG] [--tolerance M] [--heading-tolerance DEG] [--timeout S]
 // Exit codes: 0 reached, 3 cancelled (Ctrl-C, --timeout, or by someone else), 4 no path,
 // 2 bad arguments or a goal the bus checks refuse, 1 no planner answered or a bus failure.
@@ -61,6 +61,13 @@ std::string route_summary(const rgnav::global_path_t& p)
     for (size_t i = 0; i < gateways.size(); ++i) s << (i ? ", " : "") << gateways[i];
   }
   return s.str();
+}
+
+// A no-path that holds for a while only: a gateway taken for closed, a place collision avoidance
+// could not pass (the planner plans the goal again once it is let go).
+bool held_for_a_while(rgnav::planner::NoPathCause cause)
+{
+  return cause == rgnav::planner::NoPathCause::kClosedGateway || cause == rgnav::planner::NoPathCause::kBlockedPlace;
 }
 
 }  // namespace
@@ -208,9 +215,9 @@ int main(int argc, char** argv)
         case rgnav::global_path_t::STATUS_GOAL_REACHED: return kReached;
         case rgnav::global_path_t::STATUS_CANCELLED: return kCancelled;
         case rgnav::global_path_t::STATUS_NO_PATH:
-          // Behind a gateway held closed, the goal is waited for (until --timeout): the planner
-          // tries the gateway again once its hold is over.
-          if (!keep_trying && rgnav::planner::no_path_cause(p.reason) != rgnav::planner::NoPathCause::kClosedGateway)
+          // Behind a gateway held closed or a place blocked a moment ago, the goal is waited for
+          // (until --timeout): the planner plans it again once the hold is over.
+          if (!keep_trying && !held_for_a_while(rgnav::planner::no_path_cause(p.reason)))
             return send_cancel("no path", kNoPath);
           break;
         default: break;

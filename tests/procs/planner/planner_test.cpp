@@ -618,6 +618,11 @@ TEST(GlobalPlanner, ABlockedPlaceIsGoneRoundUntilItsTime)
   PlanRequest strict = req;
   strict.strict_places = true;
   EXPECT_FALSE(gp.plan(strict, &why)) << "the only way, between the wall's end and the room's: blocked";
+  EXPECT_EQ(no_path_cause(why), NoPathCause::kBlockedPlace) << why;
+  PlanRequest nowhere = strict;
+  nowhere.goal = V(40, 40);
+  EXPECT_FALSE(gp.plan(nowhere, &why));
+  EXPECT_EQ(no_path_cause(why), NoPathCause::kGoalUnreachable) << "out of reach whatever the place: " << why;
   // No way round: through the place rather than nowhere (whoever stood there may have gone);
   // the place is kept for routes that have a way round it.
   route = gp.plan(req, &why);
@@ -914,9 +919,10 @@ TEST(Planner, WaitsAtAGatewayRatherThanTakeAWayRoundDearerThanTheWait)
 }
 
 // Something collision avoidance cannot pass stands in the only way (the gap between the inner
-// wall's end and the room's wall), away from any gateway: the goal has NO_PATH because the goal
-// cannot be reached, not because the robot were cut off (the place cuts the room's space in two,
-// and the robot's half is still the room's); a new goal behind the place, while it is still
+// wall's end and the room's wall), away from any gateway: the goal has NO_PATH behind the blocked
+// place (a while: the same goal can be planned once the place is let go), not because the robot
+// were cut off (the place cuts the room's space in two, and the robot's half is still the
+// room's); a new goal behind the place, while it is still
 // marked, is routed through it (no other way) and reached once the way is clear.
 TEST(Planner, ABlockedPlaceWithNoWayRoundEndsTheGoalButNotTheNext)
 {
@@ -936,7 +942,7 @@ TEST(Planner, ABlockedPlaceWithNoWayRoundEndsTheGoalButNotTheNext)
   robot.wall = [&](const V& p) { return (utime - start) * 1e-6 < 12.0 && p.x() > 3.2 && p.x() < 4.8 && p.y() > 3.5; };
   planner.set_goal(pose_goal(1, room, 6, 4.2), utime);
   EXPECT_EQ(drive_goal(&planner, in_room, &robot, &utime, 60), GoalStatus::kNoPath);
-  EXPECT_EQ(no_path_cause(planner.reason()), NoPathCause::kGoalUnreachable) << planner.reason();
+  EXPECT_EQ(no_path_cause(planner.reason()), NoPathCause::kBlockedPlace) << planner.reason();
   EXPECT_LT((utime - start) * 1e-6, o.execution.blocked_after_s + 5.0);
   EXPECT_EQ(planner.global().blocked_places(), 1u);
   planner.set_goal(pose_goal(2, room, 6, 4.2), utime);
