@@ -41,7 +41,9 @@ BusObserver::BusObserver(const std::string& url, const std::string& host, const 
         auto& t = hb_[hb.name];
         if (t.pid == hb.pid && t.last != Clock::time_point{}) {
           t.max_gap = std::max(t.max_gap, std::chrono::duration_cast<std::chrono::milliseconds>(now - t.last));
+          if (hb.seq > t.seq + 1) t.lost += hb.seq - t.seq - 1;
         }
+        t.seq = hb.seq;
         t.pid = hb.pid;
         t.last = now;
         t.dropped = hb.messages_dropped;
@@ -145,7 +147,10 @@ const HeartbeatTrack* BusObserver::heartbeat(const std::string& name) const
 
 void BusObserver::reset_gaps()
 {
-  for (auto& [n, t] : hb_) t.max_gap = std::chrono::milliseconds(0);
+  for (auto& [n, t] : hb_) {
+    t.max_gap = std::chrono::milliseconds(0);
+    t.lost = 0;
+  }
 }
 
 std::chrono::milliseconds BusObserver::gap_now(const std::string& name) const

@@ -27,6 +27,9 @@ struct HeartbeatTrack
   int pid = 0;
   Clock::time_point last{};
   std::chrono::milliseconds max_gap{0};  // since reset_gaps()
+  int64_t seq = -1;                      // the newest heartbeat's sequence number
+  int64_t lost = 0;                      // since reset_gaps(): beats missing by sequence number (sent, never
+                                         // heard here: lost on the bus or in this observer's receive queue)
   int64_t dropped = 0;                   // messages_dropped of the newest heartbeat
   int64_t messages_in = 0;               // accepted inputs of the newest heartbeat
   int32_t busy_ms = 0;                   // the newest heartbeat's time of its loop in the current turn

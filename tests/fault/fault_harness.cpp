@@ -367,6 +367,14 @@ class Harness
     return s;
   }
 
+  // ", N lost on the way" when heartbeats of `name` were sent but never heard (their sequence
+  // numbers skip): the process beat, the bus or this observer's receive queue lost them.
+  std::string lost_on_the_way(const std::string& name) const
+  {
+    const auto* t = obs_->heartbeat(name);
+    return t && t->lost > 0 ? ", " + std::to_string(t->lost) + " lost on the way" : "";
+  }
+
   // Others restarted, and the largest heartbeat gap among them beyond their normal jitter.
   void check_others(const std::string& self, const std::map<std::string, std::pair<int, int>>& before, FaultRow& row)
   {
@@ -387,7 +395,9 @@ class Harness
       const double base = static_cast<double>(baseline_gap_[n].count());
       // Disturbed = came near being declared hung; below that, a loaded machine's scheduling.
       const double bound = std::max(2.0 * base, static_cast<double>(o_.heartbeat_timeout.count()));
-      if (gap > bound) jittery += " " + n + "(" + std::to_string(static_cast<int>(gap)) + ">" + std::to_string(static_cast<int>(bound)) + "ms)";
+      if (gap > bound)
+        jittery += " " + n + "(" + std::to_string(static_cast<int>(gap)) + ">" + std::to_string(static_cast<int>(bound)) + "ms" +
+                   lost_on_the_way(n) + ")";
     }
     row.max_other_gap_ms = worst;
     if (!jittery.empty()) row.note += "; heartbeat gap beyond jitter:" + jittery;
@@ -1132,7 +1142,8 @@ class Harness
       const bool same = s && s->pid == old_pid && before.count(name) && s->restarts == before.at(name).second;
       const double own_gap = static_cast<double>(obs_->gap_now(name).count());
       if (!same) row.note += "; the process itself was restarted";
-      if (own_gap > o_.heartbeat_timeout.count()) row.note += "; its own heartbeat stopped for " + std::to_string(static_cast<int>(own_gap)) + " ms";
+      if (own_gap > o_.heartbeat_timeout.count())
+        row.note += "; its own heartbeat stopped for " + std::to_string(static_cast<int>(own_gap)) + " ms" + lost_on_the_way(name);
       if (fault == "malformed") {
         const int64_t dropped = obs_->heartbeat(name) ? obs_->heartbeat(name)->dropped - dropped_before : 0;
         row.note += (row.note.empty() ? "" : "; ") + std::to_string(dropped) + " inputs dropped as invalid";
