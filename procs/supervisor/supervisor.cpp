@@ -248,7 +248,11 @@ bool Supervisor::dependencies_up(const Entry& e, Clock::time_point now) const
     for (const auto& x : entries_)
       if (x.cmd->spec.name == d) local = &x;
     if (local) {
-      // A job is a dependency once it has done its work (its output exists), a service while it runs.
+      // A job is a dependency once it has done its work (its output exists), a service while it
+      // runs. A service the operator stopped holds nothing back: it is not coming back, and a
+      // dependent restarted after a crash waited for it for ever (the demo stops the explorer
+      // before its room visits; the scan mapper, started after it, was never restarted).
+      if (!local->cmd->spec.oneshot && !local->want_running && local->state == ProcState::kStopped) continue;
       if (local->cmd->spec.oneshot ? !local->done : local->state != ProcState::kRunning) return false;
       continue;
     }

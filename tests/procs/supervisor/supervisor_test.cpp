@@ -115,6 +115,27 @@ cmd "a" { exec = "sleep 31"; }
   EXPECT_EQ(view(*s, "a").restarts, 0);
 }
 
+// A dependency the operator stopped holds nothing back: the demo stops the explorer before its
+// room visits, and the scan mapper (started after it) stayed in back-off for good after a hang,
+// leaving the robot without a pose.
+TEST_F(SupervisorTest, ADependencyStoppedOnPurposeDoesNotHoldARestartBack)
+{
+  auto s = make(R"(
+cmd "b" { exec = "sleep 30"; heartbeat = "false"; depends = "a"; }
+cmd "a" { exec = "sleep 31"; }
+)");
+  s->start_all(Clock::now());
+  ASSERT_TRUE(run_until(*s, [&] { return view(*s, "b").state == ProcState::kRunning; }, milliseconds(3000), {"a"}));
+  std::string why;
+  ASSERT_TRUE(s->order(Order::kStop, "a", Clock::now(), &why)) << why;
+  ASSERT_TRUE(run_until(*s, [&] { return view(*s, "a").state == ProcState::kStopped; }, milliseconds(3000)));
+  const pid_t b = view(*s, "b").pid;
+  kill(b, SIGKILL);
+  ASSERT_TRUE(run_until(*s, [&] { return view(*s, "b").pid != 0 && view(*s, "b").pid != b; }, milliseconds(3000)));
+  EXPECT_EQ(view(*s, "b").restarts, 1);
+  EXPECT_EQ(view(*s, "a").state, ProcState::kStopped) << "stopped on purpose: not started again";
+}
+
 TEST_F(SupervisorTest, SilentProcessIsKilledAsHungAndRestarted)
 {
   auto s = make("cmd \"h\" { exec = \"sleep 30\"; }");
