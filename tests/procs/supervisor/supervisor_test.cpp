@@ -79,6 +79,20 @@ class SupervisorTest : public ::testing::Test
     return false;
   }
 
+  // SIGKILLs `name` and runs until it runs again under a new pid.
+  bool killed_and_restarted(Supervisor& s, const std::string& name, const std::vector<std::string>& alive = {})
+  {
+    const pid_t old = view(s, name).pid;
+    kill(old, SIGKILL);
+    return run_until(s, [&] { return view(s, name).pid != 0 && view(s, name).pid != old; }, milliseconds(3000), alive);
+  }
+
+  // "b" (no heartbeat) starts once "a" runs.
+  static constexpr const char* kBDependsOnA = R"(
+cmd "b" { exec = "sleep 30"; heartbeat = "false"; depends = "a"; }
+cmd "a" { exec = "sleep 31"; }
+)";
+
   static ProcessView view(Supervisor& s, const std::string& name)
   {
     for (const auto& v : s.status(Clock::now()))
@@ -96,19 +110,14 @@ class SupervisorTest : public ::testing::Test
 
 TEST_F(SupervisorTest, StartsInDependencyOrderAndRestartsOneProcessAlone)
 {
-  auto s = make(R"(
-cmd "b" { exec = "sleep 30"; heartbeat = "false"; depends = "a"; }
-cmd "a" { exec = "sleep 31"; }
-)");
+  auto s = make(kBDependsOnA);
   s->start_all(Clock::now());
   // a needs a heartbeat to count as running; b waits for it.
   ASSERT_TRUE(run_until(*s, [&] { return view(*s, "a").state == ProcState::kStarting; }, milliseconds(2000)));
   EXPECT_EQ(view(*s, "b").state, ProcState::kStopped);
   ASSERT_TRUE(run_until(*s, [&] { return view(*s, "b").state == ProcState::kRunning; }, milliseconds(3000), {"a"}));
   const pid_t a = view(*s, "a").pid;
-  const pid_t b = view(*s, "b").pid;
-  kill(b, SIGKILL);
-  ASSERT_TRUE(run_until(*s, [&] { return view(*s, "b").pid != 0 && view(*s, "b").pid != b; }, milliseconds(3000), {"a"}));
+  ASSERT_TRUE(killed_and_restarted(*s, "b", {"a"}));
   EXPECT_EQ(view(*s, "b").restarts, 1);
   EXPECT_EQ(view(*s, "b").last_exit.rfind("signal 9", 0), 0u) << view(*s, "b").last_exit;
   EXPECT_EQ(view(*s, "a").pid, a);
@@ -120,18 +129,13 @@ cmd "a" { exec = "sleep 31"; }
 // leaving the robot without a pose.
 TEST_F(SupervisorTest, ADependencyStoppedOnPurposeDoesNotHoldARestartBack)
 {
-  auto s = make(R"(
-cmd "b" { exec = "sleep 30"; heartbeat = "false"; depends = "a"; }
-cmd "a" { exec = "sleep 31"; }
-)");
+  auto s = make(kBDependsOnA);
   s->start_all(Clock::now());
   ASSERT_TRUE(run_until(*s, [&] { return view(*s, "b").state == ProcState::kRunning; }, milliseconds(3000), {"a"}));
   std::string why;
   ASSERT_TRUE(s->order(Order::kStop, "a", Clock::now(), &why)) << why;
   ASSERT_TRUE(run_until(*s, [&] { return view(*s, "a").state == ProcState::kStopped; }, milliseconds(3000)));
-  const pid_t b = view(*s, "b").pid;
-  kill(b, SIGKILL);
-  ASSERT_TRUE(run_until(*s, [&] { return view(*s, "b").pid != 0 && view(*s, "b").pid != b; }, milliseconds(3000)));
+  ASSERT_TRUE(killed_and_restarted(*s, "b"));
   EXPECT_EQ(view(*s, "b").restarts, 1);
   EXPECT_EQ(view(*s, "a").state, ProcState::kStopped) << "stopped on purpose: not started again";
 }
