@@ -95,7 +95,7 @@ int main(int argc, char** argv)
   app.add_flag("--no-wait", no_wait, "exit 0 as soon as the planner has the goal (its first GLOBAL_PATH for it); the rest is the planner's");
   app.add_option("--answer-timeout", answer_timeout_s, "[s] the goal is re-sent every second until the planner answers, this long")
       ->check(CLI::Range(0.5, 600.0));
-  app.add_flag("--keep-trying", keep_trying, "on any no path, keep the goal and wait (until reached, cancelled or --timeout); behind a closed gateway it waits anyway");
+  app.add_flag("--keep-trying", keep_trying, "on any no path, keep the goal and wait (until reached, cancelled or --timeout); behind a closed gateway or a blocked place it waits anyway");
   app.add_option("--lcm-url", url, "LCM URL (default: LCM_DEFAULT_URL or LCM's default)");
   app.add_option("--goal-channel", goal_channel, "the planner's channels.nav_goal");
   app.add_option("--path-channel", path_channel, "the planner's channels.global_path");

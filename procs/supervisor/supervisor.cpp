@@ -398,7 +398,6 @@ void Supervisor::on_heartbeat(const std::string& name, pid_t pid, Clock::time_po
   if (progress != e->progress) {
     e->progress = progress;
     e->progress_at = now;
-    e->disk_wait_logged = false;
     e->disk_wait_seen.reset();
   }
   if (e->state == ProcState::kStarting) running_again(*e);
@@ -407,14 +406,15 @@ void Supervisor::on_heartbeat(const std::string& name, pid_t pid, Clock::time_po
 bool Supervisor::waiting_on_disk(Entry& e, Clock::time_point now)
 {
   if (now - e.progress_at > e.work_timeout + options_.disk_wait_timeout) return false;
-  if (thread_state_(e.pid) == 'D') e.disk_wait_seen = now;
-  if (!e.disk_wait_seen || now - *e.disk_wait_seen > e.work_timeout) return false;
-  if (!e.disk_wait_logged)
-    spdlog::warn("{} (pid {}) has made no progress for {} ms, waiting on the disk: allowed {} ms more", e.cmd->spec.name,
-                 e.pid, std::chrono::duration_cast<std::chrono::milliseconds>(now - e.progress_at).count(),
-                 options_.disk_wait_timeout.count());
-  e.disk_wait_logged = true;
-  return true;
+  if (thread_state_(e.pid) == 'D') {
+    // Logged once per stand-still: its first disk wait since it last moved on.
+    if (!e.disk_wait_seen)
+      spdlog::warn("{} (pid {}) has made no progress for {} ms, waiting on the disk: allowed {} ms more", e.cmd->spec.name,
+                   e.pid, std::chrono::duration_cast<std::chrono::milliseconds>(now - e.progress_at).count(),
+                   options_.disk_wait_timeout.count());
+    e.disk_wait_seen = now;
+  }
+  return e.disk_wait_seen && now - *e.disk_wait_seen <= e.work_timeout;
 }
 
 void Supervisor::count_stall(Clock::duration length)

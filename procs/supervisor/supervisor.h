@@ -140,7 +140,6 @@ class Supervisor
     Clock::time_point progress_at{};  // when it last moved on
     bool silence_held = false;        // silent past its bound together with others: verdict held
     int64_t seq = -1;                 // the newest heartbeat's sequence number (-1: none yet)
-    bool disk_wait_logged = false;    // since then
     std::optional<Clock::time_point> disk_wait_seen;   // its main thread last seen in a disk wait, since then
     StopIntent intent = StopIntent::kNone;
     Clock::time_point kill_at{};
