@@ -232,6 +232,7 @@ MapperUpdate ScanMapper::process(const sensors::LaserScan& scan, const Pose2& od
   // While a hypothesis waits for a witness, look every scan.
   if (options_.loop.enabled && !in_flight_ && (++since_loop_try_ >= options_.loop.every_n_scans || !pending_.empty())) {
     since_loop_try_ = 0;
+    note_progress();
     up.loop_closed = try_loop_closure(id, &up);
   }
   return up;
@@ -268,6 +269,7 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
   if (model.size() < 10 || points.size() < 10) return {};
   const PointMap map(std::move(model), std::move(normals), std::move(has_normal));
   std::vector<IcpResult> found{icp_point_to_line(points, scan.normals, scan.has_normal, map, guess, icp)};
+  note_progress();
   if (wide || !found[0].ok || found[0].inlier_ratio < options_.min_inlier_ratio) {
     ++stats_.correlative_retries;
     const LikelihoodGrid grid(map.points(), options_.correlative);
@@ -275,6 +277,7 @@ std::vector<IcpResult> ScanMapper::register_locally(const ScanNode& scan, const 
     if (wide) window = {options_.loop.window_max_m, options_.loop.angular_window_max_rad};
     const auto cor = correlative_match(thin_points(points, options_.loop.point_spacing_m), grid, guess, window,
                                        options_.correlative);
+    note_progress();
     // A wide search can fit a turned copy of symmetric surroundings (a round bay seen from its
     // centre) better than the fit from odometry: both go to the caller, better first.
     IcpResult again = icp_point_to_line(points, scan.normals, scan.has_normal, map, cor.map_from_scan, icp);
@@ -406,6 +409,7 @@ const ScanMapper::Submap& ScanMapper::submap_around(int anchor)
   }
   Submap sm;
   sm.grid = std::make_unique<LikelihoodGrid>(pts, l.correlative);
+  note_progress();
   sm.points = std::make_unique<PointMap>(std::move(pts), std::move(normals), std::move(has_normal));
   submap_lru_.push_front(anchor);
   if (submap_lru_.size() > kSubmapCacheSize) {
@@ -421,6 +425,7 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
   const ScanNode& cur = nodes_[static_cast<size_t>(n)];
   // How well each old node is known relative to this one, read off the graph.
   const auto unc = relative_uncertainty(graph_, n, l.drift);
+  note_progress();
   int best = -1;
   double best_d = std::numeric_limits<double>::infinity();
   for (int m = 0; m + l.min_node_gap <= n; ++m) {
@@ -456,6 +461,7 @@ std::optional<ClosureHypothesis> ScanMapper::find_closure(int n)
   const bool ambiguity_checked = l.max_ambiguity < 1.0;
   const auto cor = correlative_match(thin_points(cur.points, l.point_spacing_m), *sm.grid, guess, window, l.correlative,
                                      ambiguity_checked ? l.ambiguity_distance_m : 0.0);
+  note_progress();
   if (cor.score < l.min_score) return std::nullopt;
   if (ambiguity_checked && cor.runner_up >= l.max_ambiguity * cor.score) {
     ++stats_.loop_ambiguous;

@@ -40,6 +40,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <list>
 #include <map>
 #include <memory>
@@ -119,6 +120,10 @@ class ScanMapper
   MapperUpdate add_scan(const sensors::LaserScan& scan);
 
   void set_deferred_optimization(bool deferred) { deferred_ = deferred; }
+  // Called between the steps of a scan's work (registration, a correlative search, a loop
+  // closure's submap and search): under load one scan can take seconds, and the node's
+  // progress counter shows the supervisor that the process is working, not hung.
+  void set_progress(std::function<void()> progress) { progress_ = std::move(progress); }
   // Deferred mode: the job left by the last add_scan (once). No closure is searched while a
   // job is out; the caller must hand each job back with apply_optimization or cancel it.
   std::optional<OptimizationJob> take_optimization_job();
@@ -146,6 +151,10 @@ class ScanMapper
   };
 
   MapperUpdate process(const sensors::LaserScan& scan, const Pose2& odom);
+  void note_progress() const
+  {
+    if (progress_) progress_();
+  }
   void prepare_points(ScanNode* node) const;
   // The node's surface normals, oriented toward its laser.
   void compute_normals(ScanNode* node) const;
@@ -192,6 +201,7 @@ class ScanMapper
   std::vector<ClosureHypothesis> pending_;  // closures waiting for a consistent witness
   bool deferred_ = false;
   bool in_flight_ = false;
+  std::function<void()> progress_;          // set_progress
   std::optional<OptimizationJob> job_;      // deferred: made, not yet taken
 };
 

@@ -51,6 +51,7 @@ ScanMapperNode::ScanMapperNode(runtime::Node& node, const ScanMapperOptions& opt
     mapper_ = std::make_unique<ScanMapper>(options);
   }
   mapper_->set_deferred_optimization(true);
+  mapper_->set_progress([this] { node_.note_progress(); });
   node_.subscribe<odometry_t>(channels_.odometry, [this](const odometry_t& m) { on_odometry(to_odometry(m), m.seq); });
   node_.subscribe<laser_scan_t>(channels_.laser, [this](const laser_scan_t& m) { on_scan(msg::to_laser_scan(m)); });
   node_.watch_fd([this] { return worker_.fd(); }, [this] { on_optimization_done(); });

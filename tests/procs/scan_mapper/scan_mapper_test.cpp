@@ -305,6 +305,36 @@ TEST(ScanMapper, GatesCorrectsDriftAndClosesTheLoop)
   EXPECT_GT(std::hypot(run.odom.back().x() - run.truth.back().x(), run.odom.back().y() - run.truth.back().y()), 0.5);
 }
 
+TEST(ScanMapper, ReportsProgressWithinAScansWork)
+{
+  // The node counts these as progress for the supervisor: under load one scan's registration
+  // and loop search took the scan mapper past a 1 s bound on work without progress.
+  const SyntheticRun run = make_run();
+  sm::ScanMapper mapper(test_options());
+  int calls = 0;
+  mapper.set_progress([&calls] { ++calls; });
+  int registered = 0, searched = 0;
+  for (size_t i = 0; i < run.scans.size(); ++i) {
+    mapper.add_odometry({run.scans[i].utime, run.odom[i]});
+    const int before = calls;
+    const int64_t attempts = mapper.stats().loop_attempts;
+    const auto up = mapper.add_scan(run.scans[i]);
+    if (!up.accepted || up.node == 0) {
+      EXPECT_EQ(calls, before);   // a scan gated out does no work worth reporting
+      continue;
+    }
+    ++registered;
+    EXPECT_GE(calls - before, 1);
+    // A loop search: before it, after the graph's uncertainty, after the correlative search.
+    if (mapper.stats().loop_attempts > attempts) {
+      ++searched;
+      EXPECT_GE(calls - before, 4);
+    }
+  }
+  EXPECT_GT(registered, 50);
+  EXPECT_GT(searched, 0);
+}
+
 TEST(ScanMapper, HallwayClosuresDoNotDragTheEstimateAlongTheHallway)
 {
   // A 2 m wide hallway with a few door niches, driven out and back: closures on the way back
