@@ -139,6 +139,8 @@ std::vector<Frontier> Explorer::open_frontiers(int64_t region_id) const
   const rgmap::Region* r = map_->region(region_id);
   if (!r) return open;
   const GainOptions& gain = options_.frontier.gain;
+  const bool left = region_id != map_->resolve(map_->current_region);
+  const double min_gain = left ? std::max(gain.min_m2, gain.left_min_m2) : gain.min_m2;
   for (auto& f : find_frontiers(*map_, region_id, options_.frontier).frontiers) {
     // The opening of a gateway waiting on the stack is the stack's, not the region's: it is taken
     // when the region is complete. One gone through or set aside is a frontier like any other if a
@@ -153,7 +155,7 @@ std::vector<Frontier> Explorer::open_frontiers(int64_t region_id) const
     });
     if (stacked) continue;
     // Nothing left to see past it: no goal (the region counts as complete there).
-    if (gain.min_m2 > 0.0 && unknown_area_beyond(*map_, at, r->map_from_region.rotation() * f.outward, gain) < gain.min_m2)
+    if (min_gain > 0.0 && unknown_area_beyond(*map_, at, r->map_from_region.rotation() * f.outward, gain) < min_gain)
       continue;
     open.push_back(std::move(f));
   }
@@ -337,16 +339,28 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
     }
   }
   // A failure counts toward max_attempts only when something could have made it come out
-  // otherwise since the last one: the robot got elsewhere or the map changed. Failing again from
-  // the same place on the same map says nothing new (the planner's answer then is the same), and
-  // counting it would set everything aside while the robot stands still, and end exploring early.
-  bool counts = true;
-  if (!reached && map_ && pose_) {
-    const Eigen::Vector2d here = pose_->map_from_base.translation();
-    counts = !last_failure_ || (here - last_failure_->first).norm() >= kMovedSinceFailure ||
-             map_->version != last_failure_->second;
-    last_failure_ = std::make_pair(here, map_->version);
+  // otherwise since the goal's last one: the robot got elsewhere or the map changed
+  // (last_failure.h). Failing again from the same place on the same map says nothing new (the
+  // planner's answer then is the same), and counting it would set everything aside while the
+  // robot stands still, and end exploring early.
+  std::optional<LastFailure> now;
+  if (!reached && map_ && pose_) now = LastFailure{pose_->map_from_base.translation(), map_->version};
+  if (now) last_failure_ = now;
+  FailedPlace* place = nullptr;
+  const StackEntry* entry = goal_->kind == ExploreGoal::Kind::kGateway ? stack_.entry(goal_->entry_id) : nullptr;
+  if (!reached && goal_->kind != ExploreGoal::Kind::kGateway) {
+    auto it = std::find_if(failed_.begin(), failed_.end(), [&](const FailedPlace& f) {
+      return (f.map_point - goal_->frontier_point).norm() < options_.visited_radius;
+    });
+    if (it == failed_.end()) {
+      FailedPlace fresh;
+      fresh.map_point = goal_->frontier_point;
+      it = failed_.insert(failed_.end(), fresh);
+    }
+    place = &*it;
   }
+  const std::optional<LastFailure> before = entry ? entry->failed_from : place ? place->failed_from : std::nullopt;
+  bool counts = !now || tells_more(before, *now, kMovedSinceFailure);
   // A goal the robot got no nearer to (or not to in time) while the planner had a way: blamed on
   // the goal only if the robot arrived somewhere since the last such failure. A robot held where
   // it stands (wedged among furniture, its collision avoidance finding no way on) fails every goal
@@ -372,19 +386,12 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
       const int64_t wait = behind_closed && e ? closed_retry_wait_us(e->closed_failures + 1) : retry_after_us;
       stack_.failed(goal_->entry_id, reason, utime, utime + wait, options_.max_attempts,
                     static_cast<int64_t>(map_ ? map_->regions().size() : 0), view, counts,
-                    behind_closed ? options_.max_closed_retries : 0);
+                    behind_closed ? options_.max_closed_retries : 0, now);
     }
   } else if (reached) {
     visited_.push_back(goal_->frontier_point);
   } else {
-    auto it = std::find_if(failed_.begin(), failed_.end(), [&](const FailedPlace& f) {
-      return (f.map_point - goal_->frontier_point).norm() < options_.visited_radius;
-    });
-    if (it == failed_.end()) {
-      FailedPlace place;
-      place.map_point = goal_->frontier_point;
-      it = failed_.insert(failed_.end(), place);
-    }
+    FailedPlace* it = place;
     if (behind_closed) {
       ++it->closed_failures;
       it->retry_utime = utime + closed_retry_wait_us(it->closed_failures);
@@ -394,6 +401,7 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
       it->retry_utime = utime + retry_after_us;
     }
     it->failed_utime = utime;
+    it->failed_from = now;
     if (map_) it->view_at_failure = view_of_place(*map_, it->map_point, options_.changed);
   }
   goal_.reset();
@@ -553,7 +561,7 @@ Command Explorer::step(int64_t utime)
       // Everything left failed from here: the place may be what is wrong (a scrap of free space
       // that joins no way on, as for "start cut off"), and standing there nothing changes. The
       // robot looks behind, then steps back along its track, before it waits.
-      const bool failed_here = last_failure_ && (robot - last_failure_->first).norm() < kMovedSinceFailure;
+      const bool failed_here = last_failure_ && (robot - last_failure_->robot).norm() < kMovedSinceFailure;
       if (failed_here) {
         recovery_due_ = recovery_from(robot);
         if (recovery_due_ != Recovery::kNone) {
@@ -627,13 +635,15 @@ nlohmann::json Explorer::save() const
 {
   nlohmann::json visited = nlohmann::json::array(), failed = nlohmann::json::array();
   for (const auto& v : visited_) visited.push_back(point_json(v));
-  for (const auto& f : failed_)
+  for (const auto& f : failed_) {
     failed.push_back({{"at", point_json(f.map_point)},
                       {"retry_utime", f.retry_utime},
                       {"attempts", f.attempts},
                       {"closed_failures", f.closed_failures},
                       {"failed_utime", f.failed_utime},
                       {"view_at_failure", place_view_json(f.view_at_failure)}});
+    if (f.failed_from) failed.back()["failed_from"] = last_failure_json(*f.failed_from);
+  }
   return {{"phase", to_string(phase_)},
           {"start_region", start_region_},
           {"next_goal_id", next_goal_id_},
@@ -668,6 +678,8 @@ void Explorer::restore(const nlohmann::json& j)
     // Absent in state files written before places were tried again when the map near them changed.
     place.failed_utime = f.value("failed_utime", int64_t{0});
     if (f.contains("view_at_failure")) place.view_at_failure = place_view_from_json(f.at("view_at_failure"));
+    // Absent in state files written before a failure was judged per goal.
+    if (f.contains("failed_from")) place.failed_from = last_failure_from_json(f.at("failed_from"));
     failed.push_back(place);
   }
   const auto offered = j.at("offered_regions").get<std::set<int64_t>>();

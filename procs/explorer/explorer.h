@@ -39,6 +39,7 @@
 #include "explorer/explorer_options.h"
 #include "explorer/frontiers.h"
 #include "explorer/gateway_stack.h"
+#include "explorer/last_failure.h"
 #include "explorer/place_view.h"
 #include "geometry/pose2.h"
 #include "planner/global_planner.h"
@@ -205,10 +206,11 @@ class Explorer
     int attempts = 0;
     int closed_failures = 0;        // failures only a gateway held closed was in the way of (no attempts)
     int64_t failed_utime = 0;       // the last failure ...
-    PlaceView view_at_failure;      // ... and the map around the place then
+    PlaceView view_at_failure;      // ... and the map around the place then ...
+    std::optional<LastFailure> failed_from;   // ... and where the robot stood, on which map
   };
   std::vector<FailedPlace> failed_;             // frontier goals the planner could not reach
-  std::optional<std::pair<Eigen::Vector2d, int64_t>> last_failure_;   // robot position and map version then
+  std::optional<LastFailure> last_failure_;     // of any goal: where the robot stood, on which map
   bool arrived_since_failure_ = false;          // the robot arrived at a goal since the last counted "no progress"
   std::vector<Eigen::Vector2d> track_;          // map frame: where the robot was, newest last
   Recovery recovery_due_ = Recovery::kNone;

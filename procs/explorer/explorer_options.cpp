@@ -20,6 +20,7 @@ FrontierOptions load_frontier(const config::Config& c)
   f.gain.fan_rad = c.number("gain_fan_rad", f.gain.fan_rad, 0.0, M_PI);
   f.gain.step_m = c.number("gain_step_m", f.gain.step_m, 0.01, 1.0);
   f.gain.min_m2 = c.number("min_gain_m2", f.gain.min_m2, 0.0, 100.0);
+  f.gain.left_min_m2 = c.number("left_region_min_gain_m2", f.gain.left_min_m2, 0.0, 100.0);
   return f;
 }
 

@@ -19,6 +19,10 @@ struct GainOptions
   double fan_rad = 1.0;            // [rad] rays this far to either side of the frontier's outward direction
   double step_m = 0.1;             // [m] samples along a ray, and rays this far apart at the fan's rim
   double min_m2 = 0.0;             // [m^2] a frontier with less unknown area than this in its fan is no goal (0: every one)
+  // [m^2] the same for the frontiers of a region the robot is not in (when larger): going back
+  // costs a trip, and a region the robot saw from inside keeps scraps of freespace edge its map
+  // does not close (corners, furniture) that a look from there has already seen past
+  double left_min_m2 = 0.0;
 };
 
 // Where a region's freespace ends in unknown space (frontiers.h).

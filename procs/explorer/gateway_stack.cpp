@@ -186,7 +186,8 @@ void GatewayStack::done(int64_t id, const std::string& reason)
 }
 
 void GatewayStack::failed(int64_t id, const std::string& reason, int64_t utime, int64_t retry_utime, int max_attempts,
-                          int64_t map_regions, const PlaceView& view, bool counts, int max_closed_retries)
+                          int64_t map_regions, const PlaceView& view, bool counts, int max_closed_retries,
+                          std::optional<LastFailure> from)
 {
   for (auto& e : entries_) {
     if (e.id != id) continue;
@@ -198,6 +199,7 @@ void GatewayStack::failed(int64_t id, const std::string& reason, int64_t utime, 
     e.map_regions_at_failure = map_regions;
     e.failed_utime = utime;
     e.view_at_failure = view;
+    e.failed_from = from;
     // For good after max_attempts: retry_utime 0 is never due (until release_changed).
     e.retry_utime = e.attempts >= max_attempts || (closed && e.closed_failures >= max_closed_retries) ? 0 : retry_utime;
   }
@@ -233,7 +235,7 @@ int GatewayStack::count(StackEntry::State s) const
 nlohmann::json GatewayStack::to_json() const
 {
   nlohmann::json list = nlohmann::json::array();
-  for (const auto& e : entries_)
+  for (const auto& e : entries_) {
     list.push_back({{"id", e.id},
                     {"class", static_cast<int>(e.cls)},
                     {"crossing", {e.crossing.x(), e.crossing.y()}},
@@ -248,6 +250,8 @@ nlohmann::json GatewayStack::to_json() const
                     {"failed_utime", e.failed_utime},
                     {"view_at_failure", place_view_json(e.view_at_failure)},
                     {"reason", e.reason}});
+    if (e.failed_from) list.back()["failed_from"] = last_failure_json(*e.failed_from);
+  }
   return {{"next_id", next_id_}, {"entries", list}};
 }
 
@@ -279,6 +283,8 @@ void GatewayStack::from_json(const nlohmann::json& j)
     // Absent in state files written before entries were released when the map near them changed.
     e.failed_utime = x.value("failed_utime", int64_t{0});
     if (x.contains("view_at_failure")) e.view_at_failure = place_view_from_json(x.at("view_at_failure"));
+    // Absent in state files written before a failure was judged per goal.
+    if (x.contains("failed_from")) e.failed_from = last_failure_from_json(x.at("failed_from"));
     e.reason = x.at("reason").get<std::string>();
     entries.push_back(e);
   }

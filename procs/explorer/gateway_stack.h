@@ -14,10 +14,12 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "explorer/explorer_options.h"
+#include "explorer/last_failure.h"
 #include "explorer/place_view.h"
 #include "rgmap/rg_map.h"
 
@@ -48,6 +50,7 @@ struct StackEntry
   int64_t map_regions_at_failure = 0;   // regions in the map when it last failed (a new one: retry)
   int64_t failed_utime = 0;             // when it last failed
   PlaceView view_at_failure;            // the map around its crossing then
+  std::optional<LastFailure> failed_from;   // where the robot stood then, on which map
   std::string reason;                   // why done or set aside
   // The goal beyond it (map frame).
   Eigen::Vector2d beyond(double distance) const;
@@ -72,11 +75,12 @@ class GatewayStack
   void done(int64_t id, const std::string& reason);
   // A goal for entry `id` failed: set aside until `retry_utime` (and for good after max attempts;
   // `counts` false: not an attempt, the same failure again from the same place on the same map).
-  // `view`: the map around its crossing now (place_view.h). `max_closed_retries` > 0: only a
-  // gateway held closed was in the way (no attempt), and the max_closed_retries-th such failure
-  // sets it aside for good.
+  // `view`: the map around its crossing now (place_view.h); `from`: where the robot stood.
+  // `max_closed_retries` > 0: only a gateway held closed was in the way (no attempt), and the
+  // max_closed_retries-th such failure sets it aside for good.
   void failed(int64_t id, const std::string& reason, int64_t utime, int64_t retry_utime, int max_attempts,
-              int64_t map_regions, const PlaceView& view, bool counts = true, int max_closed_retries = 0);
+              int64_t map_regions, const PlaceView& view, bool counts = true, int max_closed_retries = 0,
+              std::optional<LastFailure> from = std::nullopt);
   // Entries set aside for good whose surroundings changed since they last failed (and that failed
   // at least `min_age_us` before `utime`) are due again, with one attempt left; returns how many.
   int release_changed(const rgmap::RgMap& map, const PlaceViewOptions& o, int64_t utime, int64_t min_age_us,

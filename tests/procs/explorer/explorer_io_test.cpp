@@ -44,6 +44,7 @@ TEST(ExplorerConfig, ShippedConfigHasTheHeadersDefaults)
   EXPECT_EQ(o.frontier.gain.fan_rad, d.frontier.gain.fan_rad);
   EXPECT_EQ(o.frontier.gain.step_m, d.frontier.gain.step_m);
   EXPECT_EQ(o.frontier.gain.min_m2, d.frontier.gain.min_m2);
+  EXPECT_EQ(o.frontier.gain.left_min_m2, d.frontier.gain.left_min_m2);
   EXPECT_EQ(o.stack.min_observations, d.stack.min_observations);
   EXPECT_EQ(o.stack.merge_distance, d.stack.merge_distance);
   EXPECT_EQ(o.stack.merge_angle, d.stack.merge_angle);

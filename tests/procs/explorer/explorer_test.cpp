@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -628,6 +629,46 @@ TEST(Explorer, ANoPathGoalIsTriedAgainLaterAndSetAsideAfterMaxAttempts)
   EXPECT_EQ(ex.status().goals_failed, 5);
 }
 
+// Two doors the robot cannot get through, tried one after the other from where it stands: each
+// failure is the first of its own goal (with one record of the last failure for all goals, only
+// the first door's counted, the second never ran out of attempts, and exploring never ended).
+TEST(Explorer, AFailureOfOneGoalDoesNotDiscountAnothers)
+{
+  Explorer ex(retrying(1));
+  int64_t t = kUtime;
+  auto map = std::make_shared<rgmap::RgMap>();
+  const std::vector<Wall> walls = {{V(0, 0), V(8, 0)},     {V(0, 0), V(0, 1.8)},     {V(8, 0), V(8, 1.8)},
+                                   {V(0, 1.8), V(1.5, 1.8)}, {V(2.5, 1.8), V(5.5, 1.8)}, {V(6.5, 1.8), V(8, 1.8)}};
+  map->current_region = add_region(map.get(), V(0, 0), V(8, 1.8), walls).id;
+  map->version = 1;
+  ex.set_map(map);
+  ex.set_pose({t, Pose2(4, 0.9, 0)});
+  ex.add_sightings({sighting(V(2, 1.8), M_PI / 2), sighting(V(6, 1.8), M_PI / 2)}, t);
+  std::set<int64_t> tried;
+  for (int k = 0; k < 2; ++k) {
+    const auto g = next_goal(ex, t);
+    ASSERT_TRUE(g && g->kind == ExploreGoal::Kind::kGateway) << ex.status().activity;
+    tried.insert(g->entry_id);
+    ex.goal_report(g->goal_id, GoalOutcome::kNoPath, "goal unreachable: the goal is behind a wall", t);
+  }
+  EXPECT_EQ(tried.size(), 2u);
+  for (const StackEntry& e : ex.stack().entries()) EXPECT_EQ(e.attempts, 1) << "entry " << e.id;
+  // A restarted explorer knows where each failed from; a state file saying otherwise is refused.
+  Explorer again(retrying(1));
+  again.restore(ex.save());
+  for (const StackEntry& e : again.stack().entries()) {
+    ASSERT_TRUE(e.failed_from) << "entry " << e.id;
+    EXPECT_NEAR(e.failed_from->robot.x(), 4.0, 1e-9);
+    EXPECT_EQ(e.failed_from->map_version, 1);
+  }
+  nlohmann::json bad = ex.save();
+  bad["stack"]["entries"][0]["failed_from"] = {4.0, 0.9};
+  EXPECT_THROW(again.restore(bad), std::invalid_argument);
+  // Both out of attempts: nothing left to wait for.
+  EXPECT_FALSE(next_goal(ex, t += kSecond));
+  EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
+}
+
 // A frontier of the current region that failed waits behind the stack: tried again before it, a
 // frontier the robot cannot get at (behind furniture) held it in one room while the rest of the
 // building waited.
@@ -851,6 +892,33 @@ TEST(Explorer, AFrontierWithLittleUnknownBeyondIsNoGoal)
     } else {
       ASSERT_TRUE(g);
       EXPECT_EQ(g->kind, ExploreGoal::Kind::kFrontier);
+    }
+  }
+}
+
+// The same frontier under the rule for regions the robot is not in (left_min_m2): a goal while
+// the robot is in its region, none once it stands in a closed room north of it (going back costs
+// a trip, and a look past it shows nothing).
+TEST(Explorer, ALeftRegionsFrontierWithLittleUnknownBeyondIsNoGoal)
+{
+  ExplorerOptions o = no_look();
+  o.frontier.gain.left_min_m2 = 0.25;
+  for (const bool in_hallway : {true, false}) {
+    Explorer ex(o);
+    auto map = hallway(false);
+    add_region(map.get(), V(6.2, 0), V(9, 1.8), {{V(6.2, 0), V(9, 0)}, {V(6.2, 1.8), V(9, 1.8)}, {V(9, 0), V(9, 1.8)}});
+    const int64_t room =
+        add_region(map.get(), V(0, 5), V(6, 7), {{V(0, 5), V(6, 5)}, {V(0, 7), V(6, 7)}, {V(0, 5), V(0, 7)}, {V(6, 5), V(6, 7)}}).id;
+    if (!in_hallway) map->current_region = room;
+    ex.set_map(map);
+    ex.set_pose({kUtime, in_hallway ? Pose2(1.0, 0.9, 0) : Pose2(3.0, 6.0, 0)});
+    const auto g = next_goal(ex, kUtime);
+    if (in_hallway) {
+      ASSERT_TRUE(g) << ex.status().activity;
+      EXPECT_EQ(g->kind, ExploreGoal::Kind::kFrontier);
+    } else {
+      EXPECT_FALSE(g) << "goal " << to_string(g->kind) << " in region " << g->region_id << " at (" << g->map_point.transpose() << ")";
+      EXPECT_EQ(ex.phase(), Phase::kDone) << ex.status().activity;
     }
   }
 }
