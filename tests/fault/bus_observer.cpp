@@ -20,13 +20,17 @@ namespace {
 // this host: commands, odometry, the simulator's real-time clock) mapped back from the age it has
 // now, so a harness that was not scheduled for a while does not see old samples as new ones.
 // Arrival time where utime is no recent wall time.
-Clock::time_point made_at(int64_t utime)
+Clock::time_point made_at(int64_t utime, int64_t max_age_us = 2'000'000)
 {
   const auto now = Clock::now();
   const int64_t age = time::wall_utime() - utime;
-  if (age < 0 || age > 2'000'000) return now;
+  if (age < 0 || age > max_age_us) return now;
   return now - std::chrono::microseconds(age);
 }
+
+// A heartbeat's utime is always the wall time of sending (heartbeat_t): any age under a minute
+// is the time it waited to be read.
+constexpr int64_t kHeartbeatMaxAgeUs = 60'000'000;
 
 }  // namespace
 
@@ -38,14 +42,17 @@ BusObserver::BusObserver(const std::string& url, const std::string& host, const 
       bus_, "HEARTBEAT",
       [this](const heartbeat_t& hb, const bus::RawMessage&) {
         const auto now = Clock::now();
+        const auto sent = made_at(hb.utime, kHeartbeatMaxAgeUs);
         auto& t = hb_[hb.name];
-        if (t.pid == hb.pid && t.last != Clock::time_point{}) {
-          t.max_gap = std::max(t.max_gap, std::chrono::duration_cast<std::chrono::milliseconds>(now - t.last));
+        t.max_late = std::max(t.max_late, std::chrono::duration_cast<std::chrono::milliseconds>(now - sent));
+        const bool same_process = t.pid == hb.pid && t.last != Clock::time_point{};
+        if (same_process) {
+          t.max_gap = std::max(t.max_gap, std::chrono::duration_cast<std::chrono::milliseconds>(sent - t.last));
           if (hb.seq > t.seq + 1) t.lost += hb.seq - t.seq - 1;
         }
         t.seq = hb.seq;
         t.pid = hb.pid;
-        t.last = now;
+        t.last = same_process ? std::max(t.last, sent) : sent;
         t.dropped = hb.messages_dropped;
         t.messages_in = hb.messages_in;
         t.busy_ms = hb.busy_ms;
@@ -149,8 +156,16 @@ void BusObserver::reset_gaps()
 {
   for (auto& [n, t] : hb_) {
     t.max_gap = std::chrono::milliseconds(0);
+    t.max_late = std::chrono::milliseconds(0);
     t.lost = 0;
   }
+}
+
+std::chrono::milliseconds BusObserver::max_late() const
+{
+  std::chrono::milliseconds worst{0};
+  for (const auto& [n, t] : hb_) worst = std::max(worst, t.max_late);
+  return worst;
 }
 
 std::chrono::milliseconds BusObserver::gap_now(const std::string& name) const

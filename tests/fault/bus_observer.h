@@ -25,8 +25,12 @@ using Clock = std::chrono::steady_clock;
 struct HeartbeatTrack
 {
   int pid = 0;
+  // When the newest heartbeat was sent (its utime, wall time on this host), and the largest gap
+  // between sendings since reset_gaps(): whether the process beat, not when this observer got to
+  // read it (during a flood its receive queue holds seconds of the flood ahead of them).
   Clock::time_point last{};
-  std::chrono::milliseconds max_gap{0};  // since reset_gaps()
+  std::chrono::milliseconds max_gap{0};
+  std::chrono::milliseconds max_late{0}; // since reset_gaps(): the longest a heartbeat waited here to be read
   int64_t seq = -1;                      // the newest heartbeat's sequence number
   int64_t lost = 0;                      // since reset_gaps(): beats missing by sequence number (sent, never
                                          // heard here: lost on the bus or in this observer's receive queue)
@@ -68,8 +72,10 @@ class BusObserver
   bus::Bus& bus() { return bus_; }
   const HeartbeatTrack* heartbeat(const std::string& name) const;
   void reset_gaps();
-  // Heartbeat gap of `name` including the silence up to now.
+  // Heartbeat gap of `name` (by the times they were sent) including the silence up to now.
   std::chrono::milliseconds gap_now(const std::string& name) const;
+  // The longest any heartbeat waited in this observer's receive queue since reset_gaps().
+  std::chrono::milliseconds max_late() const;
 
   std::optional<process_status_t> status(const std::string& name) const;
   const supervisor_status_t* last_status() const { return have_status_ ? &last_status_ : nullptr; }
