@@ -13,6 +13,13 @@ bool no(std::string* why, const std::string& text)
   return false;
 }
 
+constexpr double kMaxSpeedMps = 5.0;          // no command or speed limit for this robot is faster
+constexpr double kMaxSegmentLengthM = 1e3;    // [m] one trajectory segment
+
+// A pose no part of this robot's world has: beyond 10 km of its frame's origin, or turned by
+// more than 100 rad (poses are anywhere in a building, headings normalised or nearly so).
+bool far_pose(const pose2d_t& p) { return std::fabs(p.x) > 1e4 || std::fabs(p.y) > 1e4 || std::fabs(p.theta) > 100.0; }
+
 }  // namespace
 
 bool semantically_valid(const laser_scan_t& m, std::string* why)
@@ -31,10 +38,19 @@ bool semantically_valid(const laser_scan_t& m, std::string* why)
   return true;
 }
 
+bool semantically_valid(const odometry_t& m, std::string* why)
+{
+  // Collision avoidance plans from this pose: one 1e30 m away is a chain of that length.
+  if (far_pose(m.odom_from_base)) return no(why, "odometry_t: pose beyond 10 km or |theta| > 100 rad");
+  if (std::fabs(m.v) > kMaxSpeedMps || std::fabs(m.omega) > 10.0)
+    return no(why, "odometry_t: |v| > 5 m/s or |omega| > 10 rad/s is no motion of this robot");
+  return true;
+}
+
 bool semantically_valid(const velocity_cmd_t& m, std::string* why)
 {
   if (m.deadline_us <= 0) return no(why, "velocity_cmd_t: deadline_us must be > 0");
-  if (std::fabs(m.v) > 5.0 || std::fabs(m.omega) > 10.0)
+  if (std::fabs(m.v) > kMaxSpeedMps || std::fabs(m.omega) > 10.0)
     return no(why, "velocity_cmd_t: |v| > 5 m/s or |omega| > 10 rad/s is no command for this robot");
   return true;
 }
@@ -89,9 +105,14 @@ bool semantically_valid(const region_t& m, std::string* why)
 bool semantically_valid(const trajectory_t& m, std::string* why)
 {
   if (!(m.a_max > 0) || !(m.omega_max > 0)) return no(why, "trajectory_t: a_max and omega_max must be > 0");
-  for (const auto& s : m.segments)
+  for (const auto& s : m.segments) {
     if (s.length < 0 || !(s.v_max > 0) || s.v_end < 0)
       return no(why, "trajectory_t: segment needs length >= 0, v_max > 0, v_end >= 0");
+    // Sampled along its length by whoever drives it: a segment of 1e30 m is no trajectory but a
+    // loop without end (a corrupted one hung collision avoidance in the fault bench).
+    if (s.length > kMaxSegmentLengthM || far_pose(s.start))
+      return no(why, "trajectory_t: segment longer than 1 km or starting beyond 10 km, or |theta| > 100 rad");
+  }
   return true;
 }
 
@@ -104,14 +125,17 @@ bool semantically_valid(const nav_goal_t& m, std::string* why)
     return no(why, "nav_goal_t: needs region_id or region_name");
   // No region has a longer name: an oversized one is refused before anyone looks it up.
   if (m.region_name.size() > rgmap::kMaxRegionNameLength) return no(why, "nav_goal_t: region_name longer than 64 characters");
-  if (std::fabs(m.region_from_goal.x) > 1e4 || std::fabs(m.region_from_goal.y) > 1e4 || std::fabs(m.region_from_goal.theta) > 100.0)
-    return no(why, "nav_goal_t: goal beyond 10 km or |theta| > 100 rad");
+  if (far_pose(m.region_from_goal)) return no(why, "nav_goal_t: goal beyond 10 km or |theta| > 100 rad");
   return true;
 }
 
 bool semantically_valid(const target_list_t& m, std::string* why)
 {
-  if (!(m.max_speed > 0.f)) return no(why, "target_list_t: max_speed must be > 0");
+  if (!(m.max_speed > 0.f) || m.max_speed > kMaxSpeedMps) return no(why, "target_list_t: max_speed outside (0, 5] m/s");
+  // Collision avoidance plans a chain through them: a target 1e30 m away made it sample a line
+  // of that length for ever (the fault bench's corrupted input).
+  for (const auto& p : m.odom_from_target)
+    if (far_pose(p)) return no(why, "target_list_t: target beyond 10 km or |theta| > 100 rad");
   return true;
 }
 
@@ -128,8 +152,7 @@ bool semantically_valid(const localize_request_t& m, std::string* why)
   if (m.mode == localize_request_t::MODE_POSE) {
     if (m.region_id < 0) return no(why, "localize_request_t: region_id must be >= 0");
     if (m.region_id == 0 && m.region_name.empty()) return no(why, "localize_request_t: needs region_id or region_name");
-    if (std::fabs(m.region_from_base.x) > 1e4 || std::fabs(m.region_from_base.y) > 1e4 || std::fabs(m.region_from_base.theta) > 100.0)
-      return no(why, "localize_request_t: pose beyond 10 km or |theta| > 100 rad");
+    if (far_pose(m.region_from_base)) return no(why, "localize_request_t: pose beyond 10 km or |theta| > 100 rad");
   }
   return true;
 }

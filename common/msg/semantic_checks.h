@@ -17,6 +17,7 @@ bool semantically_valid(const T&, std::string*)
 }
 
 bool semantically_valid(const laser_scan_t& m, std::string* why);
+bool semantically_valid(const odometry_t& m, std::string* why);
 bool semantically_valid(const velocity_cmd_t& m, std::string* why);
 bool semantically_valid(const image_t& m, std::string* why);
 bool semantically_valid(const stereo_images_t& m, std::string* why);

@@ -141,6 +141,7 @@ CaNodeOptions load_ca_options(const config::Config& root, const config::RobotDes
   c.reach_radius = be.number("reach_radius_m", c.reach_radius, 0.05, 2.0);
   c.goal_tolerance = be.number("goal_tolerance_m", c.goal_tolerance, 0.01, 1.0);
   c.lookahead_targets = static_cast<int>(be.integer("lookahead_targets", c.lookahead_targets, 1, 10));
+  c.max_target_distance = be.number("max_target_distance_m", c.max_target_distance, 1.0, 100.0);
   c.scan_timeout = be.number("scan_timeout_s", c.scan_timeout, 0.05, 10.0);
   c.update_period = be.number("update_period_s", c.update_period, 0.0, 2.0);
   c.refresh_period = be.number("refresh_period_s", c.refresh_period, 0.05, 10.0);

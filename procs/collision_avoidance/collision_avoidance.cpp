@@ -333,6 +333,9 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   while (next_ + 1 < targets_.poses.size() &&
          map_.clearance(targets_.poses[next_].translation(), clearance) < clearance)
     ++next_;
+  for (const Pose2& g : goals())
+    if ((g.translation() - pose_.translation()).norm() > options_.max_target_distance)
+      return stop(now, Mode::kBlocked, "a target beyond max_target_distance_m: not planned");
   auto planned = planner_.plan(pose_, v_now, goals(), map_, targets_.max_speed);
   if (!planned && next_ + 1 < targets_.poses.size()) {
     // The next target cannot be reached from here; the one after may be.

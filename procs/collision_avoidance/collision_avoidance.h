@@ -53,6 +53,10 @@ struct CaOptions
   double reach_radius = 0.35;      // [m] an intermediate target counts as passed this close
   double goal_tolerance = 0.10;    // [m] the final goal
   int lookahead_targets = 2;       // targets one chain reaches
+  // [m] Targets are local (the route planner sends the next few metres): one farther from the
+  // robot is no target to plan a chain to (a corrupted list, a frame mixed up) and stops the
+  // robot; a chain to a target 9 km away took seconds to sample, and the lld refuses its segments.
+  double max_target_distance = 20.0;
   double scan_timeout = 0.5;       // [s] no scan this long: stop
   double update_period = 0.1;      // [s] decisions at most this often (message time)
   double refresh_period = 0.5;     // [s] re-send the active trajectory (keep-alive for the lld)

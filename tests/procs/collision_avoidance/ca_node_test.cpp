@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstdio>
+#include <random>
+
 #include "bus/fake_bus.h"
 #include "collision_avoidance/chain_planner.h"
 #include "msg/conversions.h"
@@ -201,6 +205,89 @@ TEST(CaNode, StatusOfAFreeWayIsPlannedAndNotBlocked)
   EXPECT_EQ(s.back().blocked_s, 0.0);
   EXPECT_EQ(s.back().goal_id, 1);
   EXPECT_EQ(s.back().next_target, 0);
+}
+
+}  // namespace
+}  // namespace rgnav::collision_avoidance
+
+namespace rgnav::collision_avoidance {
+namespace {
+
+template <class T>
+std::vector<uint8_t> encoded(const T& m)
+{
+  std::vector<uint8_t> out(static_cast<size_t>(m.getEncodedSize()));
+  m.encode(out.data(), 0, static_cast<int>(out.size()));
+  return out;
+}
+
+target_list_t target_msg(const std::vector<geometry::Pose2>& poses)
+{
+  target_list_t m{};
+  m.utime = kT0;
+  m.goal_id = 1;
+  for (const auto& p : poses) m.odom_from_target.push_back(msg::to_msg(p));
+  m.ntargets = static_cast<int32_t>(m.odom_from_target.size());
+  m.max_speed = 0.5f;
+  m.final_is_goal = true;
+  return m;
+}
+
+// A target no planner sends (1e30 m away: a corrupted list) is dropped and counted: planned
+// through, it had collision avoidance sample a line of that length for ever, and the supervisor
+// stopped it as hung over and over in the fault bench.
+TEST(CaNode, DropsTargetsNoPlannerSends)
+{
+  Fixture f;
+  ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0, 1)));
+  ASSERT_TRUE(bus::publish(*f.fake, "LASER_FRONT", scan_msg(kT0, 1, kCorridor)));
+  const auto bad = encoded(target_msg({geometry::Pose2(1.0, 0.0, 0.0), geometry::Pose2(1e30, 0.0, 0.0)}));
+  const int64_t before = f.node->drops().total();
+  f.fake->publish("TARGETS", bad.data(), bad.size());
+  EXPECT_EQ(f.node->drops().total(), before + 1);
+  EXPECT_TRUE(f.trajectories().empty() || f.trajectories().back().chain.empty()) << "nothing planned toward it";
+}
+
+// The fault bench's malformed input (truncated, a byte flipped, random bytes; its seed) on every
+// input collision avoidance plans from; afterwards it plans round a box as before.
+TEST(CaNode, SurvivesCorruptedInputAndPlansAfter)
+{
+  Fixture f;
+  const std::vector<std::pair<std::string, std::vector<uint8_t>>> valid = {
+      {"LASER_FRONT", encoded(scan_msg(kT0, 1, kCorridor))},
+      {"ODOMETRY", encoded(odo_msg(kT0, 1))},
+      {"TARGETS", encoded(target_msg({geometry::Pose2(1.0, 0.0, 0.0), geometry::Pose2(2.0, 0.0, 0.0)}))}};
+  for (const auto& [channel, bytes] : valid) f.fake->publish(channel, bytes.data(), bytes.size());
+  std::mt19937 rng(42);
+  for (int i = 0; i < 1000; ++i)
+    for (const auto& [channel, bytes] : valid) {
+      std::vector<uint8_t> m;
+      if (i % 3 == 0) {
+        m.assign(bytes.begin(), bytes.begin() + static_cast<long>(rng() % bytes.size()));
+      } else if (i % 3 == 1) {
+        m = bytes;
+        m[8 + rng() % (m.size() - 8)] ^= static_cast<uint8_t>(1 + rng() % 255);
+      } else {
+        m.resize(1 + rng() % 512);
+        for (auto& b : m) b = static_cast<uint8_t>(rng());
+      }
+      f.fake->publish(channel, m.data(), m.size());
+    }
+  EXPECT_GT(f.node->drops().total(), 1000);
+  auto walls = kCorridor;
+  for (const auto& w : testing::box(1.3, -0.3, 1.7, 0.3)) walls.push_back(w);
+  const int64_t t = kT0 + 60'000'000;
+  ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(t, 2)));
+  ASSERT_TRUE(bus::publish(*f.fake, "LASER_FRONT", scan_msg(t, 2, walls)));
+  auto targets = target_msg({geometry::Pose2(1.0, 0.0, 0.0), geometry::Pose2(2.0, 0.0, 0.0), geometry::Pose2(3.0, 0.0, 0.0)});
+  targets.utime = t;
+  targets.goal_id = 2;
+  ASSERT_TRUE(bus::publish(*f.fake, "TARGETS", targets));
+  ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(t + 20'000, 3)));
+  const auto ts = f.trajectories();
+  ASSERT_FALSE(ts.empty());
+  ASSERT_FALSE(ts.back().chain.empty()) << f.ca->ca().status();
+  EXPECT_FALSE(first_collision(ts.back().chain, f.ca->ca().map(), 0.26, 0.01));
 }
 
 }  // namespace
