@@ -49,6 +49,26 @@ odometry_t odo_msg(int64_t utime, int64_t seq)
   return m;
 }
 
+template <class T>
+std::vector<uint8_t> encoded(const T& m)
+{
+  std::vector<uint8_t> out(static_cast<size_t>(m.getEncodedSize()));
+  m.encode(out.data(), 0, static_cast<int>(out.size()));
+  return out;
+}
+
+target_list_t target_msg(const std::vector<geometry::Pose2>& poses)
+{
+  target_list_t m{};
+  m.utime = kT0;
+  m.goal_id = 1;
+  for (const auto& p : poses) m.odom_from_target.push_back(msg::to_msg(p));
+  m.ntargets = static_cast<int32_t>(m.odom_from_target.size());
+  m.max_speed = 0.5f;
+  m.final_is_goal = true;
+  return m;
+}
+
 struct Fixture
 {
   bus::FakeBus* fake;
@@ -77,17 +97,7 @@ struct Fixture
     }
     return out;
   }
-  void targets(std::vector<geometry::Pose2> poses)
-  {
-    target_list_t m{};
-    m.utime = kT0;
-    m.goal_id = 1;
-    for (const auto& p : poses) m.odom_from_target.push_back(msg::to_msg(p));
-    m.ntargets = static_cast<int32_t>(m.odom_from_target.size());
-    m.max_speed = 0.5f;
-    m.final_is_goal = true;
-    ASSERT_TRUE(bus::publish(*fake, "TARGETS", m));
-  }
+  void targets(const std::vector<geometry::Pose2>& poses) { ASSERT_TRUE(bus::publish(*fake, "TARGETS", target_msg(poses))); }
 };
 
 const std::vector<testing::Wall> kCorridor = {{{-1, -1.5}, {12, -1.5}}, {{-1, 1.5}, {12, 1.5}}};
@@ -205,32 +215,6 @@ TEST(CaNode, StatusOfAFreeWayIsPlannedAndNotBlocked)
   EXPECT_EQ(s.back().blocked_s, 0.0);
   EXPECT_EQ(s.back().goal_id, 1);
   EXPECT_EQ(s.back().next_target, 0);
-}
-
-}  // namespace
-}  // namespace rgnav::collision_avoidance
-
-namespace rgnav::collision_avoidance {
-namespace {
-
-template <class T>
-std::vector<uint8_t> encoded(const T& m)
-{
-  std::vector<uint8_t> out(static_cast<size_t>(m.getEncodedSize()));
-  m.encode(out.data(), 0, static_cast<int>(out.size()));
-  return out;
-}
-
-target_list_t target_msg(const std::vector<geometry::Pose2>& poses)
-{
-  target_list_t m{};
-  m.utime = kT0;
-  m.goal_id = 1;
-  for (const auto& p : poses) m.odom_from_target.push_back(msg::to_msg(p));
-  m.ntargets = static_cast<int32_t>(m.odom_from_target.size());
-  m.max_speed = 0.5f;
-  m.final_is_goal = true;
-  return m;
 }
 
 // A target no planner sends (1e30 m away: a corrupted list) is dropped and counted: planned
