@@ -391,18 +391,17 @@ void Explorer::end_goal(bool reached, const std::string& reason, int64_t utime, 
   } else if (reached) {
     visited_.push_back(goal_->frontier_point);
   } else {
-    FailedPlace* it = place;
     if (behind_closed) {
-      ++it->closed_failures;
-      it->retry_utime = utime + closed_retry_wait_us(it->closed_failures);
-      if (it->closed_failures >= options_.max_closed_retries) it->attempts = std::max(it->attempts, options_.max_attempts);
+      ++place->closed_failures;
+      place->retry_utime = utime + closed_retry_wait_us(place->closed_failures);
+      if (place->closed_failures >= options_.max_closed_retries) place->attempts = std::max(place->attempts, options_.max_attempts);
     } else {
-      if (counts) ++it->attempts;
-      it->retry_utime = utime + retry_after_us;
+      if (counts) ++place->attempts;
+      place->retry_utime = utime + retry_after_us;
     }
-    it->failed_utime = utime;
-    it->failed_from = now;
-    if (map_) it->view_at_failure = view_of_place(*map_, it->map_point, options_.changed);
+    place->failed_utime = utime;
+    place->failed_from = now;
+    if (map_) place->view_at_failure = view_of_place(*map_, place->map_point, options_.changed);
   }
   goal_.reset();
   decide_now_ = true;
