@@ -161,6 +161,13 @@ std::vector<Pose2> CollisionAvoidance::goals() const
   return out;
 }
 
+bool CollisionAvoidance::beyond_reach(const std::vector<Pose2>& aims) const
+{
+  return std::any_of(aims.begin(), aims.end(), [&](const Pose2& g) {
+    return (g.translation() - pose_.translation()).norm() > options_.max_target_distance;
+  });
+}
+
 bool CollisionAvoidance::advance_targets()
 {
   bool advanced = false;
@@ -333,15 +340,15 @@ std::optional<trajectory::Trajectory> CollisionAvoidance::update(time::Time now)
   while (next_ + 1 < targets_.poses.size() &&
          map_.clearance(targets_.poses[next_].translation(), clearance) < clearance)
     ++next_;
-  for (const Pose2& g : goals())
-    if ((g.translation() - pose_.translation()).norm() > options_.max_target_distance)
-      return stop(now, Mode::kBlocked, "a target beyond max_target_distance_m: not planned");
-  auto planned = planner_.plan(pose_, v_now, goals(), map_, targets_.max_speed);
+  const std::vector<Pose2> aims = goals();
+  if (beyond_reach(aims)) return stop(now, Mode::kBlocked, "a target beyond max_target_distance_m: not planned");
+  auto planned = planner_.plan(pose_, v_now, aims, map_, targets_.max_speed);
   if (!planned && next_ + 1 < targets_.poses.size()) {
     // The next target cannot be reached from here; the one after may be.
     const size_t keep = next_;
     ++next_;
-    planned = planner_.plan(pose_, v_now, goals(), map_, targets_.max_speed);
+    const std::vector<Pose2> further = goals();
+    if (!beyond_reach(further)) planned = planner_.plan(pose_, v_now, further, map_, targets_.max_speed);
     if (!planned) next_ = keep;
   }
   bool detour = false;

@@ -218,6 +218,8 @@ class CollisionAvoidance
   std::optional<trajectory::Trajectory> commit_backoff(std::optional<trajectory::Trajectory> t, time::Time now,
                                                        double duration);
   std::vector<Pose2> goals() const;
+  // One of `aims` lies farther from the robot than max_target_distance: no local target.
+  bool beyond_reach(const std::vector<Pose2>& aims) const;
   bool advance_targets();
 
   const CaOptions options_;

@@ -1148,7 +1148,7 @@ class Harness
       if (own_gap > o_.heartbeat_timeout.count())
         row.note += "; its own heartbeat stopped for " + std::to_string(static_cast<int>(own_gap)) + " ms" + lost_on_the_way(name);
       // Gaps are judged by when heartbeats were sent; how late this observer read them says how
-      // much of the flood its own receive queue held (every process's queue holds the same).
+      // much of the flood its own receive queue held.
       if (obs_->max_late() > o_.heartbeat_timeout)
         row.note += "; heartbeats read here up to " + std::to_string(obs_->max_late().count()) + " ms after they were sent";
       if (fault == "malformed") {

@@ -232,6 +232,28 @@ TEST(CaNode, DropsTargetsNoPlannerSends)
   EXPECT_TRUE(f.trajectories().empty() || f.trajectories().back().chain.empty()) << "nothing planned toward it";
 }
 
+// A target the message checks let pass but beyond max_target_distance (20 m) is no local
+// planner's: the robot stops and says why; one within it is planned to.
+TEST(CaNode, StopsForATargetBeyondItsReach)
+{
+  for (const double x : {30.0, 8.0}) {
+    Fixture f;
+    ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0, 1)));
+    ASSERT_TRUE(bus::publish(*f.fake, "LASER_FRONT", scan_msg(kT0, 1, kCorridor)));
+    f.targets({geometry::Pose2(x, 0.0, 0.0)});
+    ASSERT_TRUE(bus::publish(*f.fake, "ODOMETRY", odo_msg(kT0 + 20'000, 2)));
+    const auto ts = f.trajectories();
+    ASSERT_FALSE(ts.empty());
+    if (x > 20.0) {
+      EXPECT_TRUE(ts.back().chain.empty());
+      EXPECT_EQ(f.ca->ca().mode(), Mode::kBlocked);
+      EXPECT_NE(f.ca->ca().status().find("max_target_distance_m"), std::string::npos) << f.ca->ca().status();
+    } else {
+      EXPECT_FALSE(ts.back().chain.empty()) << f.ca->ca().status();
+    }
+  }
+}
+
 // The fault bench's malformed input (truncated, a byte flipped, random bytes; its seed) on every
 // input collision avoidance plans from; afterwards it plans round a box as before.
 TEST(CaNode, SurvivesCorruptedInputAndPlansAfter)
